@@ -1,0 +1,132 @@
+#include "common/image/image_io.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <system_error>
+#include <vector>
+
+#include <glm/common.hpp>
+
+#include "common/core/input_error.h"
+#include "common/image/color.h"
+
+namespace hybridlab {
+namespace fs = std::filesystem;
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+namespace {
+
+Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode) {
+    const ImageSpec& spec = in.spec();
+    const int w = spec.width, h = spec.height, nc = spec.nchannels;
+    if (w <= 0 || h <= 0 || nc <= 0) throw InputError(name + ": image has no pixels");
+    std::vector<float> raw(static_cast<std::size_t>(w) * h * nc);
+    if (!in.read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data())) {
+        throw InputError(name + ": cannot decode image (" + in.geterror() + ")");
+    }
+    const bool integer = spec.format.basetype != TypeDesc::FLOAT && spec.format.basetype != TypeDesc::HALF &&
+                         spec.format.basetype != TypeDesc::DOUBLE;
+    const bool toLinear = decode == ColorEncoding::Srgb && integer;
+    Image img(w, h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const float* p = &raw[(static_cast<std::size_t>(y) * w + x) * nc];
+            glm::vec4 c(0.0f, 0.0f, 0.0f, 1.0f);
+            if (nc < 3) {
+                c.r = c.g = c.b = p[0];
+                if (nc == 2) c.a = p[1];
+            } else {
+                c.r = p[0], c.g = p[1], c.b = p[2];
+                if (nc > 3) c.a = p[3];
+            }
+            if (toLinear) c = glm::vec4(srgbToLinear(glm::vec3(c)), c.a);
+            img.at(x, y) = c;
+        }
+    }
+    return img;
+}
+
+}  // namespace
+
+Image readImage(const fs::path& path, ColorEncoding decode) {
+    if (!fs::exists(path)) throw InputError(path.string() + ": image file not found");
+    auto in = ImageInput::open(path.string());
+    if (!in) throw InputError(path.string() + ": cannot read image (" + OIIO::geterror() + ")");
+    return decodeOpened(*in, path.string(), decode);
+}
+
+Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name,
+                          const std::string& mimeType, ColorEncoding decode) {
+    std::string hint = name;
+    if (mimeType == "image/png") hint = "embedded.png";
+    else if (mimeType == "image/jpeg") hint = "embedded.jpg";
+    OIIO::Filesystem::IOMemReader proxy(const_cast<unsigned char*>(bytes), size);
+    auto in = ImageInput::open(hint, nullptr, &proxy);
+    if (!in) throw InputError(name + ": cannot read embedded image (" + OIIO::geterror() + ")");
+    return decodeOpened(*in, name, decode);
+}
+
+namespace {
+
+void writePixels(const fs::path& path, const Image& img, TypeDesc type, const std::vector<float>& rgba) {
+    auto out = ImageOutput::create(path.string());
+    if (!out) throw std::runtime_error(path.string() + ": no image writer (" + OIIO::geterror() + ")");
+    ImageSpec spec(img.width(), img.height(), 4, type);
+    if (!out->open(path.string(), spec)) throw std::runtime_error(path.string() + ": " + out->geterror());
+    if (!out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {
+        throw std::runtime_error(path.string() + ": " + out->geterror());
+    }
+}
+
+std::vector<float> flatten(const Image& img, glm::vec4 (*map)(glm::vec4)) {
+    std::vector<float> out(img.pixelCount() * 4);
+    for (std::size_t i = 0; i < img.pixelCount(); ++i) {
+        glm::vec4 c = map(img.data()[i]);
+        for (int k = 0; k < 4; ++k) out[i * 4 + k] = c[k];
+    }
+    return out;
+}
+
+TypeDesc pngType(int bits) { return bits == 16 ? TypeDesc::UINT16 : TypeDesc::UINT8; }
+
+}  // namespace
+
+void writeExr(const fs::path& path, const Image& linear) {
+    writePixels(path, linear, TypeDesc::FLOAT, flatten(linear, [](glm::vec4 c) { return c; }));
+}
+
+void writeDisplayPng(const fs::path& path, const Image& linear, int bits) {
+    writePixels(path, linear, pngType(bits), flatten(linear, linearToDisplay));
+}
+
+void writePng(const fs::path& path, const Image& display, int bits) {
+    writePixels(path, display, pngType(bits),
+                flatten(display, [](glm::vec4 c) { return glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f)); }));
+}
+
+void writeImageAtomically(const fs::path& path, const Image& linear) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    // Keep the extension last so that OpenImageIO picks the writer by it.
+    fs::path tmp = path.parent_path() / (".tmp-" + path.stem().string() + path.extension().string());
+    if (ext == ".exr") {
+        writeExr(tmp, linear);
+    } else if (ext == ".png") {
+        writeDisplayPng(tmp, linear);
+    } else {
+        throw InputError(path.string() + ": unsupported image extension '" + ext + "' (expected .exr or .png)");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp);
+        throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,37 @@
+#pragma once
+// Image files through OpenImageIO: linear EXR (half or float) and display PNG (8 or 16 bit sRGB).
+#include <filesystem>
+
+#include "common/image/image.h"
+
+namespace hybridlab {
+
+enum class ColorEncoding { Linear, Srgb };
+
+// Reads any format OpenImageIO knows. Pixel values are returned as stored; with `decode =
+// ColorEncoding::Srgb` 8/16-bit colour channels are decoded from sRGB to linear. Grey images are
+// expanded to RGB; missing alpha is 1. Throws InputError naming the file on failure.
+Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear);
+
+// Writes linear pixels as they are (EXR, 32-bit float).
+void writeExr(const std::filesystem::path& path, const Image& linear);
+
+// Writes the display image: clamp to [0, 1] and sRGB-encode (8-bit PNG unless bits == 16).
+void writeDisplayPng(const std::filesystem::path& path, const Image& linear, int bits = 8);
+
+// Writes values as they are, clamped to [0, 1], no transfer function (for masks and heat maps
+// that are already display values).
+void writePng(const std::filesystem::path& path, const Image& display, int bits = 8);
+
+// Writes `linear` to `path` choosing by extension: .exr linear, .png display sRGB. The file is
+// written to a temporary name beside it and renamed, so no partial file is ever left behind.
+void writeImageAtomically(const std::filesystem::path& path, const Image& linear);
+
+}  // namespace hybridlab
+
+namespace hybridlab {
+// Decodes an encoded image (PNG, JPEG, ...) held in memory, as readImage does for files; `name`
+// is used in messages and its extension, or `mimeType`, picks the decoder.
+Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name,
+                          const std::string& mimeType, ColorEncoding decode = ColorEncoding::Linear);
+}  // namespace hybridlab

@@ -1,0 +1,361 @@
+#include "common/scene/scene_file.h"
+
+#include <map>
+
+#include "common/core/input_error.h"
+#include "common/core/log.h"
+#include "common/core/toml_reader.h"
+#include "common/scene/assets.h"
+#include "common/scene/gltf_loader.h"
+#include "common/scene/primitives.h"
+
+namespace hybridlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kInterpolations = {"linear", "catmull-rom"};
+
+Interpolation toInterpolation(const std::string& s) {
+    return s == "linear" ? Interpolation::Linear : Interpolation::CatmullRom;
+}
+
+class SceneFileReader {
+public:
+    SceneFileReader(const fs::path& file, const SceneLoadOptions& options) : doc_(file), options_(options) {
+        scene_.file = file;
+    }
+
+    Scene read() {
+        TomlTable root = doc_.root();
+        readHeader(root);
+        readSky(root);
+        readMaterials(root);
+        readObjects(root);
+        readLights(root);
+        readCamera(root);
+        readCameraPaths(root);
+        root.rejectUnknownKeys();
+        if (scene_.objects.empty()) root.failHere("the scene has no objects (expected at least one [[objects]] entry)");
+        return std::move(scene_);
+    }
+
+private:
+    // Checks that a file named in the scene exists, with the asset explanation when not.
+    fs::path existingPath(const TomlTable& t, const std::string& key, const std::string& written) const {
+        fs::path p = resolveScenePath(written, doc_.file());
+        if (!fs::exists(p)) t.fail(key, missingAssetExplanation(written, p));
+        return p;
+    }
+
+    void readHeader(const TomlTable& root) {
+        scene_.name = doc_.file().stem().string();
+        if (auto s = root.table("scene")) {
+            scene_.name = s->string("name", scene_.name);
+            scene_.description = s->string("description", "");
+            scene_.ambient = s->vec3("ambient", glm::vec3(0.0f));
+            scene_.ambientIor = static_cast<float>(s->number("ambient_ior", 1.0, {1e-3, 10.0}));
+            s->rejectUnknownKeys();
+        }
+    }
+
+    void readSky(const TomlTable& root) {
+        auto s = root.table("sky");
+        if (!s) return;
+        scene_.sky.color = s->vec3("color", glm::vec3(0.0f));
+        auto faces = s->stringArray("cube_map");
+        if (!faces.empty()) {
+            if (faces.size() != 6) s->fail("cube_map", "expected 6 images (+X, -X, +Y, -Y, +Z, -Z), got " + std::to_string(faces.size()));
+            for (int i = 0; i < 6; ++i) scene_.sky.cubeFaces[i] = texture(*s, "cube_map", faces[i], true);
+        }
+        s->rejectUnknownKeys();
+    }
+
+    std::int32_t texture(const TomlTable& t, const std::string& key, const std::string& written, bool srgb) {
+        std::string id = written + (srgb ? "" : "#linear");
+        if (auto it = textureIds_.find(id); it != textureIds_.end()) return it->second;
+        Texture tex;
+        if (isBuiltinTexture(written)) {
+            tex = makeBuiltinTexture(written);
+        } else if (written.rfind("builtin:", 0) == 0) {
+            t.fail(key, "unknown built-in texture '" + written + "' (expected builtin:checker)");
+        } else {
+            fs::path p = existingPath(t, key, written);
+            if (options_.loadTextures) {
+                try {
+                    tex = loadTexture(p, srgb);
+                } catch (const InputError& e) {
+                    t.fail(key, e.what());
+                }
+            } else {
+                tex.source = p.string();
+            }
+        }
+        auto idx = static_cast<std::int32_t>(scene_.textures.size());
+        scene_.textures.push_back(std::move(tex));
+        textureIds_[id] = idx;
+        return idx;
+    }
+
+    void readMaterials(const TomlTable& root) {
+        for (const auto& [name, t] : root.namedTables("materials")) {
+            Material m;
+            m.name = name;
+            m.emission = t.vec3("emission", m.emission);
+            m.ambient = t.vec3("ambient", m.ambient);
+            m.diffuse = t.vec3("diffuse", m.diffuse);
+            m.specular = t.vec3("specular", m.specular);
+            m.specularExponent = static_cast<float>(t.number("specular_exponent", m.specularExponent, {1.0, 255.0}));
+            m.reflectivity = static_cast<float>(t.number("reflectivity", m.reflectivity, {0.0, 1.0}));
+            m.ior = static_cast<float>(t.number("ior", m.ior, {1e-3, 10.0}));
+            m.opacity = static_cast<float>(t.number("opacity", m.opacity, {0.0, 1.0}));
+            m.fresnel = t.boolean("fresnel", m.fresnel);
+            m.absorption = t.vec3("absorption", m.absorption);
+            m.castsShadows = t.boolean("casts_shadows", m.castsShadows);
+            if (t.has("diffuse_texture")) m.diffuseTexture = texture(t, "diffuse_texture", t.string("diffuse_texture", ""), true);
+            if (t.has("normal_texture")) m.normalTexture = texture(t, "normal_texture", t.string("normal_texture", ""), false);
+            m.textureTiling = t.vec2("texture_tiling", m.textureTiling);
+            m.textureOffset = t.vec2("texture_offset", m.textureOffset);
+            for (int c = 0; c < 3; ++c) {
+                if (m.emission[c] < 0 || m.ambient[c] < 0 || m.diffuse[c] < 0 || m.specular[c] < 0 || m.absorption[c] < 0)
+                    t.failHere("colours must not be negative");
+            }
+            t.rejectUnknownKeys();
+            materialIds_[name] = static_cast<std::uint32_t>(scene_.materials.size());
+            scene_.materials.push_back(m);
+        }
+    }
+
+    std::uint32_t materialId(const TomlTable& t, const std::string& key) const {
+        std::string name = t.string(key, "");
+        auto it = materialIds_.find(name);
+        if (it == materialIds_.end()) {
+            std::string known;
+            for (const auto& [n, i] : materialIds_) known += (known.empty() ? "" : ", ") + n;
+            t.fail(key, "unknown material '" + name + "'" + (known.empty() ? " (the scene defines no [materials])" : " (defined: " + known + ")"));
+        }
+        return it->second;
+    }
+
+    Transform readTransform(const TomlTable& t, const Transform& fallback) const {
+        Transform tr;
+        tr.position = t.vec3("position", fallback.position);
+        tr.rotation = t.has("rotation") ? eulerDegreesToQuat(t.vec3("rotation", glm::vec3(0.0f))) : fallback.rotation;
+        tr.scale = t.scalarOrVec3("scale", fallback.scale);
+        if (tr.scale.x == 0 || tr.scale.y == 0 || tr.scale.z == 0) t.fail("scale", "expected non-zero scale factors");
+        return tr;
+    }
+
+    void readObjects(const TomlTable& root) {
+        std::map<std::string, int> names;
+        for (const auto& t : root.tableArray("objects")) {
+            SceneObject o;
+            o.name = t.requiredString("name");
+            if (names.count(o.name)) t.fail("name", "duplicate object name '" + o.name + "'");
+            names[o.name] = 1;
+            const bool isPrimitive = t.has("primitive"), isModel = t.has("model");
+            if (isPrimitive == isModel) t.failHere("expected exactly one of 'primitive' or 'model'");
+            std::vector<Mesh> meshes;
+            if (isPrimitive) {
+                o.source = t.choice("primitive", "", {"plane", "cube", "sphere", "cylinder"});
+                if (o.source == "plane") meshes.push_back(makePlane());
+                else if (o.source == "cube") meshes.push_back(makeCube());
+                else if (o.source == "sphere") meshes.push_back(makeSphere(t.integer("slices", 64, 3, 4096), t.integer("stacks", 32, 2, 4096)));
+                else meshes.push_back(makeCylinder(t.integer("slices", 64, 3, 4096)));
+                if (!t.has("material")) t.fail("material", "missing (a primitive needs a material)");
+                meshes[0].material = materialId(t, "material");
+            } else {
+                o.source = t.string("model", "");
+                fs::path p = existingPath(t, "model", o.source);
+                GltfLoadOptions opt;
+                opt.node = t.string("node", "");
+                opt.smoothNormals = t.boolean("smooth_normals", false);
+                const bool overrideMaterial = t.has("material");
+                opt.loadMaterials = !overrideMaterial && options_.loadTextures;
+                GltfContent content;
+                try {
+                    content = loadGltf(p, opt);
+                } catch (const InputError& e) {
+                    t.fail("model", e.what());
+                }
+                std::uint32_t base = static_cast<std::uint32_t>(scene_.materials.size());
+                if (overrideMaterial) {
+                    std::uint32_t id = materialId(t, "material");
+                    for (auto& m : content.meshes) m.material = id;
+                } else {
+                    auto texBase = static_cast<std::int32_t>(scene_.textures.size());
+                    for (auto& m : content.materials) {
+                        m.name = o.name + "/" + m.name;
+                        if (m.diffuseTexture != kNoTexture) m.diffuseTexture += texBase;
+                        if (m.normalTexture != kNoTexture) m.normalTexture += texBase;
+                        scene_.materials.push_back(m);
+                    }
+                    for (auto& tex : content.textures) scene_.textures.push_back(std::move(tex));
+                    for (auto& m : content.meshes) m.material += base;
+                }
+                for (auto& c : content.cameras) gltfCameras_[o.name].push_back(c);
+                meshes = std::move(content.meshes);
+            }
+            o.transform = readTransform(t, Transform{});
+            o.relevance = static_cast<float>(t.number("relevance", 1.0, {0.0, 1e6}));
+            o.cost = static_cast<float>(t.number("cost", 1.0, {1e-6, 1e6}));
+            o.lens = t.boolean("lens", false);
+            if (auto a = t.table("animation")) o.animation = readAnimation(*a, o.transform);
+            t.rejectUnknownKeys();
+            for (auto& m : meshes) {
+                o.meshes.push_back(static_cast<std::uint32_t>(scene_.meshes.size()));
+                scene_.meshes.push_back(std::move(m));
+            }
+            objectIds_[o.name] = scene_.objects.size();
+            scene_.objects.push_back(std::move(o));
+        }
+    }
+
+    // Key times must increase strictly; at least two keys.
+    std::vector<TomlTable> readKeys(const TomlTable& t, const std::string& what, std::vector<double>& times) const {
+        auto keys = t.tableArray("keys");
+        if (keys.size() < 2) t.fail("keys", what + " needs at least two keyframes, got " + std::to_string(keys.size()));
+        for (const auto& k : keys) {
+            double time = k.requiredNumber("time", {0.0, 1e6});
+            if (!times.empty() && time <= times.back()) k.fail("time", "keyframe times must increase (previous key is at " + std::to_string(times.back()) + ")");
+            times.push_back(time);
+        }
+        return keys;
+    }
+
+    RigidAnimation readAnimation(const TomlTable& t, const Transform& rest) const {
+        RigidAnimation a;
+        a.interpolation = toInterpolation(t.choice("interpolation", "linear", kInterpolations));
+        for (const auto& k : readKeys(t, "an animation", a.times)) {
+            Transform tr = readTransform(k, rest);  // missing components keep the object's placement
+            a.positions.push_back(tr.position);
+            a.rotations.push_back(tr.rotation);
+            a.scales.push_back(tr.scale);
+            k.rejectUnknownKeys();
+        }
+        t.rejectUnknownKeys();
+        return a;
+    }
+
+    void readLights(const TomlTable& root) {
+        int counts[3] = {0, 0, 0};
+        const int limits[3] = {kMaxDirectionalLights, kMaxPointLights, kMaxSpotLights};
+        for (const auto& t : root.tableArray("lights")) {
+            Light l;
+            std::string type = t.choice("type", "", {"directional", "point", "spot"});
+            l.type = type == "directional" ? Light::Type::Directional : type == "point" ? Light::Type::Point : Light::Type::Spot;
+            int& count = counts[static_cast<int>(l.type)];
+            if (++count > limits[static_cast<int>(l.type)]) {
+                t.fail("type", "too many " + type + " lights: at most " + std::to_string(limits[static_cast<int>(l.type)]) + " are allowed");
+            }
+            l.name = t.string("name", type + std::to_string(count - 1));
+            l.color = t.vec3("color", l.color);
+            l.intensity = static_cast<float>(t.number("intensity", 1.0, {0.0, 1e12}));
+            l.castsShadows = t.boolean("casts_shadows", true);
+            if (l.type != Light::Type::Directional) l.position = t.requiredVec3("position");
+            if (l.type != Light::Type::Point) {
+                glm::vec3 d;
+                if (t.has("target") == t.has("direction")) t.failHere("a " + type + " light needs exactly one of 'direction' or 'target'");
+                if (t.has("target")) d = t.vec3("target", {}) - l.position;
+                else d = t.vec3("direction", {});
+                if (glm::length(d) == 0.0f) t.failHere("light direction has zero length");
+                l.direction = glm::normalize(d);
+            }
+            if (l.type == Light::Type::Spot) {
+                l.innerConeDegrees = static_cast<float>(t.number("inner_cone", l.innerConeDegrees, {0.0, 90.0}));
+                l.outerConeDegrees = static_cast<float>(t.number("outer_cone", l.outerConeDegrees, {0.0, 90.0}));
+                if (l.outerConeDegrees < l.innerConeDegrees) t.fail("outer_cone", "expected outer_cone >= inner_cone");
+            }
+            t.rejectUnknownKeys();
+            scene_.lights.push_back(l);
+        }
+    }
+
+    void readLens(const TomlTable& t, Camera& c) const {
+        std::string proj = t.choice("projection", c.projection == Camera::Projection::Perspective ? "perspective" : "orthographic",
+                                    {"perspective", "orthographic"});
+        c.projection = proj == "perspective" ? Camera::Projection::Perspective : Camera::Projection::Orthographic;
+        c.fovYDegrees = static_cast<float>(t.number("fov_y", c.fovYDegrees, {1e-3, 179.0}));
+        c.orthoHeight = static_cast<float>(t.number("height", c.orthoHeight, {1e-6, 1e9}));
+        c.nearPlane = static_cast<float>(t.number("near", c.nearPlane, {1e-6, 1e9}));
+        c.farPlane = static_cast<float>(t.number("far", c.farPlane, {1e-6, 1e12}));
+        if (c.farPlane <= c.nearPlane) t.fail("far", "expected far > near");
+    }
+
+    void readCamera(const TomlTable& root) {
+        auto t = root.table("camera");
+        if (!t) root.failHere("missing [camera] table");
+        Camera& c = scene_.camera;
+        if (t->has("gltf_object")) {
+            std::string obj = t->string("gltf_object", "");
+            std::string node = t->string("gltf_camera", "");
+            auto it = gltfCameras_.find(obj);
+            if (it == gltfCameras_.end()) t->fail("gltf_object", "object '" + obj + "' is not a model with a glTF camera");
+            const GltfCamera* found = nullptr;
+            for (const auto& gc : it->second)
+                if (node.empty() || gc.nodeName == node) { found = &gc; break; }
+            if (!found) t->fail("gltf_camera", "model of object '" + obj + "' has no camera node '" + node + "'");
+            c = found->camera;
+            // The camera moves with the object that holds it.
+            glm::mat4 m = scene_.objects[objectIds_.at(obj)].transform.matrix();
+            c.position = glm::vec3(m * glm::vec4(c.position, 1.0f));
+            glm::mat3 r(m);
+            c.orientation = glm::normalize(glm::quat_cast(glm::mat3(glm::normalize(r[0]), glm::normalize(r[1]), glm::normalize(r[2])))) * c.orientation;
+        } else {
+            c.position = t->requiredVec3("position");
+            c.orientation = readOrientation(*t, c.position, t->vec3("up", glm::vec3(0, 1, 0)));
+        }
+        readLens(*t, c);
+        t->rejectUnknownKeys();
+    }
+
+    glm::quat readOrientation(const TomlTable& t, glm::vec3 position, glm::vec3 up) const {
+        if (t.has("look_at") == t.has("orientation")) t.failHere("expected exactly one of 'look_at' or 'orientation'");
+        if (t.has("orientation")) return eulerDegreesToQuat(t.vec3("orientation", {}));
+        glm::vec3 target = t.vec3("look_at", {});
+        if (glm::length(target - position) == 0.0f) t.fail("look_at", "look_at equals the camera position");
+        return Camera::lookAtOrientation(position, target, up);
+    }
+
+    void readCameraPaths(const TomlTable& root) {
+        for (const auto& [name, t] : root.namedTables("camera_paths")) {
+            CameraPath p;
+            p.name = name;
+            p.interpolation = toInterpolation(t.choice("interpolation", "catmull-rom", kInterpolations));
+            p.framesPerSecond = t.number("fps", 30.0, {1e-3, 1e4});
+            p.up = t.vec3("up", p.up);
+            auto keys = readKeys(t, "a camera path", p.times);
+            p.keysLookAt = keys[0].has("look_at");
+            for (const auto& k : keys) {
+                glm::vec3 pos = k.requiredVec3("position");
+                p.positions.push_back(pos);
+                if (k.has("look_at") != p.keysLookAt) k.failHere("all keys of a path must use 'look_at', or all 'orientation'");
+                if (p.keysLookAt) {
+                    p.targets.push_back(k.vec3("look_at", {}));
+                    if (glm::length(p.targets.back() - pos) == 0.0f) k.fail("look_at", "look_at equals the key's position");
+                } else {
+                    p.orientations.push_back(readOrientation(k, pos, p.up));
+                }
+                k.rejectUnknownKeys();
+            }
+            t.rejectUnknownKeys();
+            scene_.cameraPaths.push_back(std::move(p));
+        }
+    }
+
+    TomlDocument doc_;
+    SceneLoadOptions options_;
+    Scene scene_;
+    std::map<std::string, std::uint32_t> materialIds_;
+    std::map<std::string, std::int32_t> textureIds_;
+    std::map<std::string, std::size_t> objectIds_;
+    std::map<std::string, std::vector<GltfCamera>> gltfCameras_;
+};
+
+}  // namespace
+
+Scene loadSceneFile(const fs::path& file, const SceneLoadOptions& options) {
+    return SceneFileReader(file, options).read();
+}
+
+}  // namespace hybridlab

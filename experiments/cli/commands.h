@@ -1,0 +1,11 @@
+#pragma once
+// Subcommands of `hybridlab`; each adds itself to the app. Bad input is thrown as InputError and
+// becomes exit status 2 in main().
+#include <CLI/CLI.hpp>
+
+namespace hybridlab::cli {
+
+void addScenesCommand(CLI::App& app);
+void addSceneInfoCommand(CLI::App& app);
+
+}  // namespace hybridlab::cli

@@ -1,0 +1,31 @@
+// hybridlab: render, compare and time hybrid rasterisation + ray-tracing techniques.
+#include <cstdio>
+#include <exception>
+
+#include "common/core/input_error.h"
+#include "experiments/cli/commands.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"hybridlab: a testbed comparing hybrid rasterization + ray-tracing reflection and refraction techniques"};
+    app.require_subcommand(1);
+    hybridlab::cli::addScenesCommand(app);
+    hybridlab::cli::addSceneInfoCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // Bad arguments are bad input: one message, exit status 2.
+        std::fprintf(stderr, "hybridlab: error: %s\nRun with --help for usage.\n", e.what());
+        return 2;
+    } catch (const hybridlab::InputError& e) {
+        std::fprintf(stderr, "hybridlab: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "hybridlab: internal error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

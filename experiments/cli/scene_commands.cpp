@@ -1,0 +1,83 @@
+// `hybridlab scenes` and `hybridlab scene-info`: what a scene holds (Walewski 2019 Table 4's rows).
+#include <cstdio>
+#include <string>
+
+#include "common/core/input_error.h"
+#include "common/scene/scene_catalog.h"
+#include "common/scene/scene_file.h"
+#include "experiments/cli/commands.h"
+
+namespace hybridlab::cli {
+
+namespace {
+
+void printSceneRow(const std::string& name, const SceneStats& s) {
+    std::printf("%-24s %8zu %10zu %10zu %7zu %11zu %11zu\n", name.c_str(), s.objects, s.vertices, s.triangles, s.lights,
+                s.reflectiveObjects, s.refractiveObjects);
+}
+
+std::string vecString(glm::vec3 v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g)", v.x, v.y, v.z);
+    return buf;
+}
+
+}  // namespace
+
+void addScenesCommand(CLI::App& app) {
+    auto* cmd = app.add_subcommand("scenes", "List the scenes in scenes/ with their object, vertex, triangle, light, "
+                                             "reflective and refractive object counts");
+    cmd->callback([] {
+        std::printf("%-24s %8s %10s %10s %7s %11s %11s\n", "scene", "objects", "vertices", "triangles", "lights", "reflective",
+                    "refractive");
+        for (const auto& file : listSceneFiles()) {
+            try {
+                printSceneRow(file.stem().string(), loadSceneFile(file, {.loadTextures = false}).stats());
+            } catch (const InputError& e) {
+                // One unavailable scene (say, assets not installed) does not hide the others.
+                std::printf("%-24s unavailable: %s\n", file.stem().string().c_str(), e.what());
+            }
+        }
+    });
+}
+
+void addSceneInfoCommand(CLI::App& app) {
+    auto* cmd = app.add_subcommand("scene-info", "Print one scene's summary and bounds");
+    auto* file = new std::string;  // lives as long as the app
+    cmd->add_option("scene", *file, "Scene file, or the name of a built-in scene")->required();
+    cmd->callback([file] {
+        Scene scene = loadSceneFile(findSceneFile(*file), {.loadTextures = false});
+        SceneStats s = scene.stats();
+        Aabb b = scene.bounds(0.0);
+        std::printf("scene        %s\n", scene.name.c_str());
+        if (!scene.description.empty()) std::printf("description  %s\n", scene.description.c_str());
+        std::printf("file         %s\n", scene.file.string().c_str());
+        std::printf("objects      %zu (%zu reflective, %zu refractive)\n", s.objects, s.reflectiveObjects, s.refractiveObjects);
+        std::printf("triangles    %zu\nvertices     %zu\n", s.triangles, s.vertices);
+        std::printf("materials    %zu\ntextures     %zu\n", scene.materials.size(), scene.textures.size());
+        std::printf("lights       %zu\n", s.lights);
+        std::printf("bounds       %s .. %s (diagonal %.4g)\n", vecString(b.lo).c_str(), vecString(b.hi).c_str(),
+                    static_cast<double>(glm::length(b.extent())));
+        std::printf("camera       %s at %s looking along %s\n",
+                    scene.camera.projection == Camera::Projection::Perspective ? "perspective" : "orthographic",
+                    vecString(scene.camera.position).c_str(), vecString(scene.camera.forward()).c_str());
+        for (const auto& p : scene.cameraPaths) {
+            std::printf("camera path  %s: %zu keys, %.3g s, %d frames at %.3g fps\n", p.name.c_str(), p.times.size(), p.duration(),
+                        p.frameCount(), p.framesPerSecond);
+        }
+        std::printf("\n%-24s %10s %11s %11s %8s %5s %8s\n", "object", "triangles", "reflective", "refractive", "K", "E", "animated");
+        for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+            const auto& o = scene.objects[i];
+            std::printf("%-24s %10zu %11s %11s %8.3g %5.3g %8s%s\n", o.name.c_str(), scene.objectTriangleCount(i),
+                        scene.objectIsReflective(i) ? "yes" : "no", scene.objectIsRefractive(i) ? "yes" : "no", o.relevance, o.cost,
+                        o.isAnimated() ? "yes" : "no", o.lens ? "  lens" : "");
+        }
+        std::printf("\n");
+        for (const auto& l : scene.lights) {
+            std::printf("light        %s (%s) colour %s intensity %.4g%s\n", l.name.c_str(), lightTypeName(l.type),
+                        vecString(l.color).c_str(), l.intensity, l.castsShadows ? "" : ", no shadows");
+        }
+    });
+}
+
+}  // namespace hybridlab::cli

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Set up hybridlab on a fresh Debian 12 machine: install the Debian packages the project needs
+# (only those missing; through sudo when not root), then configure and build in Release.
+#
+#   ./setup.sh            install, configure, build (into ./build)
+#   BUILD_DIR=dir ./setup.sh   build elsewhere
+#
+# Every issue that needs a new package adds it to PACKAGES below, and nowhere else.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")"
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git
+  # scene core and images
+  libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libopenimageio-dev libcli11-dev
+  # OpenImageIO's CMake config names the OpenCV headers; metrics use OpenCV too
+  libopencv-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${#missing[@]} missing package(s): ${missing[*]}"
+  SUDO=()
+  if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${SUDO[@]}" apt-get update -q
+  "${SUDO[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all ${#PACKAGES[@]} packages present"
+fi
+
+BUILD_DIR=${BUILD_DIR:-build}
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build "$BUILD_DIR" -j "$(nproc)"
