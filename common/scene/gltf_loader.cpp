@@ -290,7 +290,8 @@ private:
             if (img.uri.rfind("data:", 0) == 0) reader_.fail("image " + std::to_string(src) + ": data URIs are not supported");
             fs::path p = file_.parent_path() / img.uri;
             if (!fs::exists(p)) reader_.fail("image '" + img.uri + "' not found (looked for " + p.string() + ")");
-            t = loadTexture(p, srgb);
+            if (opt_.decodeTextures) t = loadTexture(p, srgb);
+            else t.source = p.string();
         } else if (img.bufferView >= 0 && img.bufferView < static_cast<int>(model_.bufferViews.size())) {
             const auto& view = model_.bufferViews[img.bufferView];
             const auto& buf = model_.buffers.at(view.buffer).data;

@@ -28,7 +28,8 @@ struct GltfContent {
 struct GltfLoadOptions {
     std::string node;             // empty: every node of the default scene; else that node's subtree
     bool smoothNormals = false;   // for primitives without normals (glTF says flat)
-    bool loadMaterials = true;    // false when the scene file overrides them (skips texture decoding)
+    bool loadMaterials = true;    // false when the scene file overrides them
+    bool decodeTextures = true;   // false: record texture paths only (listings that need counts)
 };
 
 // Throws InputError naming the file (and the mesh, primitive or node) on anything malformed:

@@ -66,8 +66,9 @@ SceneStats Scene::stats() const {
             s.triangles += meshes[m].triangleCount();
             s.vertices += meshes[m].vertexCount();
         }
-        s.reflectiveObjects += objectIsReflective(i);
-        s.refractiveObjects += objectIsRefractive(i);
+        const bool refractive = objectIsRefractive(i);
+        s.refractiveObjects += refractive;
+        s.reflectiveObjects += !refractive && objectIsReflective(i);
     }
     return s;
 }

@@ -39,7 +39,8 @@ struct Sky {
     bool hasCubeMap() const { return cubeFaces[0] != kNoTexture; }
 };
 
-// Walewski 2019 Table 4's rows.
+// Walewski 2019 Table 4's rows. As there, the reflective and refractive counts are disjoint: an
+// object that refracts (glass, which also reflects by Fresnel) counts as refractive only.
 struct SceneStats {
     std::size_t objects = 0, vertices = 0, triangles = 0, lights = 0;
     std::size_t reflectiveObjects = 0, refractiveObjects = 0;
@@ -60,10 +61,12 @@ struct Scene {
     Sky sky;
     glm::vec3 ambient{0.0f};   // global ambient colour
     float ambientIor = 1.0f;   // index of refraction of the medium around objects
+    std::size_t droppedDegenerateTriangles = 0;  // zero-area triangles removed from models on load
 
     const CameraPath* findCameraPath(const std::string& pathName) const;
     bool isAnimated() const;
 
+    // Some material of the object reflects (mirror or Fresnel) / transmits (opacity < 1).
     bool objectIsReflective(std::size_t object) const;
     bool objectIsRefractive(std::size_t object) const;
     std::size_t objectTriangleCount(std::size_t object) const;

@@ -171,7 +171,8 @@ private:
                 opt.node = t.string("node", "");
                 opt.smoothNormals = t.boolean("smooth_normals", false);
                 const bool overrideMaterial = t.has("material");
-                opt.loadMaterials = !overrideMaterial && options_.loadTextures;
+                opt.loadMaterials = !overrideMaterial;
+                opt.decodeTextures = options_.loadTextures;
                 GltfContent content;
                 try {
                     content = loadGltf(p, opt);
@@ -194,6 +195,7 @@ private:
                     for (auto& m : content.meshes) m.material += base;
                 }
                 for (auto& c : content.cameras) gltfCameras_[o.name].push_back(c);
+                scene_.droppedDegenerateTriangles += content.droppedDegenerateTriangles;
                 meshes = std::move(content.meshes);
             }
             o.transform = readTransform(t, Transform{});
