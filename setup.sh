@@ -19,6 +19,10 @@ PACKAGES=(
   libopencv-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # ray tracing (Embree 3 on TBB)
+  libembree-dev libtbb-dev
+  # independent check of the Whitted reference
+  povray
 )
 
 missing=()

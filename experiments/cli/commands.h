@@ -7,5 +7,7 @@ namespace hybridlab::cli {
 
 void addScenesCommand(CLI::App& app);
 void addSceneInfoCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
+void addTechniquesCommand(CLI::App& app);
 
 }  // namespace hybridlab::cli

@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     hybridlab::cli::addScenesCommand(app);
     hybridlab::cli::addSceneInfoCommand(app);
+    hybridlab::cli::addRenderCommand(app);
+    hybridlab::cli::addTechniquesCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,235 @@
+#include "common/raytrace/ray_scene.h"
+
+#include <chrono>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "common/raytrace/shading.h"
+
+namespace hybridlab {
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void checkDevice(RTCDevice device, const char* what) {
+    RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(e) + " while " + what);
+}
+
+// Extends Embree's context with the shadow ray's running transmittance (RTCIntersectContext must
+// come first: Embree hands the filter a pointer to it).
+struct ShadowContext {
+    RTCIntersectContext base;
+    glm::vec3 transmittance;
+};
+
+// Any-hit program of shadow rays (Walewski 2019 Listing 8b): attached only to geometry whose
+// material lets light through or casts no shadow, so opaque casters end the ray at once.
+void shadowFilter(const RTCFilterFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    auto* ctx = reinterpret_cast<ShadowContext*>(args->context);
+    ctx->transmittance *= occluderTransmittance(*static_cast<const Material*>(args->geometryUserPtr));
+    if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
+}
+
+}  // namespace
+
+RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const glm::mat4* toWorld) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        glm::vec3 p = toWorld ? glm::vec3(*toWorld * glm::vec4(mesh.positions[i], 1.0f)) : mesh.positions[i];
+        v[3 * i] = p.x, v[3 * i + 1] = p.y, v[3 * i + 2] = p.z;
+    }
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                               mesh.triangles.size()));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        idx[3 * i] = mesh.triangles[i].x, idx[3 * i + 1] = mesh.triangles[i].y, idx[3 * i + 2] = mesh.triangles[i].z;
+    }
+    const Material& m = scene_.materials[mesh.material];
+    rtcSetGeometryUserData(g, const_cast<Material*>(&m));
+    if (m.isRefractive() || !m.castsShadows) rtcSetGeometryOccludedFilterFunction(g, shadowFilter);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time) {
+    auto start = std::chrono::steady_clock::now();
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw std::runtime_error("cannot create an Embree device");
+    const std::size_t n = scene.objects.size();
+    toWorld_.resize(n);
+    normalToWorld_.resize(n);
+    objectScenes_.assign(n, nullptr);
+    instanceGeometry_.assign(n, RTC_INVALID_GEOMETRY_ID);
+    bool anyAnimated = false;
+    for (std::size_t o = 0; o < n; ++o) {
+        toWorld_[o] = scene.objects[o].worldMatrix(time);
+        normalToWorld_[o] = normalMatrix(toWorld_[o]);
+        anyAnimated |= scene.objects[o].isAnimated();
+    }
+
+    static_ = rtcNewScene(device_);
+    for (std::size_t o = 0; o < n; ++o) {
+        if (scene.objects[o].isAnimated()) continue;
+        for (std::uint32_t mesh : scene.objects[o].meshes) {
+            RTCGeometry g = makeTriangleGeometry(scene.meshes[mesh], &toWorld_[o]);
+            rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
+            rtcReleaseGeometry(g);
+            staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh});
+        }
+    }
+    rtcCommitScene(static_);
+
+    if (!anyAnimated) {
+        top_ = static_;
+    } else {
+        top_ = rtcNewScene(device_);
+        RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, static_);
+        glm::mat4 identity(1.0f);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+        rtcCommitGeometry(inst);
+        unsigned staticInstance = rtcAttachGeometry(top_, inst);
+        rtcReleaseGeometry(inst);
+        instanceObject_.resize(staticInstance + 1, std::numeric_limits<std::uint32_t>::max());
+        for (std::size_t o = 0; o < n; ++o) {
+            if (!scene.objects[o].isAnimated()) continue;
+            RTCScene s = rtcNewScene(device_);
+            std::uint32_t k = 0;
+            for (std::uint32_t mesh : scene.objects[o].meshes) {
+                RTCGeometry g = makeTriangleGeometry(scene.meshes[mesh], nullptr);
+                rtcAttachGeometryByID(s, g, k++);
+                rtcReleaseGeometry(g);
+            }
+            rtcCommitScene(s);
+            objectScenes_[o] = s;
+            RTCGeometry i = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(i, s);
+            rtcSetGeometryTransform(i, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &toWorld_[o][0][0]);
+            rtcCommitGeometry(i);
+            unsigned id = rtcAttachGeometry(top_, i);
+            rtcReleaseGeometry(i);
+            instanceGeometry_[o] = id;
+            if (instanceObject_.size() <= id) instanceObject_.resize(id + 1, std::numeric_limits<std::uint32_t>::max());
+            instanceObject_[id] = static_cast<std::uint32_t>(o);
+        }
+        rtcCommitScene(top_);
+    }
+    checkDevice(device_, "building the scene");
+    buildMs_ = millisecondsSince(start);
+}
+
+RayScene::~RayScene() {
+    for (RTCScene s : objectScenes_)
+        if (s) rtcReleaseScene(s);
+    if (top_ != static_) rtcReleaseScene(top_);
+    if (static_) rtcReleaseScene(static_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+void RayScene::setTime(double time) {
+    if (time == time_) return;
+    auto start = std::chrono::steady_clock::now();
+    time_ = time;
+    bool changed = false;
+    for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
+        if (!scene_.objects[o].isAnimated()) continue;
+        toWorld_[o] = scene_.objects[o].worldMatrix(time);
+        normalToWorld_[o] = normalMatrix(toWorld_[o]);
+        RTCGeometry inst = rtcGetGeometry(top_, instanceGeometry_[o]);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &toWorld_[o][0][0]);
+        rtcCommitGeometry(inst);
+        changed = true;
+    }
+    if (changed) rtcCommitScene(top_);
+    updateMs_ = millisecondsSince(start);
+}
+
+bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y, rh.ray.dir_z = ray.direction.z;
+    rh.ray.tnear = tmin;
+    rh.ray.tfar = tmax;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(top_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    resolveHit(rh, hit);
+    return true;
+}
+
+glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) const {
+    ShadowContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    ctx.transmittance = glm::vec3(1.0f);
+    RTCRay r;
+    r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
+    r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+    r.tnear = 0.0f;
+    r.tfar = tmax;
+    r.time = 0.0f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(top_, &ctx.base, &r);
+    // Embree sets tfar to -inf when a hit was accepted: an opaque caster, or transmittance gone.
+    return r.tfar == -std::numeric_limits<float>::infinity() ? glm::vec3(0.0f) : ctx.transmittance;
+}
+
+void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
+    std::uint32_t object, mesh;
+    if (top_ != static_ && rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID && instanceObject_[rh.hit.instID[0]] != std::numeric_limits<std::uint32_t>::max()) {
+        object = instanceObject_[rh.hit.instID[0]];
+        mesh = scene_.objects[object].meshes[rh.hit.geomID];
+    } else {
+        const GeometryRef& ref = staticGeometry_[rh.hit.geomID];
+        object = ref.object;
+        mesh = ref.mesh;
+    }
+    const Mesh& m = scene_.meshes[mesh];
+    const glm::uvec3 tri = m.triangles[rh.hit.primID];
+    const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+    const glm::mat4& M = toWorld_[object];
+    const glm::mat3& N = normalToWorld_[object];
+
+    hit.t = rh.ray.tfar;
+    hit.object = object;
+    hit.mesh = mesh;
+    hit.primitive = rh.hit.primID;
+    hit.material = &scene_.materials[m.material];
+    glm::vec3 p0 = glm::vec3(M * glm::vec4(m.positions[tri.x], 1.0f));
+    glm::vec3 p1 = glm::vec3(M * glm::vec4(m.positions[tri.y], 1.0f));
+    glm::vec3 p2 = glm::vec3(M * glm::vec4(m.positions[tri.z], 1.0f));
+    hit.position = w * p0 + u * p1 + v * p2;
+    hit.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    glm::vec3 n = w * m.normals[tri.x] + u * m.normals[tri.y] + v * m.normals[tri.z];
+    hit.shadingNormal = glm::normalize(N * n);
+    if (!m.uvs.empty()) hit.uv = w * m.uvs[tri.x] + u * m.uvs[tri.y] + v * m.uvs[tri.z];
+    const Material& mat = *hit.material;
+    if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {
+        glm::vec4 t4 = w * m.tangents[tri.x] + u * m.tangents[tri.y] + v * m.tangents[tri.z];
+        glm::vec3 t = glm::normalize(glm::mat3(M) * glm::vec3(t4));
+        t = glm::normalize(t - hit.shadingNormal * glm::dot(hit.shadingNormal, t));
+        glm::vec3 b = glm::cross(hit.shadingNormal, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
+        glm::vec2 tc = hit.uv * mat.textureTiling + mat.textureOffset;
+        glm::vec3 tn = glm::vec3(scene_.textures[mat.normalTexture].image.sampleBilinearWrap(tc.x, tc.y)) * 2.0f - 1.0f;
+        hit.shadingNormal = glm::normalize(t * tn.x + b * tn.y + hit.shadingNormal * tn.z);
+    }
+}
+
+}  // namespace hybridlab

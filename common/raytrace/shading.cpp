@@ -1,0 +1,118 @@
+#include "common/raytrace/shading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+namespace hybridlab {
+
+glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv) {
+    if (m.diffuseTexture == kNoTexture) return glm::vec3(1.0f);
+    glm::vec2 t = uv * m.textureTiling + m.textureOffset;
+    return glm::vec3(scene.textures[m.diffuseTexture].image.sampleBilinearWrap(t.x, t.y));
+}
+
+LightSample sampleLight(const Light& light, glm::vec3 p) {
+    LightSample s;
+    const glm::vec3 e = light.color * light.intensity;
+    if (light.type == Light::Type::Directional) {
+        s.toLight = -light.direction;
+        s.distance = std::numeric_limits<float>::infinity();
+        s.radiance = e;
+        return s;
+    }
+    glm::vec3 d = light.position - p;
+    float d2 = glm::dot(d, d);
+    s.distance = std::sqrt(d2);
+    s.toLight = d / s.distance;
+    s.radiance = e / d2;
+    if (light.type == Light::Type::Spot) {
+        float cosAngle = glm::dot(-s.toLight, light.direction);
+        float cosOuter = std::cos(glm::radians(light.outerConeDegrees));
+        float cosInner = std::cos(glm::radians(light.innerConeDegrees));
+        float x = cosInner > cosOuter ? std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0f, 1.0f)
+                                      : (cosAngle >= cosOuter ? 1.0f : 0.0f);
+        s.radiance *= x * x * (3.0f - 2.0f * x);  // smoothstep, as POV-Ray's spotlight falloff
+    }
+    return s;
+}
+
+glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light) {
+    const Material& m = *s.material;
+    float nl = glm::dot(s.normal, light.toLight);
+    if (nl <= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 h = glm::normalize(light.toLight + toViewer);
+    float nh = std::max(glm::dot(s.normal, h), 0.0f);
+    glm::vec3 diffuse = m.diffuse * textureValue * nl;
+    glm::vec3 specular = m.specular * std::pow(nh, m.specularExponent);
+    return light.radiance * (diffuse + specular);
+}
+
+glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue) {
+    return s.material->emission + s.material->ambient * scene.ambient * textureValue;
+}
+
+glm::vec3 occluderTransmittance(const Material& m) {
+    if (!m.castsShadows) return glm::vec3(1.0f);
+    return (1.0f - m.opacity) * m.diffuse;
+}
+
+glm::vec3 reflectDirection(glm::vec3 d, glm::vec3 n) { return d - 2.0f * glm::dot(d, n) * n; }
+
+bool refractDirection(glm::vec3 d, glm::vec3 n, float eta, glm::vec3& out) {
+    float cosi = -glm::dot(d, n);
+    float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+    if (k < 0.0f) return false;
+    out = glm::normalize(eta * d + (eta * cosi - std::sqrt(k)) * n);
+    return true;
+}
+
+float fresnelDielectric(float cosIncident, float n1, float n2) {
+    float cosi = std::clamp(cosIncident, 0.0f, 1.0f);
+    float sint2 = (n1 / n2) * (n1 / n2) * (1.0f - cosi * cosi);
+    if (sint2 >= 1.0f) return 1.0f;
+    float cost = std::sqrt(1.0f - sint2);
+    float rs = (n1 * cosi - n2 * cost) / (n1 * cosi + n2 * cost);
+    float rp = (n2 * cosi - n1 * cost) / (n2 * cosi + n1 * cost);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
+glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, BlendRule rule) {
+    glm::vec3 cm = om * M + (1.0f - om) * (orr * R + (1.0f - orr) * C);
+    if (rule == BlendRule::Design) return cm;
+    glm::vec3 cr = orr * R + (1.0f - orr) * (om * M + (1.0f - om) * C);  // Walewski eq. (6)
+    return 0.5f * (cm + cr);
+}
+
+glm::vec3 skyRadiance(const Scene& scene, glm::vec3 d) {
+    if (!scene.sky.hasCubeMap()) return scene.sky.color;
+    glm::vec3 a = glm::abs(d);
+    int face;
+    float sc, tc, ma;
+    if (a.x >= a.y && a.x >= a.z) {
+        ma = a.x;
+        face = d.x > 0 ? 0 : 1;
+        sc = d.x > 0 ? -d.z : d.z;
+        tc = -d.y;
+    } else if (a.y >= a.z) {
+        ma = a.y;
+        face = d.y > 0 ? 2 : 3;
+        sc = d.x;
+        tc = d.y > 0 ? d.z : -d.z;
+    } else {
+        ma = a.z;
+        face = d.z > 0 ? 4 : 5;
+        sc = d.z > 0 ? d.x : -d.x;
+        tc = -d.y;
+    }
+    const Image& img = scene.textures[scene.sky.cubeFaces[face]].image;
+    float u = 0.5f * (sc / ma + 1.0f), v = 0.5f * (tc / ma + 1.0f);
+    // Clamp to the face instead of wrapping across its edge.
+    float x = std::clamp(u * img.width(), 0.5f, img.width() - 0.5f) / img.width();
+    float y = std::clamp(v * img.height(), 0.5f, img.height() - 0.5f) / img.height();
+    return glm::vec3(img.sampleBilinearWrap(x, y));
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,14 @@
+// The one place that lists the techniques. Adding a technique: one folder, one line here.
+#include "techniques/technique.h"
+#include "techniques/whitted/whitted_technique.h"
+
+namespace hybridlab {
+
+const std::vector<TechniqueInfo>& registeredTechniques() {
+    static const std::vector<TechniqueInfo> registry = {
+        WhittedTechnique::info(),
+    };
+    return registry;
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,26 @@
+#pragma once
+// Per-scene state that techniques share: the scene, and the ray-tracing scene built on first use
+// (DESIGN.md: the RayScene is built once per scene).
+#include <memory>
+
+#include "common/raytrace/ray_scene.h"
+#include "common/scene/scene.h"
+
+namespace hybridlab {
+
+class SceneContext {
+public:
+    explicit SceneContext(const Scene& scene) : scene_(scene) {}
+
+    const Scene& scene() const { return scene_; }
+
+    // Built at first call (time recorded in rayScene().buildMilliseconds()), then moved to `time`.
+    RayScene& rayScene(double time);
+    bool hasRayScene() const { return rays_ != nullptr; }
+
+private:
+    const Scene& scene_;
+    std::unique_ptr<RayScene> rays_;
+};
+
+}  // namespace hybridlab

@@ -1,0 +1,23 @@
+#pragma once
+// `whitted`: the reference. Recursive Whitted ray tracing from the camera through pixel centres
+// (optionally n x n supersampled for display images), reflection and refraction to depth 10, the
+// full ray tree, all lights, hard shadows. Parallel over image tiles; deterministic.
+#include "common/raytrace/whitted_tracer.h"
+#include "techniques/technique.h"
+
+namespace hybridlab {
+
+class WhittedTechnique : public Technique {
+public:
+    static TechniqueInfo info();
+    explicit WhittedTechnique(const ParameterSet& params);
+
+    void prepare(SceneContext& context) override;
+    FrameResult render(SceneContext& context, const FrameRequest& frame) override;
+
+private:
+    WhittedSettings settings_;
+    int supersample_ = 1;
+};
+
+}  // namespace hybridlab
