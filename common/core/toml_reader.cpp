@@ -46,7 +46,10 @@ TomlTable TomlDocument::root() const { return TomlTable(*table_, "", file_); }
 TomlTable::TomlTable(const toml::table& table, std::string path, fs::path file)
     : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
 
-bool TomlTable::has(const std::string& key) const { return table_->contains(key); }
+bool TomlTable::has(const std::string& key) const {
+    asked_.insert(key);
+    return table_->contains(key);
+}
 
 const toml::node* TomlTable::get(const std::string& key) const {
     used_.insert(key);
@@ -216,7 +219,9 @@ void TomlTable::rejectUnknownKeys() const {
     for (auto&& [k, v] : *table_) {
         std::string name(k.str());
         if (used_.count(name)) continue;
-        std::vector<std::string> known(used_.begin(), used_.end());
+        std::set<std::string> valid = used_;
+        valid.insert(asked_.begin(), asked_.end());
+        std::vector<std::string> known(valid.begin(), valid.end());
         const auto& src = k.source().begin.line ? k.source() : v.source();
         throw InputError::at(file_, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column),
                              keyPath(name) + ": unknown key" + (known.empty() ? std::string() : " (expected one of: " + join(known) + ")"));

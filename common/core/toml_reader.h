@@ -82,6 +82,7 @@ private:
     std::string path_;
     std::filesystem::path file_;
     mutable std::set<std::string> used_;
+    mutable std::set<std::string> asked_;  // keys has() checked: valid keys, listed in unknown-key errors
 };
 
 }  // namespace hybridlab

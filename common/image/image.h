@@ -1,5 +1,6 @@
 #pragma once
 // A float RGBA image in row-major order, row 0 at the top (the Vulkan framebuffer convention).
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -34,5 +35,19 @@ private:
     int height_ = 0;
     std::vector<glm::vec4> pixels_;
 };
+
+inline glm::vec4 Image::sampleBilinearWrap(float u, float v) const {
+    // Texel centres sit at half-integer coordinates.
+    float x = u * width_ - 0.5f;
+    float y = v * height_ - 0.5f;
+    float fx = std::floor(x), fy = std::floor(y);
+    float tx = x - fx, ty = y - fy;
+    auto wrap = [](int i, int n) { int r = i % n; return r < 0 ? r + n : r; };
+    int x0 = wrap(static_cast<int>(fx), width_), x1 = x0 + 1 == width_ ? 0 : x0 + 1;
+    int y0 = wrap(static_cast<int>(fy), height_), y1 = y0 + 1 == height_ ? 0 : y0 + 1;
+    glm::vec4 top = at(x0, y0) * (1.0f - tx) + at(x1, y0) * tx;
+    glm::vec4 bottom = at(x0, y1) * (1.0f - tx) + at(x1, y1) * tx;
+    return top * (1.0f - ty) + bottom * ty;
+}
 
 }  // namespace hybridlab

@@ -21,6 +21,14 @@ using OIIO::TypeDesc;
 
 namespace {
 
+// Pixels are unassociated (straight) alpha, as PNG stores them. Without this OpenImageIO
+// premultiplies colour by alpha on read and divides by it on write.
+ImageSpec unassociatedAlphaConfig() {
+    ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
 Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode) {
     const ImageSpec& spec = in.spec();
     const int w = spec.width, h = spec.height, nc = spec.nchannels;
@@ -55,7 +63,8 @@ Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode
 
 Image readImage(const fs::path& path, ColorEncoding decode) {
     if (!fs::exists(path)) throw InputError(path.string() + ": image file not found");
-    auto in = ImageInput::open(path.string());
+    const ImageSpec config = unassociatedAlphaConfig();
+    auto in = ImageInput::open(path.string(), &config);
     if (!in) throw InputError(path.string() + ": cannot read image (" + OIIO::geterror() + ")");
     return decodeOpened(*in, path.string(), decode);
 }
@@ -66,7 +75,11 @@ Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const st
     if (mimeType == "image/png") hint = "embedded.png";
     else if (mimeType == "image/jpeg") hint = "embedded.jpg";
     OIIO::Filesystem::IOMemReader proxy(const_cast<unsigned char*>(bytes), size);
-    auto in = ImageInput::open(hint, nullptr, &proxy);
+    ImageSpec config = unassociatedAlphaConfig();
+    // With a config, OpenImageIO 2.4 takes the proxy from it rather than from the argument.
+    void* proxyPtr = &proxy;
+    config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxyPtr);
+    auto in = ImageInput::open(hint, &config, &proxy);
     if (!in) throw InputError(name + ": cannot read embedded image (" + OIIO::geterror() + ")");
     return decodeOpened(*in, name, decode);
 }
@@ -77,6 +90,7 @@ void writePixels(const fs::path& path, const Image& img, TypeDesc type, const st
     auto out = ImageOutput::create(path.string());
     if (!out) throw std::runtime_error(path.string() + ": no image writer (" + OIIO::geterror() + ")");
     ImageSpec spec(img.width(), img.height(), 4, type);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // see unassociatedAlphaConfig()
     if (!out->open(path.string(), spec)) throw std::runtime_error(path.string() + ": " + out->geterror());
     if (!out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {
         throw std::runtime_error(path.string() + ": " + out->geterror());

@@ -1,6 +1,7 @@
 #include "common/raytrace/ray_scene.h"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -22,18 +23,25 @@ void checkDevice(RTCDevice device, const char* what) {
     if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(e) + " while " + what);
 }
 
-// Extends Embree's context with the shadow ray's running transmittance (RTCIntersectContext must
-// come first: Embree hands the filter a pointer to it).
-struct ShadowContext {
-    RTCIntersectContext base;
-    glm::vec3 transmittance;
-};
-
 // Any-hit program of shadow rays (Walewski 2019 Listing 8b): attached only to geometry whose
 // material lets light through or casts no shadow, so opaque casters end the ray at once.
 void shadowFilter(const RTCFilterFunctionNArguments* args) {
     if (!args->valid[0]) return;
-    auto* ctx = reinterpret_cast<ShadowContext*>(args->context);
+    auto* ctx = reinterpret_cast<ShadowRayContext*>(args->context);
+    const unsigned geom = RTCHitN_geomID(args->hit, args->N, 0), inst = RTCHitN_instID(args->hit, args->N, 0, 0);
+    const float t = RTCRayN_tfar(args->ray, args->N, 0);
+    for (int i = 0; i < ctx->crossings; ++i) {
+        if (ctx->geometry[i] == geom && ctx->instance[i] == inst && std::abs(ctx->distance[i] - t) <= 1e-5f * t) {
+            args->valid[0] = 0;  // the same surface crossing, seen through its other triangle
+            return;
+        }
+    }
+    if (ctx->crossings < ShadowRayContext::kMaxCrossings) {
+        ctx->geometry[ctx->crossings] = geom;
+        ctx->instance[ctx->crossings] = inst;
+        ctx->distance[ctx->crossings] = t;
+        ++ctx->crossings;
+    }
     ctx->transmittance *= occluderTransmittance(*static_cast<const Material*>(args->geometryUserPtr));
     if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
 }
@@ -77,9 +85,14 @@ RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time)
     }
 
     static_ = rtcNewScene(device_);
+    worldPositions_.resize(scene.meshes.size());
+    worldNormals_.resize(scene.meshes.size());
     for (std::size_t o = 0; o < n; ++o) {
         if (scene.objects[o].isAnimated()) continue;
         for (std::uint32_t mesh : scene.objects[o].meshes) {
+            const Mesh& m = scene.meshes[mesh];
+            for (const auto& p : m.positions) worldPositions_[mesh].push_back(glm::vec3(toWorld_[o] * glm::vec4(p, 1.0f)));
+            for (const auto& nrm : m.normals) worldNormals_[mesh].push_back(normalToWorld_[o] * nrm);
             RTCGeometry g = makeTriangleGeometry(scene.meshes[mesh], &toWorld_[o]);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);
@@ -154,6 +167,7 @@ void RayScene::setTime(double time) {
 }
 
 bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit) const {
+    if (log_) log_->record({ray.origin, ray.direction, tmin, tmax, false});
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -174,9 +188,9 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
 }
 
 glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) const {
-    ShadowContext ctx;
+    if (log_) log_->record({origin, dir, 0.0f, tmax, true});
+    ShadowRayContext ctx;
     rtcInitIntersectContext(&ctx.base);
-    ctx.transmittance = glm::vec3(1.0f);
     RTCRay r;
     r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
     r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
@@ -212,13 +226,19 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     hit.mesh = mesh;
     hit.primitive = rh.hit.primID;
     hit.material = &scene_.materials[m.material];
-    glm::vec3 p0 = glm::vec3(M * glm::vec4(m.positions[tri.x], 1.0f));
-    glm::vec3 p1 = glm::vec3(M * glm::vec4(m.positions[tri.y], 1.0f));
-    glm::vec3 p2 = glm::vec3(M * glm::vec4(m.positions[tri.z], 1.0f));
+    glm::vec3 p0, p1, p2;
+    if (const auto& wp = worldPositions_[mesh]; !wp.empty()) {
+        const auto& wn = worldNormals_[mesh];
+        p0 = wp[tri.x], p1 = wp[tri.y], p2 = wp[tri.z];
+        hit.shadingNormal = glm::normalize(w * wn[tri.x] + u * wn[tri.y] + v * wn[tri.z]);
+    } else {
+        p0 = glm::vec3(M * glm::vec4(m.positions[tri.x], 1.0f));
+        p1 = glm::vec3(M * glm::vec4(m.positions[tri.y], 1.0f));
+        p2 = glm::vec3(M * glm::vec4(m.positions[tri.z], 1.0f));
+        hit.shadingNormal = glm::normalize(N * (w * m.normals[tri.x] + u * m.normals[tri.y] + v * m.normals[tri.z]));
+    }
     hit.position = w * p0 + u * p1 + v * p2;
     hit.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    glm::vec3 n = w * m.normals[tri.x] + u * m.normals[tri.y] + v * m.normals[tri.z];
-    hit.shadingNormal = glm::normalize(N * n);
     if (!m.uvs.empty()) hit.uv = w * m.uvs[tri.x] + u * m.uvs[tri.y] + v * m.uvs[tri.z];
     const Material& mat = *hit.material;
     if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {

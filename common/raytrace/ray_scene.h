@@ -7,6 +7,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "common/raytrace/ray_log.h"
 #include "common/scene/camera.h"
 #include "common/scene/scene.h"
 
@@ -23,6 +24,20 @@ struct SurfaceHit {
     std::uint32_t mesh = 0;     // index into Scene::meshes
     std::uint32_t primitive = 0;
     const Material* material = nullptr;
+};
+
+// Embree's intersection context extended with a shadow ray's running transmittance; shadow rays
+// must be traced with it, since the occlusion filter of transparent geometry writes to it.
+struct ShadowRayContext {
+    RTCIntersectContext base;  // first: Embree hands the filter a pointer to it
+    glm::vec3 transmittance{1.0f};
+    // Surfaces already counted, so that a ray through an edge shared by two triangles (which a
+    // watertight intersector reports twice) is attenuated once.
+    static constexpr int kMaxCrossings = 16;
+    int crossings = 0;
+    unsigned geometry[kMaxCrossings];
+    unsigned instance[kMaxCrossings];
+    float distance[kMaxCrossings];
 };
 
 class RayScene {
@@ -46,8 +61,10 @@ public:
     // rule of Walewski 2019 Listing 8b); materials that cast no shadow are ignored.
     glm::vec3 transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) const;
 
-    // For benchmarks that trace the same rays with bare rtcIntersect1 / rtcOccluded1.
+    // For benchmarks that trace the same rays with bare rtcIntersect1 / rtcOccluded1: the
+    // top-level scene, and a log that records every ray traced while it is set (null: off).
     RTCScene embreeScene() const { return top_; }
+    void setRayLog(RayLog* log) { log_ = log; }
 
     double buildMilliseconds() const { return buildMs_; }
     double lastUpdateMilliseconds() const { return updateMs_; }
@@ -71,6 +88,11 @@ private:
     std::vector<std::uint32_t> instanceGeometry_;      // per object: its instance geomID in top_
     std::vector<glm::mat4> toWorld_;                   // per object, at time_
     std::vector<glm::mat3> normalToWorld_;             // per object, at time_
+    // Static meshes only (by mesh index; empty for animated ones): vertex positions and
+    // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
+    std::vector<std::vector<glm::vec3>> worldPositions_;
+    std::vector<std::vector<glm::vec3>> worldNormals_;
+    RayLog* log_ = nullptr;
     double time_ = 0.0;
     double buildMs_ = 0.0;
     double updateMs_ = 0.0;

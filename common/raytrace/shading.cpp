@@ -8,55 +8,14 @@
 
 namespace hybridlab {
 
-glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv) {
-    if (m.diffuseTexture == kNoTexture) return glm::vec3(1.0f);
-    glm::vec2 t = uv * m.textureTiling + m.textureOffset;
-    return glm::vec3(scene.textures[m.diffuseTexture].image.sampleBilinearWrap(t.x, t.y));
+SpotCone spotCone(const Light& light) {
+    return {std::cos(glm::radians(light.innerConeDegrees)), std::cos(glm::radians(light.outerConeDegrees))};
 }
 
-LightSample sampleLight(const Light& light, glm::vec3 p) {
-    LightSample s;
-    const glm::vec3 e = light.color * light.intensity;
-    if (light.type == Light::Type::Directional) {
-        s.toLight = -light.direction;
-        s.distance = std::numeric_limits<float>::infinity();
-        s.radiance = e;
-        return s;
-    }
-    glm::vec3 d = light.position - p;
-    float d2 = glm::dot(d, d);
-    s.distance = std::sqrt(d2);
-    s.toLight = d / s.distance;
-    s.radiance = e / d2;
-    if (light.type == Light::Type::Spot) {
-        float cosAngle = glm::dot(-s.toLight, light.direction);
-        float cosOuter = std::cos(glm::radians(light.outerConeDegrees));
-        float cosInner = std::cos(glm::radians(light.innerConeDegrees));
-        float x = cosInner > cosOuter ? std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0f, 1.0f)
-                                      : (cosAngle >= cosOuter ? 1.0f : 0.0f);
-        s.radiance *= x * x * (3.0f - 2.0f * x);  // smoothstep, as POV-Ray's spotlight falloff
-    }
-    return s;
-}
-
-glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light) {
-    const Material& m = *s.material;
-    float nl = glm::dot(s.normal, light.toLight);
-    if (nl <= 0.0f) return glm::vec3(0.0f);
-    glm::vec3 h = glm::normalize(light.toLight + toViewer);
-    float nh = std::max(glm::dot(s.normal, h), 0.0f);
-    glm::vec3 diffuse = m.diffuse * textureValue * nl;
-    glm::vec3 specular = m.specular * std::pow(nh, m.specularExponent);
-    return light.radiance * (diffuse + specular);
-}
+LightSample sampleLight(const Light& light, glm::vec3 p) { return sampleLight(light, spotCone(light), p); }
 
 glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue) {
     return s.material->emission + s.material->ambient * scene.ambient * textureValue;
-}
-
-glm::vec3 occluderTransmittance(const Material& m) {
-    if (!m.castsShadows) return glm::vec3(1.0f);
-    return (1.0f - m.opacity) * m.diffuse;
 }
 
 glm::vec3 reflectDirection(glm::vec3 d, glm::vec3 n) { return d - 2.0f * glm::dot(d, n) * n; }

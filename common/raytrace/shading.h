@@ -20,6 +20,11 @@
 // it, and o_r = 1 - opacity. Total internal reflection sends everything to the reflected ray
 // (R = M). Walewski 2019 eqs. (5)-(6) average this with the same expression taken in the other
 // order; that is the selectable BlendRule::Walewski2019.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -37,7 +42,7 @@ struct SurfacePoint {
 
 // Diffuse texture value at a uv, with the material's tiling and offset (bilinear, wrapping);
 // 1 when the material has none.
-glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv);
+inline glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv);
 
 // Radiance arriving at `p` from light `l` ignoring shadows, and the unit direction towards it.
 struct LightSample {
@@ -47,14 +52,23 @@ struct LightSample {
 };
 LightSample sampleLight(const Light& light, glm::vec3 p);
 
+// The cosines of a spot light's inner and outer cone half-angles. A tracer computes them once per
+// frame and passes them to the overload below instead of taking two cosines per sample.
+struct SpotCone {
+    float cosInner = 1.0f;
+    float cosOuter = 1.0f;
+};
+SpotCone spotCone(const Light& light);
+inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::vec3 p);
+
 // The contribution of one light: E * (diffuse * T * N.L + specular * (N.H)^n), unshadowed.
-glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light);
+inline glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light);
 
 // emission + ambient * sceneAmbient * T: the part of C that needs no light.
 glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue);
 
 // Shadow transmittance through one occluder with this material.
-glm::vec3 occluderTransmittance(const Material& m);
+inline glm::vec3 occluderTransmittance(const Material& m);
 
 // Perfect mirror direction of incident direction d about normal n (both unit; d towards surface).
 glm::vec3 reflectDirection(glm::vec3 d, glm::vec3 n);
@@ -74,5 +88,55 @@ glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, Bl
 
 // Sky radiance in a world direction: the cube map (OpenGL face convention) or the constant colour.
 glm::vec3 skyRadiance(const Scene& scene, glm::vec3 direction);
+
+
+// Per-light and per-hit terms, inline: they run for every light at every hit of every ray.
+
+inline glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv) {
+    if (m.diffuseTexture == kNoTexture) return glm::vec3(1.0f);
+    glm::vec2 t = uv * m.textureTiling + m.textureOffset;
+    return glm::vec3(scene.textures[m.diffuseTexture].image.sampleBilinearWrap(t.x, t.y));
+}
+
+inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::vec3 p) {
+    LightSample s;
+    const glm::vec3 e = light.color * light.intensity;
+    if (light.type == Light::Type::Directional) {
+        s.toLight = -light.direction;
+        s.distance = std::numeric_limits<float>::infinity();
+        s.radiance = e;
+        return s;
+    }
+    glm::vec3 d = light.position - p;
+    float d2 = glm::dot(d, d);
+    s.distance = std::sqrt(d2);
+    s.toLight = d / s.distance;
+    s.radiance = e / d2;
+    if (light.type == Light::Type::Spot) {
+        float cosAngle = glm::dot(-s.toLight, light.direction);
+        const float cosOuter = cone.cosOuter, cosInner = cone.cosInner;
+        float x = cosInner > cosOuter ? std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0f, 1.0f)
+                                      : (cosAngle >= cosOuter ? 1.0f : 0.0f);
+        s.radiance *= x * x * (3.0f - 2.0f * x);  // smoothstep, as POV-Ray's spotlight falloff
+    }
+    return s;
+}
+
+inline glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light) {
+    const Material& m = *s.material;
+    float nl = glm::dot(s.normal, light.toLight);
+    if (nl <= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 c = m.diffuse * textureValue * nl;
+    if (m.specular != glm::vec3(0.0f)) {  // most matte materials: skip the pow
+        glm::vec3 h = glm::normalize(light.toLight + toViewer);
+        c += m.specular * std::pow(std::max(glm::dot(s.normal, h), 0.0f), m.specularExponent);
+    }
+    return light.radiance * c;
+}
+
+inline glm::vec3 occluderTransmittance(const Material& m) {
+    if (!m.castsShadows) return glm::vec3(1.0f);
+    return (1.0f - m.opacity) * m.diffuse;
+}
 
 }  // namespace hybridlab

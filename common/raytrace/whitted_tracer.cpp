@@ -10,6 +10,10 @@
 
 namespace hybridlab {
 
+WhittedTracer::WhittedTracer(const RayScene& rays, WhittedSettings settings) : rays_(rays), settings_(settings) {
+    for (const Light& l : rays.scene().lights) cones_.push_back(spotCone(l));
+}
+
 glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats) const {
     SurfaceHit hit;
     if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) return skyRadiance(rays_.scene(), ray.direction);
@@ -30,8 +34,9 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
     const glm::vec3 tex = diffuseTextureValue(scene, *hit.material, hit.uv);
     glm::vec3 c = unlitTerm(scene, sp, tex);
     const glm::vec3 shadowOrigin = offsetRayOrigin(hit.position, geometricNormal);
-    for (const Light& light : scene.lights) {
-        LightSample ls = sampleLight(light, hit.position);
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        LightSample ls = sampleLight(light, cones_[i], hit.position);
         glm::vec3 direct = blinnPhong(sp, tex, toViewer, ls);
         if (direct == glm::vec3(0.0f)) continue;  // facing away, or outside a spot cone: no ray needed
         if (light.castsShadows) {

@@ -3,6 +3,8 @@
 // of DESIGN.md): hard shadows from every light, reflection and refraction to a depth limit, the
 // local colour at the limit, the sky on a miss. The reference technique calls it from camera rays;
 // hybrid techniques call shade() from a G-buffer texel.
+#include <vector>
+
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
 #include "common/raytrace/shading.h"
@@ -19,7 +21,7 @@ struct WhittedSettings {
 
 class WhittedTracer {
 public:
-    WhittedTracer(const RayScene& rays, WhittedSettings settings) : rays_(rays), settings_(settings) {}
+    WhittedTracer(const RayScene& rays, WhittedSettings settings);
 
     const WhittedSettings& settings() const { return settings_; }
 
@@ -40,6 +42,7 @@ public:
 private:
     const RayScene& rays_;
     WhittedSettings settings_;
+    std::vector<SpotCone> cones_;  // per light
 };
 
 }  // namespace hybridlab

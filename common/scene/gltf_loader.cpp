@@ -144,7 +144,8 @@ public:
         } else {
             int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
             if (!model_.scenes.empty()) {
-                for (int n : model_.scenes.at(s).nodes) visit(n, glm::mat4(1.0f));
+                if (s >= static_cast<int>(model_.scenes.size())) reader_.fail("default scene index out of range");
+                for (int n : model_.scenes[s].nodes) visit(n, glm::mat4(1.0f));
             } else {
                 for (std::size_t n = 0; n < model_.nodes.size(); ++n) visit(static_cast<int>(n), glm::mat4(1.0f));
             }
@@ -239,7 +240,8 @@ private:
     }
 
     void addCamera(const tinygltf::Node& node, const glm::mat4& world) {
-        const auto& gc = model_.cameras.at(node.camera);
+        if (node.camera >= static_cast<int>(model_.cameras.size())) reader_.fail("node '" + node.name + "': camera index out of range");
+        const auto& gc = model_.cameras[node.camera];
         Camera cam;
         cam.position = glm::vec3(world[3]);
         glm::mat3 rot(glm::normalize(glm::vec3(world[0])), glm::normalize(glm::vec3(world[1])), glm::normalize(glm::vec3(world[2])));

@@ -9,5 +9,7 @@ void addScenesCommand(CLI::App& app);
 void addSceneInfoCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addTechniquesCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+void addExportPovCommand(CLI::App& app);
 
 }  // namespace hybridlab::cli

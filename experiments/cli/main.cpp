@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
     hybridlab::cli::addSceneInfoCommand(app);
     hybridlab::cli::addRenderCommand(app);
     hybridlab::cli::addTechniquesCommand(app);
+    hybridlab::cli::addBenchCommand(app);
+    hybridlab::cli::addExportPovCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,140 @@
+// `hybridlab bench`: the reference's ray throughput against bare Embree on the same rays
+// (issue: the reference should reach at least 60% of raw Embree). Both run side by side in one
+// process, on the same threads, and report medians over repeats.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include "common/scene/scene_catalog.h"
+#include "common/scene/scene_file.h"
+#include "common/scene/view.h"
+#include "experiments/cli/commands.h"
+#include "techniques/technique.h"
+
+namespace hybridlab::cli {
+
+namespace {
+
+struct BenchOptions {
+    std::string scene = "sponza-spheres";
+    std::string cameraPath;
+    std::optional<int> frame;
+    int width = 1280;
+    int height = 720;
+    int repeats = 5;
+    int threads = 0;
+};
+
+struct Summary {
+    double median, min, max;
+};
+
+Summary summarize(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return {median, v.front(), v.back()};
+}
+
+template <typename F>
+double milliseconds(F&& f) {
+    auto start = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Traces every logged ray with bare rtcIntersect1 / rtcOccluded1; returns the number of hits so
+// that the work cannot be optimised away.
+std::size_t replay(RTCScene scene, const std::vector<LoggedRay>& rays) {
+    std::atomic<std::size_t> hits{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::size_t local = 0;
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const LoggedRay& lr = rays[i];
+            if (lr.shadow) {
+                ShadowRayContext ctx;
+                rtcInitIntersectContext(&ctx.base);
+                RTCRay ray{lr.origin.x, lr.origin.y, lr.origin.z, lr.tmin, lr.direction.x, lr.direction.y, lr.direction.z,
+                           0.0f, lr.tmax, 0xFFFFFFFFu, 0, 0};
+                rtcOccluded1(scene, &ctx.base, &ray);
+                local += ray.tfar < 0.0f;
+            } else {
+                RTCIntersectContext ctx;
+                rtcInitIntersectContext(&ctx);
+                RTCRayHit rh;
+                rh.ray = RTCRay{lr.origin.x, lr.origin.y, lr.origin.z, lr.tmin, lr.direction.x, lr.direction.y, lr.direction.z,
+                                0.0f, lr.tmax, 0xFFFFFFFFu, 0, 0};
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene, &ctx, &rh);
+                local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+        }
+        hits += local;
+    });
+    return hits;
+}
+
+void run(const BenchOptions& o) {
+    Scene scene = loadSceneFile(findSceneFile(o.scene));
+    View view = resolveView(scene, o.cameraPath, o.frame, std::nullopt);
+    std::optional<tbb::global_control> threadLimit;
+    if (o.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+
+    SceneContext context(scene);
+    auto whitted = createTechnique("whitted", {});
+    whitted->prepare(context);
+    RayScene& rays = context.rayScene(view.time);
+    const FrameRequest request{view.camera, view.time, o.width, o.height};
+
+    // Warm-up frame, recording the rays.
+    RayLog log;
+    rays.setRayLog(&log);
+    FrameResult first = whitted->render(context, request);
+    rays.setRayLog(nullptr);
+    const std::vector<LoggedRay> logged = log.collect();
+    const double rayCount = first.counters.at("rays_total");
+
+    std::vector<double> referenceMs, embreeMs;
+    for (int i = 0; i < o.repeats; ++i) {
+        // Interleaved, so that both see the same machine load.
+        referenceMs.push_back(whitted->render(context, request).totalMilliseconds());
+        embreeMs.push_back(milliseconds([&] { replay(rays.embreeScene(), logged); }));
+    }
+    Summary ref = summarize(referenceMs), raw = summarize(embreeMs);
+    const double refRate = rayCount / (ref.median * 1e3), rawRate = static_cast<double>(logged.size()) / (raw.median * 1e3);
+    std::printf("scene %s, %dx%d, view %s, %d threads, %d repeats\n", scene.name.c_str(), o.width, o.height, view.label.c_str(),
+                o.threads > 0 ? o.threads : tbb::info::default_concurrency(), o.repeats);
+    std::printf("bvh build                %10.2f ms\n", rays.buildMilliseconds());
+    std::printf("rays per frame           %10.0f (primary %.0f, shadow %.0f, reflection %.0f, refraction %.0f); logged %zu\n", rayCount,
+                first.counters.at("rays_primary"), first.counters.at("rays_shadow"), first.counters.at("rays_reflection"),
+                first.counters.at("rays_refraction"), logged.size());
+    std::printf("reference frame          %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", ref.median, ref.min, ref.max, refRate);
+    std::printf("bare Embree, same rays   %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", raw.median, raw.min, raw.max, rawRate);
+    std::printf("reference / bare Embree  %10.1f %%\n", 100.0 * refRate / rawRate);
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    auto* cmd = app.add_subcommand("bench", "Reference ray throughput against bare Embree on the same rays (medians over repeats)");
+    cmd->add_option("--scene", o->scene, "Scene file or name")->capture_default_str();
+    cmd->add_option("--camera-path", o->cameraPath, "Camera path (default: the scene camera)");
+    cmd->add_option("--frame", o->frame, "Frame on the camera path");
+    cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();
+    cmd->add_option("--height", o->height, "Image height")->check(CLI::Range(1, 16384))->capture_default_str();
+    cmd->add_option("--repeats", o->repeats, "Timed repeats of each")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace hybridlab::cli
