@@ -3,6 +3,8 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <system_error>
 #include <vector>
@@ -126,14 +128,18 @@ void writePng(const fs::path& path, const Image& display, int bits) {
 void writeImageAtomically(const fs::path& path, const Image& linear) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    // Keep the extension last so that OpenImageIO picks the writer by it.
-    fs::path tmp = path.parent_path() / (".tmp-" + path.stem().string() + path.extension().string());
-    if (ext == ".exr") {
-        writeExr(tmp, linear);
-    } else if (ext == ".png") {
-        writeDisplayPng(tmp, linear);
-    } else {
+    if (ext != ".exr" && ext != ".png") {
         throw InputError(path.string() + ": unsupported image extension '" + ext + "' (expected .exr or .png)");
+    }
+    // A name of this process's own, with the extension last so that OpenImageIO picks the writer.
+    fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.stem().string() + ext);
+    try {
+        if (ext == ".exr") writeExr(tmp, linear);
+        else writeDisplayPng(tmp, linear);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
     }
     std::error_code ec;
     fs::rename(tmp, path, ec);

@@ -17,7 +17,8 @@ fs::path resolveScenePath(const std::string& path, const fs::path& sceneFile) {
     if (isAssetPath(path)) {
         auto root = assetsRoot();
         fs::path rest = fs::path(path).lexically_relative("assets");
-        return root ? *root / rest : fs::path(path);
+        // Unset: no path at all, rather than a look in the current folder.
+        return root ? *root / rest : fs::path();
     }
     fs::path p(path);
     return p.is_absolute() ? p : sceneFile.parent_path() / p;

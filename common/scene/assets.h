@@ -15,7 +15,8 @@ bool isAssetPath(const std::string& path);
 // The asset folder from the environment, if set.
 std::optional<std::filesystem::path> assetsRoot();
 
-// Resolves `path` as written in `sceneFile`; does not check existence.
+// Resolves `path` as written in `sceneFile`; does not check existence. An asset path with
+// HYBRIDLAB_ASSETS unset resolves to an empty path (which never exists).
 std::filesystem::path resolveScenePath(const std::string& path, const std::filesystem::path& sceneFile);
 
 // Why an asset could not be found: where it looked, and where the models come from.

@@ -1,9 +1,20 @@
 // hybridlab: render, compare and time hybrid rasterisation + ray-tracing techniques.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "common/core/input_error.h"
 #include "experiments/cli/commands.h"
+
+namespace {
+
+bool isCommand(CLI::App& app, const std::string& name) {
+    for (const auto* c : app.get_subcommands({}))
+        if (c->get_name() == name) return true;
+    return false;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"hybridlab: a testbed comparing hybrid rasterization + ray-tracing reflection and refraction techniques"};
@@ -14,6 +25,13 @@ int main(int argc, char** argv) {
     hybridlab::cli::addTechniquesCommand(app);
     hybridlab::cli::addBenchCommand(app);
     hybridlab::cli::addExportPovCommand(app);
+    // CLI11 would only say "a subcommand is required" for a misspelt one: name it.
+    if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
+        std::string known;
+        for (const auto* c : app.get_subcommands({})) known += (known.empty() ? "" : ", ") + c->get_name();
+        std::fprintf(stderr, "hybridlab: error: unknown command '%s' (commands: %s)\nRun with --help for usage.\n", argv[1], known.c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

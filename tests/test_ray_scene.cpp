@@ -1,0 +1,144 @@
+// RayScene: static geometry in one BVH, animated objects as instances re-committed per frame,
+// and hits that map back to objects, meshes and materials.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "common/raytrace/ray_scene.h"
+#include "common/scene/scene_catalog.h"
+#include "common/scene/scene_file.h"
+#include "scene_fixtures.h"
+#include "techniques/technique.h"
+
+namespace hybridlab {
+namespace {
+
+using test::SceneBuilder;
+using test::matte;
+using test::placed;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A static floor, a static box and a sphere that moves from x = -2 at t = 0 to x = +2 at t = 1.
+Scene movingSphereScene() {
+    SceneBuilder b;
+    b.object("floor", makePlane(), b.material(matte({1, 1, 1})), placed({0, 0, 0}, {20, 1, 20}));
+    b.object("box", makeCube(), b.material(matte({1, 0, 0})), placed({0, 0.5f, -3}, glm::vec3(1)));
+    std::uint32_t ballMaterial = b.material(matte({0, 0, 1}));
+    b.object("ball", makeSphere(32, 16), ballMaterial, placed({-2, 1, 0}, glm::vec3(1)));
+    RigidAnimation& a = b.scene().objects.back().animation;
+    a.times = {0.0, 1.0};
+    a.positions = {{-2, 1, 0}, {2, 1, 0}};
+    a.rotations = {glm::quat(1, 0, 0, 0), glm::quat(1, 0, 0, 0)};
+    a.scales = {glm::vec3(1), glm::vec3(1)};
+    return b.scene();
+}
+
+TEST(RayScene, HitsMapBackToObjectsMeshesAndMaterials) {
+    Scene scene = movingSphereScene();
+    RayScene rays(scene);
+    SurfaceHit hit;
+    ASSERT_TRUE(rays.intersect({{0, 0.5f, 5}, {0, 0, -1}}, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "box");
+    EXPECT_EQ(hit.mesh, scene.objects[hit.object].meshes[0]);
+    EXPECT_EQ(hit.material, &scene.materials[1]);
+    EXPECT_NEAR(hit.t, 5.0f + 2.5f, 1e-4f);
+    EXPECT_NEAR(hit.position.z, -2.5f, 1e-5f);
+    EXPECT_NEAR(glm::dot(hit.geometricNormal, glm::vec3(0, 0, 1)), 1.0f, 1e-6f);
+    ASSERT_TRUE(rays.intersect({{-2, 5, 0}, {0, -1, 0}}, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "ball");  // an instance resolves to its object too
+    EXPECT_NEAR(hit.position.y, 1.5f, 1e-3f);
+    EXPECT_EQ(hit.material, &scene.materials[2]);
+}
+
+TEST(RayScene, AnimatedObjectsMoveWhenTheTimeChanges) {
+    Scene scene = movingSphereScene();
+    RayScene rays(scene, 0.0);
+    SurfaceHit hit;
+    const Ray atLeft{{-2, 5, 0}, {0, -1, 0}}, atRight{{2, 5, 0}, {0, -1, 0}};
+    ASSERT_TRUE(rays.intersect(atLeft, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "ball");
+    ASSERT_TRUE(rays.intersect(atRight, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "floor");
+
+    rays.setTime(1.0);
+    EXPECT_EQ(rays.time(), 1.0);
+    EXPECT_GE(rays.lastUpdateMilliseconds(), 0.0);
+    ASSERT_TRUE(rays.intersect(atLeft, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "floor");
+    ASSERT_TRUE(rays.intersect(atRight, 0.0f, kInf, hit));
+    EXPECT_EQ(scene.objects[hit.object].name, "ball");
+    EXPECT_NEAR(hit.position.y, 1.5f, 1e-3f);
+    EXPECT_NEAR(glm::dot(hit.shadingNormal, glm::vec3(0, 1, 0)), 1.0f, 1e-3f);
+
+    // Halfway, the instance agrees with a scene built with the ball placed there statically.
+    rays.setTime(0.5);
+    Scene frozen = movingSphereScene();
+    frozen.objects.back().animation = RigidAnimation{};
+    frozen.objects.back().transform = placed({0, 1, 0}, glm::vec3(1));
+    RayScene still(frozen);
+    for (float x : {-0.4f, -0.1f, 0.2f, 0.45f}) {
+        SurfaceHit a, b;
+        ASSERT_TRUE(rays.intersect({{x, 5, 0.1f}, {0, -1, 0}}, 0.0f, kInf, a));
+        ASSERT_TRUE(still.intersect({{x, 5, 0.1f}, {0, -1, 0}}, 0.0f, kInf, b));
+        EXPECT_EQ(a.object, b.object);
+        EXPECT_NEAR(a.t, b.t, 1e-5f);
+        EXPECT_NEAR(glm::length(a.shadingNormal - b.shadingNormal), 0.0f, 1e-5f);
+    }
+    EXPECT_GT(rays.buildMilliseconds(), 0.0);
+}
+
+TEST(RayScene, ShadowRaysStopAtOpaqueCastersAndIgnoreNonCasters) {
+    SceneBuilder b;
+    Material ghost = matte({1, 1, 1});
+    ghost.castsShadows = false;
+    b.object("ghost", makeCube(), b.material(ghost), placed({0, 2, 0}, glm::vec3(1)));
+    b.object("wall", makeCube(), b.material(matte({1, 1, 1})), placed({0, 4, 0}, glm::vec3(1)));
+    RayScene rays(b.scene());
+    EXPECT_EQ(rays.transmittance({0, 0, 0}, {0, 1, 0}, 3.0f), glm::vec3(1.0f));  // only the ghost
+    EXPECT_EQ(rays.transmittance({0, 0, 0}, {0, 1, 0}, 10.0f), glm::vec3(0.0f));  // the wall too
+}
+
+FrameResult renderWhitted(const Scene& scene, std::vector<std::pair<std::string, ParamValue>> params, int w, int h) {
+    SceneContext context(scene);
+    auto t = createTechnique("whitted", params);
+    t->prepare(context);
+    return t->render(context, {scene.camera, 0.0, w, h});
+}
+
+TEST(WhittedParameters, SupersamplingAveragesSubPixelSamples) {
+    // 2 x 2 samples at 64 x 36 sit exactly at the pixel centres of a 128 x 72 render, so the
+    // supersampled image is that render's 2 x 2 box average (up to float rounding of the NDC).
+    Scene scene = loadSceneFile(findSceneFile("whitted-classic"));
+    FrameResult four = renderWhitted(scene, {{"supersample", std::string("2")}}, 64, 36);
+    FrameResult fine = renderWhitted(scene, {}, 128, 72);
+    EXPECT_EQ(four.counters.at("rays_primary"), fine.counters.at("rays_primary"));
+    int close = 0;
+    double total = 0.0;
+    for (int y = 0; y < 36; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            glm::vec4 avg = 0.25f * (fine.image.at(2 * x, 2 * y) + fine.image.at(2 * x + 1, 2 * y) +
+                                     fine.image.at(2 * x, 2 * y + 1) + fine.image.at(2 * x + 1, 2 * y + 1));
+            float d = glm::length(glm::vec3(avg - four.image.at(x, y)));
+            total += d;
+            close += d < 1e-5f;
+        }
+    }
+    EXPECT_GE(close, 64 * 36 * 99 / 100);
+    EXPECT_LT(total / (64 * 36), 1e-3);
+}
+
+TEST(WhittedParameters, ImportanceCutoffPrunesTheRayTree) {
+    Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
+    FrameResult full = renderWhitted(scene, {}, 80, 45);
+    FrameResult pruned = renderWhitted(scene, {{"importance_cutoff", std::string("0.2")}}, 80, 45);
+    const double fullSecondary = full.counters.at("rays_reflection") + full.counters.at("rays_refraction");
+    const double prunedSecondary = pruned.counters.at("rays_reflection") + pruned.counters.at("rays_refraction");
+    EXPECT_LT(prunedSecondary, 0.9 * fullSecondary);
+    EXPECT_GT(prunedSecondary, 0.0);
+    FrameResult depth0 = renderWhitted(scene, {{"max_depth", std::string("0")}}, 80, 45);
+    EXPECT_EQ(depth0.counters.at("rays_reflection") + depth0.counters.at("rays_refraction"), 0.0);
+}
+
+}  // namespace
+}  // namespace hybridlab

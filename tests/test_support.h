@@ -1,0 +1,53 @@
+#pragma once
+// Shared helpers of the test suite: temporary folders, file writing, vector comparisons and the
+// locations of scenes, fixtures and assets.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <gtest/gtest.h>
+
+namespace hybridlab::test {
+
+// A new, empty folder under the system temporary folder; removed with its contents on destruction.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+    std::filesystem::path path_;
+};
+
+void writeTextFile(const std::filesystem::path& path, const std::string& text);
+void writeBinaryFile(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+
+// tests/fixtures in the source tree.
+std::filesystem::path fixturesDir();
+// scenes/<name>.toml in the source tree.
+std::filesystem::path builtinSceneFile(const std::string& name);
+// The test-scene assets (HYBRIDLAB_ASSETS), if set and non-empty.
+std::optional<std::filesystem::path> assetsFromEnvironment();
+
+::testing::AssertionResult vecNear(glm::vec2 actual, glm::vec2 expected, float tolerance);
+::testing::AssertionResult vecNear(glm::vec3 actual, glm::vec3 expected, float tolerance);
+::testing::AssertionResult vecNear(glm::vec4 actual, glm::vec4 expected, float tolerance);
+
+// Whether `text` contains `fragment`, with both in the message when not.
+::testing::AssertionResult contains(const std::string& text, const std::string& fragment);
+
+}  // namespace hybridlab::test
+
+#define EXPECT_VEC_NEAR(actual, expected, tolerance) EXPECT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
+#define ASSERT_VEC_NEAR(actual, expected, tolerance) ASSERT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
+#define EXPECT_CONTAINS(text, fragment) EXPECT_TRUE(::hybridlab::test::contains((text), (fragment)))

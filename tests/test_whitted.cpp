@@ -1,0 +1,221 @@
+// End-to-end analytic checks of the Whitted reference: rays traced through RayScene and
+// WhittedTracer in scenes built so that the answer is known in closed form.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <glm/geometric.hpp>
+
+#include "common/core/input_error.h"
+#include "common/raytrace/whitted_tracer.h"
+#include "common/scene/scene_catalog.h"
+#include "common/scene/scene_file.h"
+#include "scene_fixtures.h"
+#include "techniques/technique.h"
+
+namespace hybridlab {
+namespace {
+
+using test::SceneBuilder;
+using test::emissive;
+using test::matte;
+using test::placed;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+glm::vec3 trace(const Scene& scene, glm::vec3 origin, glm::vec3 dir, WhittedSettings settings = {}) {
+    RayScene rays(scene);
+    WhittedTracer tracer(rays, settings);
+    RayStats stats;
+    return tracer.radiance({origin, glm::normalize(dir)}, 0, 1.0f, stats);
+}
+
+void expectNear(glm::vec3 a, glm::vec3 b, float tol, const std::string& what = "") {
+    EXPECT_NEAR(a.r, b.r, tol) << what;
+    EXPECT_NEAR(a.g, b.g, tol) << what;
+    EXPECT_NEAR(a.b, b.b, tol) << what;
+}
+
+TEST(Whitted, MissReturnsTheSky) {
+    SceneBuilder b;
+    b.object("far", makeCube(), b.material(matte(glm::vec3(1))), placed({0, -100, 0}, glm::vec3(1)));
+    b.scene().sky.color = glm::vec3(0.2f, 0.3f, 0.4f);
+    expectNear(trace(b.scene(), glm::vec3(0), glm::vec3(0, 1, 0)), glm::vec3(0.2f, 0.3f, 0.4f), 0.0f);
+}
+
+TEST(Whitted, MirrorReflectsTowardsTheMirroredTarget) {
+    // A mirror floor at y = 0; a ray from (0, 1, 0) at 45 degrees hits it at (1, 0, 0) and must
+    // reach a small emissive target at (2, 1, 0); a target off the mirrored ray is not seen.
+    SceneBuilder b;
+    Material mirror = matte(glm::vec3(0));
+    mirror.reflectivity = 1.0f;
+    b.object("mirror", makePlane(), b.material(mirror), placed({0, 0, 0}, {20, 1, 20}));
+    b.object("target", makeCube(), b.material(emissive({0.9f, 0.5f, 0.1f})), placed({2, 1, 0}, glm::vec3(0.02f)));
+    b.scene().sky.color = glm::vec3(0.0f);
+    expectNear(trace(b.scene(), {0, 1, 0}, {1, -1, 0}), {0.9f, 0.5f, 0.1f}, 1e-6f, "hits the target");
+    expectNear(trace(b.scene(), {0, 1, 0}, {1, -1.05f, 0}), glm::vec3(0.0f), 1e-6f, "misses it");
+}
+
+TEST(Whitted, RefractionThroughASlabFollowsSnellsLaw) {
+    // A glass slab 1 thick (y in [-1, 0]), IOR 1.5, no reflection: a ray arriving at 40 degrees
+    // leaves the slab parallel to itself, shifted sideways by t sin(i - r) / cos r. A tiny
+    // emissive target on the predicted exit ray is hit.
+    const float i = glm::radians(40.0f), r = std::asin(std::sin(i) / 1.5f);
+    SceneBuilder b;
+    Material glass = matte(glm::vec3(1));
+    glass.opacity = 0.0f;
+    glass.ior = 1.5f;
+    b.object("slab", makeCube(), b.material(glass), placed({0, -0.5f, 0}, {50, 1, 50}));
+    // Entry at the origin; exit at x = tan(r), y = -1; then 1 more unit along the incident direction.
+    glm::vec3 dir(std::sin(i), -std::cos(i), 0);
+    glm::vec3 exit(std::tan(r), -1.0f, 0.0f);
+    b.object("target", makeCube(), b.material(emissive({0.3f, 0.6f, 0.9f})), placed(exit + dir, glm::vec3(0.01f)));
+    b.scene().sky.color = glm::vec3(0.0f);
+    glm::vec3 origin = -dir;  // starts 1 unit before the entry point
+    expectNear(trace(b.scene(), origin, dir), {0.3f, 0.6f, 0.9f}, 1e-6f, "on the Snell path");
+    // Without refraction (IOR 1) the straight ray passes far from the target.
+    b.scene().materials[0].ior = 1.0f;
+    expectNear(trace(b.scene(), origin, dir), glm::vec3(0.0f), 1e-6f, "straight ray misses");
+    const float shift = std::sin(i - r) / std::cos(r);
+    EXPECT_GT(shift, 0.1f);  // the test would not discriminate otherwise
+}
+
+TEST(Whitted, TotalInternalReflectionSendsEverythingToTheReflectedRay) {
+    // Inside a glass slab a ray meets the top face at 60 degrees (> 41.8, the critical angle):
+    // all of it reflects down to an emissive target below, nothing escapes to the sky.
+    const float a = glm::radians(60.0f);
+    SceneBuilder b;
+    Material glass = matte(glm::vec3(0));
+    glass.opacity = 0.0f;
+    glass.ior = 1.5f;
+    glass.fresnel = true;
+    b.object("slab", makeCube(), b.material(glass), placed({0, -5, 0}, {100, 10, 100}));
+    glm::vec3 dir(std::sin(a), std::cos(a), 0);  // upwards from (0, -1, 0), hits the top at x = tan(a)
+    glm::vec3 top(std::tan(a), 0, 0);
+    glm::vec3 down(std::sin(a), -std::cos(a), 0);
+    b.object("target", makeCube(), b.material(emissive({0.5f, 0.5f, 0.5f})), placed(top + 0.8f * down, glm::vec3(0.02f)));
+    b.scene().sky.color = glm::vec3(1.0f, 0.0f, 0.0f);
+    expectNear(trace(b.scene(), {0, -1, 0}, dir), {0.5f, 0.5f, 0.5f}, 1e-5f);
+}
+
+TEST(Whitted, PointLightContributionFallsOffWithInverseSquareDistance) {
+    for (float h : {1.0f, 2.0f, 4.0f}) {
+        SceneBuilder b;
+        b.object("floor", makePlane(), b.material(matte({0.5f, 0.5f, 0.5f})), placed({0, 0, 0}, {10, 1, 10}));
+        Light l;
+        l.type = Light::Type::Point;
+        l.position = {0, h, 0};
+        l.intensity = 3.0f;
+        b.light(l);
+        // Looking straight down at the point under the light: N.L = 1.
+        glm::vec3 c = trace(b.scene(), {0, 0.5f, 0}, {0, -1, 0});
+        EXPECT_NEAR(c.r, 0.5f * 3.0f / (h * h), 1e-6f) << h;
+    }
+}
+
+TEST(Whitted, OpaqueOccluderCastsAHardShadowAndATransparentOneLetsItsShareThrough) {
+    auto shaded = [](float occluderOpacity, float x) {
+        SceneBuilder b;
+        b.object("floor", makePlane(), b.material(matte({1, 1, 1})), placed({0, 0, 0}, {10, 1, 10}));
+        Material blocker = matte({0.8f, 0.6f, 0.4f});
+        blocker.opacity = occluderOpacity;
+        b.object("blocker", makeCube(), b.material(blocker), placed({0, 1, 0}, {0.5f, 0.1f, 0.5f}));
+        Light l;
+        l.type = Light::Type::Point;
+        l.position = {0, 4, 0};
+        l.intensity = 16.0f;
+        b.light(l);
+        return trace(b.scene(), {x, 0.5f, 0}, {0, -1, 0});
+    };
+    const glm::vec3 lit = shaded(1.0f, 2.0f);  // outside the shadow
+    EXPECT_GT(lit.r, 0.0f);
+    expectNear(shaded(1.0f, 0.0f), glm::vec3(0.0f), 0.0f, "opaque: hard shadow");
+    // Just inside and just outside the shadow edge (light at 4, blocker half-width 0.25 at y = 1.05
+    // top face: the edge on the floor is at x = 0.25 * 4 / 2.95 = 0.339).
+    expectNear(shaded(1.0f, 0.32f), glm::vec3(0.0f), 0.0f, "inside the edge");
+    EXPECT_GT(shaded(1.0f, 0.36f).r, 0.0f);
+    // Transparent: (1 - opacity) * tint, twice (the ray crosses the slab's top and bottom faces).
+    const glm::vec3 t = 0.75f * glm::vec3(0.8f, 0.6f, 0.4f);
+    const glm::vec3 unshadowed = glm::vec3(16.0f / 16.0f);  // diffuse 1, N.L 1, I / d^2 = 1
+    expectNear(shaded(0.25f, 0.0f), unshadowed * t * t, 1e-6f, "transparent occluder");
+}
+
+TEST(Whitted, DepthLimitReturnsTheLocalColour) {
+    // A half-mirror lit from above reflects the sky. With max_depth 0 the hit returns its local
+    // colour C; with 1, 0.5 sky + 0.5 C.
+    SceneBuilder b;
+    Material m = matte({0.5f, 0.5f, 0.5f});
+    m.reflectivity = 0.5f;
+    b.object("floor", makePlane(), b.material(m), placed({0, 0, 0}, {10, 1, 10}));
+    Light l;
+    l.type = Light::Type::Directional;
+    l.direction = {0, -1, 0};
+    l.intensity = 1.0f;
+    b.light(l);
+    b.scene().sky.color = glm::vec3(0.0f, 0.0f, 1.0f);
+    const glm::vec3 C(0.5f);
+    WhittedSettings s;
+    s.maxDepth = 0;
+    expectNear(trace(b.scene(), {0, 1, 0}, {0, -1, 0}, s), C, 1e-6f, "depth 0");
+    s.maxDepth = 1;
+    expectNear(trace(b.scene(), {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
+}
+
+TEST(Whitted, RayCountsFollowTheRayTree) {
+    // One camera ray hitting a Fresnel glass sphere in an empty sky: one reflection and one
+    // refraction ray at the first hit, and per light one shadow ray where N.L > 0.
+    SceneBuilder b;
+    Material glass = matte({1, 1, 1});
+    glass.opacity = 0.0f;
+    glass.fresnel = true;
+    b.object("ball", makeSphere(64, 32), b.material(glass), placed({0, 0, 0}, glm::vec3(2)));
+    RayScene rays(b.scene());
+    WhittedSettings s;
+    s.maxDepth = 1;
+    WhittedTracer tracer(rays, s);
+    RayStats stats;
+    tracer.radiance({{0, 0, 5}, {0, 0, -1}}, 0, 1.0f, stats);
+    EXPECT_EQ(stats.reflection, 1u);
+    EXPECT_EQ(stats.refraction, 1u);
+    EXPECT_EQ(stats.shadow, 0u);  // no lights
+}
+
+FrameResult renderWithThreads(const Scene& scene, int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    SceneContext context(scene);
+    auto technique = createTechnique("whitted", {});
+    technique->prepare(context);
+    return technique->render(context, {scene.camera, 0.0, 160, 90});
+}
+
+TEST(Whitted, RendersAreByteIdenticalWhateverTheThreadCount) {
+    for (const char* name : {"whitted-classic", "cornell-mirror-glass"}) {
+        Scene scene = loadSceneFile(findSceneFile(name));
+        FrameResult one = renderWithThreads(scene, 1);
+        FrameResult two = renderWithThreads(scene, 2);
+        FrameResult four = renderWithThreads(scene, 4);
+        EXPECT_TRUE(one.image == two.image) << name;
+        EXPECT_TRUE(one.image == four.image) << name;
+        EXPECT_EQ(one.counters, two.counters) << name;
+        EXPECT_EQ(one.counters, four.counters) << name;
+    }
+}
+
+TEST(Whitted, ParametersAreCheckedAgainstTheirDeclarations) {
+    EXPECT_NO_THROW(createTechnique("whitted", {{"max_depth", std::string("3")}}));
+    EXPECT_THROW(createTechnique("whitted", {{"max_depth", std::string("-1")}}), InputError);
+    EXPECT_THROW(createTechnique("whitted", {{"max_depth", std::string("2.5")}}), InputError);
+    EXPECT_THROW(createTechnique("whitted", {{"depth", std::string("3")}}), InputError);
+    EXPECT_THROW(createTechnique("whitted", {{"blend", std::string("average")}}), InputError);
+    EXPECT_THROW(createTechnique("nope", {}), InputError);
+    try {
+        createTechnique("whitted", {{"max_depth", std::string("99")}});
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("an integer in [0, 64]"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace hybridlab
