@@ -32,7 +32,8 @@ void run(const ExportPovOptions& o) {
     for (const auto& a : result.approximations) std::fprintf(stderr, "note: not exact in POV-Ray: %s\n", a.c_str());
     std::printf("scene %s, view %s, time %.4g s\n", scene.name.c_str(), view.label.c_str(), view.time);
     for (const auto& f : result.files) std::printf("wrote %s\n", f.string().c_str());
-    std::printf("render with (in %s):\n  povray", result.files.front().parent_path().string().c_str());
+    const std::filesystem::path folder = result.files.front().parent_path();
+    std::printf("render with (in %s):\n  povray", folder.empty() ? "the current folder" : folder.string().c_str());
     const std::filesystem::path pov = result.files.front().filename();
     for (const auto& a : povrayArguments(pov, std::filesystem::path(pov).replace_extension(".png"), o.width, o.height))
         std::printf(" %s", a.c_str());
