@@ -23,6 +23,12 @@ PACKAGES=(
   libembree-dev libtbb-dev
   # independent check of the Whitted reference
   povray
+  # raster core (headless Vulkan on lavapipe)
+  libvulkan-dev mesa-vulkan-drivers glslc
+  # metrics cross-check (tests)
+  python3-skimage python3-numpy
+  # reports and paper figures (Debian's /usr/bin/python3)
+  python3-matplotlib
 )
 
 missing=()

@@ -1,8 +1,9 @@
 #pragma once
-// Per-scene state that techniques share: the scene, and the ray-tracing scene built on first use
-// (DESIGN.md: the RayScene is built once per scene).
+// Per-scene state that techniques share: the scene, and the ray-tracing scene and the rasterizer
+// built on first use (DESIGN.md: the RayScene is built once per scene).
 #include <memory>
 
+#include "common/raster/rasterizer.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/scene/scene.h"
 
@@ -18,9 +19,13 @@ public:
     RayScene& rayScene(double time);
     bool hasRayScene() const { return rays_ != nullptr; }
 
+    // Created at first call (uploads the scene to the GPU); throws VulkanUnavailable without a device.
+    Rasterizer& rasterizer();
+
 private:
     const Scene& scene_;
     std::unique_ptr<RayScene> rays_;
+    std::unique_ptr<Rasterizer> rasterizer_;
 };
 
 }  // namespace hybridlab

@@ -16,6 +16,11 @@ RayScene& SceneContext::rayScene(double time) {
     return *rays_;
 }
 
+Rasterizer& SceneContext::rasterizer() {
+    if (!rasterizer_) rasterizer_ = std::make_unique<Rasterizer>(scene_);
+    return *rasterizer_;
+}
+
 const TechniqueInfo& findTechnique(const std::string& name) {
     std::string known;
     for (const auto& t : registeredTechniques()) {

@@ -215,6 +215,25 @@ std::vector<std::pair<std::string, TomlTable>> TomlTable::namedTables(const std:
     return out;
 }
 
+std::vector<std::string> TomlTable::keys() const {
+    // (line, column): inline tables hold several keys on one line.
+    std::vector<std::pair<std::pair<std::size_t, std::size_t>, std::string>> byLine;
+    for (auto&& [k, v] : *table_) byLine.emplace_back(std::make_pair(k.source().begin.line, k.source().begin.column), std::string(k.str()));
+    std::stable_sort(byLine.begin(), byLine.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::string> out;
+    for (auto& [line, key] : byLine) {
+        used_.insert(key);
+        out.push_back(std::move(key));
+    }
+    return out;
+}
+
+const toml::node& TomlTable::node(const std::string& key) const {
+    const toml::node* n = get(key);
+    if (!n) fail(key, "missing");
+    return *n;
+}
+
 void TomlTable::rejectUnknownKeys() const {
     for (auto&& [k, v] : *table_) {
         std::string name(k.str());

@@ -65,6 +65,12 @@ public:
     // The sub-tables of table `key` by name ([key.name] sections), in file order.
     std::vector<std::pair<std::string, TomlTable>> namedTables(const std::string& key) const;
 
+    // Every key of this table, in file order (each counts as read), and a value by key, read as it
+    // is (for callers that take lists or mixed types, e.g. experiment sweeps); node() fails
+    // when the key is missing.
+    std::vector<std::string> keys() const;
+    const toml::node& node(const std::string& key) const;
+
     // Every key of this table that no getter asked for is an error.
     void rejectUnknownKeys() const;
 

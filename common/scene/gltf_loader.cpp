@@ -134,6 +134,9 @@ public:
         : model_(model), file_(file), opt_(opt), reader_(model, file) {}
 
     GltfContent run() {
+        out_.sourceFiles.push_back(file_);
+        for (const auto& b : model_.buffers)
+            if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) out_.sourceFiles.push_back(file_.parent_path() / b.uri);
         if (opt_.loadMaterials) loadMaterials();
         else out_.materials.push_back(Material{"default"});
         std::vector<int> roots;
@@ -292,6 +295,7 @@ private:
             if (img.uri.rfind("data:", 0) == 0) reader_.fail("image " + std::to_string(src) + ": data URIs are not supported");
             fs::path p = file_.parent_path() / img.uri;
             if (!fs::exists(p)) reader_.fail("image '" + img.uri + "' not found (looked for " + p.string() + ")");
+            out_.sourceFiles.push_back(p);
             if (opt_.decodeTextures) t = loadTexture(p, srgb);
             else t.source = p.string();
         } else if (img.bufferView >= 0 && img.bufferView < static_cast<int>(model_.bufferViews.size())) {

@@ -23,6 +23,7 @@ struct GltfContent {
     std::vector<Texture> textures;
     std::vector<GltfCamera> cameras;
     std::size_t droppedDegenerateTriangles = 0;
+    std::vector<std::filesystem::path> sourceFiles;  // the file, its external buffers and images
 };
 
 struct GltfLoadOptions {

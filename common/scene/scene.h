@@ -62,6 +62,9 @@ struct Scene {
     glm::vec3 ambient{0.0f};   // global ambient colour
     float ambientIor = 1.0f;   // index of refraction of the medium around objects
     std::size_t droppedDegenerateTriangles = 0;  // zero-area triangles removed from models on load
+    // Every file the scene was built from (the scene file, models, their buffers and images,
+    // textures): what a cached reference image depends on.
+    std::vector<std::filesystem::path> sourceFiles;
 
     const CameraPath* findCameraPath(const std::string& pathName) const;
     bool isAnimated() const;

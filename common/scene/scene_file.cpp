@@ -24,6 +24,7 @@ class SceneFileReader {
 public:
     SceneFileReader(const fs::path& file, const SceneLoadOptions& options) : doc_(file), options_(options) {
         scene_.file = file;
+        scene_.sourceFiles.push_back(file);
     }
 
     Scene read() {
@@ -81,6 +82,7 @@ private:
             t.fail(key, "unknown built-in texture '" + written + "' (expected builtin:checker)");
         } else {
             fs::path p = existingPath(t, key, written);
+            scene_.sourceFiles.push_back(p);
             if (options_.loadTextures) {
                 try {
                     tex = loadTexture(p, srgb);
@@ -196,6 +198,7 @@ private:
                 }
                 for (auto& c : content.cameras) gltfCameras_[o.name].push_back(c);
                 scene_.droppedDegenerateTriangles += content.droppedDegenerateTriangles;
+                scene_.sourceFiles.insert(scene_.sourceFiles.end(), content.sourceFiles.begin(), content.sourceFiles.end());
                 meshes = std::move(content.meshes);
             }
             o.transform = readTransform(t, Transform{});

@@ -24,7 +24,10 @@ int main(int argc, char** argv) {
     hybridlab::cli::addRenderCommand(app);
     hybridlab::cli::addTechniquesCommand(app);
     hybridlab::cli::addBenchCommand(app);
+    hybridlab::cli::addRunCommand(app);
+    hybridlab::cli::addReportCommand(app);
     hybridlab::cli::addExportPovCommand(app);
+    hybridlab::cli::addCompareCommand(app);
     // CLI11 would only say "a subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
         std::string known;

@@ -1,0 +1,155 @@
+#include "common/raster/deferred_lighting.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/trigonometric.hpp>
+
+#include "common/raster/vulkan_error.h"
+#include "common/raytrace/shading.h"
+
+namespace hybridlab {
+
+namespace {
+
+constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr std::uint32_t kShadows = 1u, kEnvironmentMapping = 2u, kWalewskiBlend = 4u;
+
+// std140 twin of FrameUniforms in shaders/deferred_lighting.frag.
+struct FrameUniforms {
+    glm::vec4 cameraPosition, cameraRight, cameraUp, cameraForward;
+    glm::vec4 sceneAmbient, skyColor;
+    glm::uvec4 counts;
+    glm::vec4 shadowParams;
+};
+
+// std430 twin of LightData in shaders/shading.glsl.
+struct LightData {
+    glm::vec4 radiance, position, direction;
+    glm::ivec4 shadow;
+};
+
+}  // namespace
+
+DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbuffer, const ShadowMaps& shadows)
+    : scene_(scene), gbuffer_(gbuffer), shadows_(shadows) {
+    const VulkanDevice& device = scene.device();
+    device.requireFormat(kOutputFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT, "the lighting pass's output (P-buffer)");
+    const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
+    std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
+                                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, fs, nullptr},
+                                                          {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, fs, nullptr},
+                                                          {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr},
+                                                          {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr}};
+    for (std::uint32_t i = 0; i < GBufferPass::kColorTargets; ++i) bindings.push_back({5 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr});
+    descriptors_ = DescriptorSet(device, bindings);
+    layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
+    GraphicsPipelineDesc d;
+    d.vertexShader = "fullscreen.vert";
+    d.fragmentShader = "deferred_lighting.frag";
+    d.colorFormats = {kOutputFormat};
+    d.layout = layout_;
+    pipeline_ = createGraphicsPipeline(device, d);
+
+    VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+    sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler s;
+    checkVk(vkCreateSampler(device.device(), &sci, nullptr, &s), "creating the G-buffer sampler");
+    nearest_ = UniqueSampler(device.device(), s);
+
+    uniforms_ = GpuBuffer(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    const auto& lights = scene.scene().lights;
+    std::vector<LightData> data;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        const SpotCone cone = spotCone(l);  // the same cosines the ray tracer uses
+        const float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
+        data.push_back({glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
+                        glm::ivec4(shadows.firstLayer(i), shadows.layerCount(i), 0, 0)});
+    }
+    lights_ = GpuBuffer::withData(device, data.data(), data.size() * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
+void DeferredLighting::resize(std::uint32_t width, std::uint32_t height) {
+    if (output_.valid() && output_.desc().width == width && output_.desc().height == height) return;
+    const VulkanDevice& device = scene_.device();
+    output_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    readback_ = GpuBuffer(device, static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          GpuBuffer::Memory::HostVisible);
+}
+
+void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const LightingOptions& options, const ShadowSettings& shadowSettings) {
+    const std::uint32_t width = gbuffer_.width(), height = gbuffer_.height();
+    resize(width, height);
+    const Scene& scene = scene_.scene();
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    FrameUniforms u{};
+    const bool perspective = camera.projection == Camera::Projection::Perspective;
+    const float halfHeight = perspective ? std::tan(glm::radians(camera.fovYDegrees) * 0.5f) : 0.5f * camera.orthoHeight;
+    u.cameraPosition = glm::vec4(camera.position, perspective ? 1.0f : 0.0f);
+    u.cameraRight = glm::vec4(camera.right() * (halfHeight * aspect), 0.0f);
+    u.cameraUp = glm::vec4(camera.up() * halfHeight, 0.0f);
+    u.cameraForward = glm::vec4(camera.forward(), 0.0f);
+    u.sceneAmbient = glm::vec4(scene.ambient, scene.ambientIor);
+    u.skyColor = glm::vec4(scene.sky.color, scene.sky.hasCubeMap() ? 1.0f : 0.0f);
+    u.counts = glm::uvec4(static_cast<std::uint32_t>(scene.lights.size()),
+                          (options.shadows ? kShadows : 0u) | (options.environmentMapping ? kEnvironmentMapping : 0u) |
+                              (options.walewskiBlend ? kWalewskiBlend : 0u),
+                          width, height);
+    u.shadowParams = glm::vec4(static_cast<float>(shadowSettings.pcfRadius), shadowSettings.normalOffsetTexels, 0.0f, 0.0f);
+    uniforms_.write(&u, sizeof u);
+
+    // Rewritten every frame: the G-buffer and shadow images are recreated when their sizes change
+    // (the previous frame has completed, so the set is not in use).
+    descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.buffer());
+    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.buffer());
+    descriptors_.writeBuffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, shadows_.layerBuffer());
+    descriptors_.writeImages(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {shadows_.depthArray()});
+    descriptors_.writeImages(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {scene_.textures().sky()});
+    for (int i = 0; i < GBufferPass::kColorTargets; ++i)
+        descriptors_.writeImage(5 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer_.targetView(i), nearest_, VK_IMAGE_LAYOUT_GENERAL);
+
+    transitionImage(cb, output_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = output_.view();
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every pixel is written
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {width, height}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = 1;
+    ri.pColorAttachments = &color;
+    vkCmdBeginRendering(cb, &ri);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    setViewport(cb, width, height);
+    VkDescriptorSet set = descriptors_.set();
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set, 0, nullptr);
+    vkCmdDraw(cb, 3, 1, 0, 0);
+    vkCmdEndRendering(cb);
+    transitionImage(cb, output_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void DeferredLighting::recordReadback(VkCommandBuffer cb) {
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {output_.desc().width, output_.desc().height, 1};
+    vkCmdCopyImageToBuffer(cb, output_.image(), VK_IMAGE_LAYOUT_GENERAL, readback_.buffer(), 1, &copy);
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+void DeferredLighting::unpack(Image& out) const {
+    const int w = static_cast<int>(output_.desc().width), h = static_cast<int>(output_.desc().height);
+    if (out.width() != w || out.height() != h) out = Image(w, h);
+    std::memcpy(out.data(), readback_.mapped(), out.pixelCount() * sizeof(glm::vec4));
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,234 @@
+#include "common/raster/gbuffer_pass.h"
+
+#include <bit>
+#include <cstring>
+
+#include "common/raster/frustum.h"
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+namespace {
+
+// Formats of the colour targets, in attachment order (Walewski 2019 Table 2 uses RGBA8 for the
+// material colours; half floats keep HDR emission and fine material values).
+constexpr std::array<VkFormat, GBufferPass::kColorTargets> kFormats = {
+    VK_FORMAT_R32G32B32A32_SFLOAT,  // position
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // normal
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // emission
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // ambient
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // diffuse
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // specular
+    VK_FORMAT_R16G16B16A16_SFLOAT,  // optical
+    VK_FORMAT_R32_UINT,             // object id
+};
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr std::array<const char*, GBufferPass::kColorTargets> kNames = {"position", "normal", "emission", "ambient",
+                                                                        "diffuse", "specular", "optical", "object id"};
+
+std::size_t texelBytes(VkFormat f) {
+    switch (f) {
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+        default: return 4;
+    }
+}
+
+float halfToFloat(std::uint16_t h) {
+    const std::uint32_t sign = (h & 0x8000u) << 16, exponent = (h >> 10) & 0x1Fu, mantissa = h & 0x3FFu;
+    std::uint32_t bits;
+    if (exponent == 0x1Fu) {
+        bits = sign | 0x7F800000u | (mantissa << 13);  // inf, NaN
+    } else if (exponent != 0) {
+        bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);
+    } else if (mantissa == 0) {
+        bits = sign;
+    } else {  // subnormal: value = mantissa * 2^-24
+        const float v = static_cast<float>(mantissa) * 5.9604644775390625e-8f;
+        return sign ? -v : v;
+    }
+    return std::bit_cast<float>(bits);
+}
+
+void unpackHalf4(const void* src, std::size_t texels, std::vector<glm::vec4>& out) {
+    out.resize(texels);
+    const auto* h = static_cast<const std::uint16_t*>(src);
+    for (std::size_t i = 0; i < texels; ++i)
+        out[i] = {halfToFloat(h[4 * i]), halfToFloat(h[4 * i + 1]), halfToFloat(h[4 * i + 2]), halfToFloat(h[4 * i + 3])};
+}
+
+}  // namespace
+
+GBufferPass::GBufferPass(const GpuScene& scene) : scene_(scene) {
+    const VulkanDevice& device = scene.device();
+    for (std::size_t i = 0; i < kFormats.size(); ++i) {
+        device.requireFormat(kFormats[i], VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT,
+                             (std::string("the G-buffer's ") + kNames[i] + " target").c_str());
+    }
+    device.requireFormat(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "the G-buffer's reverse-Z depth buffer");
+    layout_ = createPipelineLayout(device, {scene.descriptors().layout(), scene.materialTextures().layout()}, sizeof(DrawConstants));
+    GraphicsPipelineDesc d;
+    d.vertexShader = "gbuffer.vert";
+    d.fragmentShader = "gbuffer.frag";
+    d.vertexBindings = GpuScene::vertexBindings();
+    d.vertexAttributes = GpuScene::vertexAttributes(false);
+    d.colorFormats.assign(kFormats.begin(), kFormats.end());
+    d.depthFormat = kDepthFormat;
+    d.depthTest = true;
+    d.depthWrite = true;
+    d.depthCompare = VK_COMPARE_OP_GREATER;
+    d.layout = layout_;
+    pipeline_ = createGraphicsPipeline(device, d);
+
+    // The same vertex stage (its gl_Position is invariant), so depths repeat exactly.
+    d.fragmentShader.clear();
+    d.colorFormats.clear();
+    d.depthWrite = false;
+    d.depthCompare = VK_COMPARE_OP_EQUAL;
+    queryPipeline_ = createGraphicsPipeline(device, d);
+}
+
+void GBufferPass::resize(std::uint32_t width, std::uint32_t height) {
+    if (width == width_ && height == height_) return;
+    const VulkanDevice& device = scene_.device();
+    for (std::size_t i = 0; i < kFormats.size(); ++i) {
+        color_[i] = GpuImage(device, {kFormats[i], width, height, 1, 1,
+                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    }
+    depth_ = GpuImage(device, {kDepthFormat, width, height, 1, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    for (auto& r : readback_) r = GpuBuffer();
+    width_ = width;
+    height_ = height;
+}
+
+std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
+    for (const GpuImage& c : color_) {
+        transitionImage(cb, c.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    }
+    transitionImage(cb, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+    std::array<VkRenderingAttachmentInfo, kColorTargets> colors{};
+    for (int i = 0; i < kColorTargets; ++i) {
+        colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        colors[i].imageView = color_[i].view();
+        colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        colors[i].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // object id 0: the sky
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: the far plane
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {width_, height_}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = kColorTargets;
+    ri.pColorAttachments = colors.data();
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cb, &ri);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    setViewport(cb, width_, height_);
+    scene_.bind(cb, layout_);
+    const std::size_t draws = scene_.recordDraws(cb, layout_, viewProj, GpuScene::DrawSet::All, true);
+    vkCmdEndRendering(cb);
+    return draws;
+}
+
+void GBufferPass::recordVisiblePixelQueries(VkCommandBuffer cb, const glm::mat4& viewProj, VkQueryPool queries) {
+    const auto objects = static_cast<std::uint32_t>(scene_.scene().objects.size());
+    vkCmdResetQueryPool(cb, queries, 0, objects);
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
+                         nullptr);
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {width_, height_}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cb, &ri);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, queryPipeline_);
+    setViewport(cb, width_, height_);
+    scene_.bind(cb, layout_);
+    const Frustum frustum(viewProj);
+    for (std::uint32_t o = 0; o < objects; ++o) {
+        vkCmdBeginQuery(cb, queries, o, VK_QUERY_CONTROL_PRECISE_BIT);
+        const auto [first, last] = scene_.objectDraws(o);
+        for (std::size_t d = first; d < last; ++d)
+            if (frustum.intersects(scene_.worldBounds(d))) scene_.recordDraw(cb, layout_, viewProj, d, false);
+        vkCmdEndQuery(cb, queries, o);
+    }
+    vkCmdEndRendering(cb);
+}
+
+void GBufferPass::recordFinish(VkCommandBuffer cb) {
+    for (const GpuImage& c : color_) {
+        transitionImage(cb, c.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+    }
+    transitionImage(cb, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void GBufferPass::recordReadback(VkCommandBuffer cb, GBufferTargets targets) {
+    const VulkanDevice& device = scene_.device();
+    for (int i = 0; i <= kColorTargets; ++i) {
+        if (!(targets & (1u << i))) continue;
+        const bool isDepth = i == kColorTargets;
+        const GpuImage& image = isDepth ? depth_ : color_[i];
+        const std::size_t bytes = static_cast<std::size_t>(width_) * height_ * (isDepth ? 4 : texelBytes(kFormats[i]));
+        if (!readback_[i].valid())
+            readback_[i] = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {image.aspect(), 0, 0, 1};
+        copy.imageExtent = {width_, height_, 1};
+        vkCmdCopyImageToBuffer(cb, image.image(), VK_IMAGE_LAYOUT_GENERAL, readback_[i].buffer(), 1, &copy);
+    }
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+void GBufferPass::unpack(GBufferTargets targets, GBuffer& out) const {
+    out.width = static_cast<int>(width_);
+    out.height = static_cast<int>(height_);
+    out.targets = targets;
+    const std::size_t n = static_cast<std::size_t>(width_) * height_;
+    std::array<std::vector<glm::vec4>*, kColorTargets> vec4Targets = {&out.position, &out.normal,   &out.emission, &out.ambient,
+                                                                       &out.diffuse,  &out.specular, &out.optical,  nullptr};
+    for (int i = 0; i <= kColorTargets; ++i) {
+        const bool wanted = targets & (1u << i);
+        if (i == kColorTargets) {
+            out.depth.resize(wanted ? n : 0);
+            if (wanted) std::memcpy(out.depth.data(), readback_[i].mapped(), n * sizeof(float));
+        } else if (kFormats[i] == VK_FORMAT_R32_UINT) {
+            out.objectId.resize(wanted ? n : 0);
+            if (wanted) std::memcpy(out.objectId.data(), readback_[i].mapped(), n * sizeof(std::uint32_t));
+        } else if (!wanted) {
+            vec4Targets[i]->clear();
+        } else if (kFormats[i] == VK_FORMAT_R32G32B32A32_SFLOAT) {
+            vec4Targets[i]->resize(n);
+            std::memcpy(vec4Targets[i]->data(), readback_[i].mapped(), n * sizeof(glm::vec4));
+        } else {
+            unpackHalf4(readback_[i].mapped(), n, *vec4Targets[i]);
+        }
+    }
+}
+
+}  // namespace hybridlab

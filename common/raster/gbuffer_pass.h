@@ -1,0 +1,55 @@
+#pragma once
+// The G-buffer pass (Walewski 2019 §3.1, Table 2): every object drawn once into eight render
+// targets and a 32-bit float reverse-Z depth buffer (Upchurch & Desbrun; cleared to 0, depth test
+// GREATER), sampling at pixel centres with the camera's projection, so that each texel holds the
+// surface the reference's primary ray through that pixel centre hits. Also the depth-equal pass
+// with one precise occlusion query per object (Walewski 2019 Listing 6), and the read-back of the
+// targets a technique asks for.
+#include <array>
+
+#include "common/raster/gbuffer.h"
+#include "common/raster/gpu_image.h"
+#include "common/raster/gpu_scene.h"
+
+namespace hybridlab {
+
+class GBufferPass {
+public:
+    static constexpr int kColorTargets = 8;  // position, normal, emission, ambient, diffuse, specular, optical, object id
+
+    explicit GBufferPass(const GpuScene& scene);
+
+    // (Re)creates the targets for a width x height frame; a no-op when the size is unchanged.
+    void resize(std::uint32_t width, std::uint32_t height);
+    std::uint32_t width() const { return width_; }
+    std::uint32_t height() const { return height_; }
+
+    // Clears and renders the G-buffer; returns the number of draws. Leaves every target in
+    // VK_IMAGE_LAYOUT_GENERAL, readable by later passes and by copies, after recordFinish().
+    std::size_t record(VkCommandBuffer cb, const glm::mat4& viewProj);
+    // The depth-equal pass: each object drawn again with depth test EQUAL and no writes inside its
+    // own precise occlusion query (query i = object i of `queries`). Between record() and recordFinish().
+    void recordVisiblePixelQueries(VkCommandBuffer cb, const glm::mat4& viewProj, VkQueryPool queries);
+    // Moves the targets to GENERAL for sampling and copying.
+    void recordFinish(VkCommandBuffer cb);
+
+    // Copies `targets` into host-visible buffers (after recordFinish()); unpack() fills a GBuffer
+    // from them once the commands completed.
+    void recordReadback(VkCommandBuffer cb, GBufferTargets targets);
+    void unpack(GBufferTargets targets, GBuffer& out) const;
+
+    // The view of colour target i (0 position ... 7 object id).
+    VkImageView targetView(int i) const { return color_[i].view(); }
+
+private:
+    const GpuScene& scene_;
+    UniquePipelineLayout layout_;
+    UniquePipeline pipeline_;
+    UniquePipeline queryPipeline_;
+    std::uint32_t width_ = 0, height_ = 0;
+    std::array<GpuImage, kColorTargets> color_;
+    GpuImage depth_;
+    std::array<GpuBuffer, kColorTargets + 1> readback_;  // by target bit index; allocated on first use
+};
+
+}  // namespace hybridlab

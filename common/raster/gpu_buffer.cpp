@@ -1,0 +1,56 @@
+#include "common/raster/gpu_buffer.h"
+
+#include <cstring>
+
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory) : size_(size) {
+    VkDevice d = device.device();
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = size > 0 ? size : 4;  // zero-sized buffers are not allowed; empty scenes still bind one
+    bci.usage = usage;
+    bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer b;
+    checkVk(vkCreateBuffer(d, &bci, nullptr, &b), "creating a buffer");
+    buffer_ = UniqueBuffer(d, b);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(d, b, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    if (memory == Memory::DeviceLocal) {
+        ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    } else {
+        // Cached host memory reads back fast; every device has coherent host-visible memory.
+        const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        try {
+            ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        } catch (const VulkanError&) {
+            ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, coherent);
+        }
+    }
+    VkDeviceMemory m;
+    checkVk(vkAllocateMemory(d, &ai, nullptr, &m), "allocating buffer memory");
+    memory_ = UniqueDeviceMemory(d, m);
+    checkVk(vkBindBufferMemory(d, b, m, 0), "binding buffer memory");
+    if (memory == Memory::HostVisible) checkVk(vkMapMemory(d, m, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
+}
+
+GpuBuffer GpuBuffer::withData(const VulkanDevice& device, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+    GpuBuffer b(device, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::DeviceLocal);
+    if (size == 0) return b;
+    GpuBuffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::HostVisible);
+    staging.write(data, size);
+    device.submitAndWait([&](VkCommandBuffer cb) {
+        VkBufferCopy copy{0, 0, size};
+        vkCmdCopyBuffer(cb, staging.buffer(), b.buffer(), 1, &copy);
+    });
+    return b;
+}
+
+void GpuBuffer::write(const void* data, VkDeviceSize size, VkDeviceSize offset) {
+    if (size > 0) std::memcpy(static_cast<char*>(mapped_) + offset, data, size);
+}
+
+}  // namespace hybridlab

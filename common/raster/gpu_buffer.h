@@ -1,0 +1,35 @@
+#pragma once
+// A Vulkan buffer with its own memory: device-local (filled through a staging copy) or host-visible
+// and persistently mapped (per-frame uniforms, read-back).
+#include <cstddef>
+
+#include "common/raster/vk_unique.h"
+#include "common/raster/vulkan_device.h"
+
+namespace hybridlab {
+
+class GpuBuffer {
+public:
+    enum class Memory { DeviceLocal, HostVisible };
+
+    GpuBuffer() = default;
+    GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory);
+
+    // A device-local buffer holding `data`, uploaded through a staging buffer.
+    static GpuBuffer withData(const VulkanDevice& device, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
+
+    VkBuffer buffer() const { return buffer_; }
+    VkDeviceSize size() const { return size_; }
+    bool valid() const { return static_cast<bool>(buffer_); }
+    // Host-visible buffers only (coherent: no flush needed).
+    void* mapped() const { return mapped_; }
+    void write(const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
+
+private:
+    UniqueBuffer buffer_;
+    UniqueDeviceMemory memory_;
+    VkDeviceSize size_ = 0;
+    void* mapped_ = nullptr;  // unmapped with the memory
+};
+
+}  // namespace hybridlab

@@ -1,0 +1,75 @@
+#include "common/raster/gpu_image.h"
+
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+bool isDepthFormat(VkFormat format) {
+    return format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM || format == VK_FORMAT_D24_UNORM_S8_UINT ||
+           format == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+GpuImage::GpuImage(const VulkanDevice& device, const ImageDesc& desc)
+    : device_(device.device()), desc_(desc), aspect_(isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT) {
+    VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ici.flags = desc.viewType == VK_IMAGE_VIEW_TYPE_CUBE ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
+    ici.imageType = VK_IMAGE_TYPE_2D;
+    ici.format = desc.format;
+    ici.extent = {desc.width, desc.height, 1};
+    ici.mipLevels = desc.mipLevels;
+    ici.arrayLayers = desc.layers;
+    ici.samples = VK_SAMPLE_COUNT_1_BIT;
+    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.usage = desc.usage;
+    ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage img;
+    checkVk(vkCreateImage(device_, &ici, nullptr, &img), "creating an image");
+    image_ = UniqueImage(device_, img);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device_, img, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkDeviceMemory mem;
+    checkVk(vkAllocateMemory(device_, &ai, nullptr, &mem), "allocating image memory");
+    memory_ = UniqueDeviceMemory(device_, mem);
+    checkVk(vkBindImageMemory(device_, img, mem, 0), "binding image memory");
+
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = img;
+    vci.viewType = desc.viewType;
+    vci.format = desc.format;
+    vci.subresourceRange = {aspect_, 0, desc.mipLevels, 0, desc.layers};
+    VkImageView view;
+    checkVk(vkCreateImageView(device_, &vci, nullptr, &view), "creating an image view");
+    view_ = UniqueImageView(device_, view);
+}
+
+UniqueImageView GpuImage::layerView(std::uint32_t layer) const {
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = image_;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = desc_.format;
+    vci.subresourceRange = {aspect_, 0, 1, layer, 1};
+    VkImageView view;
+    checkVk(vkCreateImageView(device_, &vci, nullptr, &view), "creating an image layer view");
+    return UniqueImageView(device_, view);
+}
+
+void transitionImage(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                     VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess,
+                     std::uint32_t baseMip, std::uint32_t mipCount, std::uint32_t baseLayer, std::uint32_t layerCount) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspect, baseMip, mipCount, baseLayer, layerCount};
+    vkCmdPipelineBarrier(cb, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,178 @@
+#include "common/raster/gpu_scene.h"
+
+#include <algorithm>
+
+#include "common/raster/frustum.h"
+#include "common/raytrace/shading.h"
+
+namespace hybridlab {
+
+namespace {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+    glm::vec4 tangent;
+};
+static_assert(sizeof(Vertex) == 48);
+
+// std430 twins of shaders/scene_data.glsl.
+struct ObjectData {
+    glm::mat4 model;
+    glm::mat4 normalMatrix;
+};
+
+struct MaterialData {
+    glm::vec4 emission, ambient, diffuse, specular, optical, tilingOffset;
+    glm::ivec4 textures;
+};
+
+MaterialData materialData(const Material& m) {
+    return {glm::vec4(m.emission, 0.0f),
+            glm::vec4(m.ambient, 0.0f),
+            glm::vec4(m.diffuse, 0.0f),
+            glm::vec4(m.specular, m.specularExponent),
+            glm::vec4(m.reflectivity, m.ior, m.opacity, m.fresnel ? 1.0f : 0.0f),
+            glm::vec4(m.textureTiling, m.textureOffset),
+            glm::ivec4(m.diffuseTexture, m.normalTexture, 0, 0)};
+}
+
+}  // namespace
+
+bool GpuScene::castsShadow(const Material& m) {
+    const glm::vec3 t = occluderTransmittance(m);
+    return (t.r + t.g + t.b) / 3.0f < 0.5f;
+}
+
+GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
+    : device_(std::move(device)), scene_(scene), textures_(*device_, scene) {
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    std::vector<std::int32_t> meshVertexOffset(scene.meshes.size()), meshFirstIndex(scene.meshes.size());
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const Mesh& m = scene.meshes[i];
+        meshVertexOffset[i] = static_cast<std::int32_t>(vertices.size());
+        meshFirstIndex[i] = static_cast<std::int32_t>(indices.size());
+        for (std::size_t v = 0; v < m.positions.size(); ++v) {
+            vertices.push_back({m.positions[v], m.normals.empty() ? glm::vec3(0, 1, 0) : m.normals[v],
+                                m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v], m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[v]});
+        }
+        for (const glm::uvec3& t : m.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    }
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
+        const std::size_t first = draws_.size();
+        for (std::uint32_t mesh : scene.objects[o].meshes) {
+            const Mesh& m = scene.meshes[mesh];
+            if (m.triangles.empty()) continue;
+            MeshDraw d;
+            d.object = o;
+            d.mesh = mesh;
+            d.material = m.material;
+            d.firstIndex = static_cast<std::uint32_t>(meshFirstIndex[mesh]);
+            d.indexCount = static_cast<std::uint32_t>(3 * m.triangles.size());
+            d.vertexOffset = meshVertexOffset[mesh];
+            d.flags = (!m.uvs.empty() && !m.tangents.empty()) ? kHasTangentSpace : 0u;
+            d.castsShadow = castsShadow(scene.materials[m.material]);
+            d.localBounds = m.bounds();
+            draws_.push_back(d);
+        }
+        objectDraws_.push_back({first, draws_.size()});
+    }
+    worldBounds_.resize(draws_.size());
+
+    const VulkanDevice& dev = *device_;
+    vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    indices_ = GpuBuffer::withData(dev, indices.data(), indices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    std::vector<MaterialData> materials;
+    for (const Material& m : scene.materials) materials.push_back(materialData(m));
+    materials_ = GpuBuffer::withData(dev, materials.data(), materials.size() * sizeof(MaterialData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    objects_ = GpuBuffer(dev, scene.objects.size() * sizeof(ObjectData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    descriptors_ = DescriptorSet(dev, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr},
+                                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr}});
+    descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, objects_.buffer());
+    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, materials_.buffer());
+    // One set per material rather than one array of every texture: indexing a sampler array by a
+    // material index needs shaderSampledImageArrayDynamicIndexing, which lavapipe lacks.
+    const auto materialCount = static_cast<std::uint32_t>(std::max<std::size_t>(1, scene.materials.size()));
+    materialTextures_ = DescriptorSet(dev,
+                                      {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+                                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}},
+                                      materialCount);
+    for (std::uint32_t i = 0; i < materialCount; ++i) {
+        const Material* m = i < scene.materials.size() ? &scene.materials[i] : nullptr;
+        materialTextures_.writeImages(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {textures_.texture(m ? m->diffuseTexture : kNoTexture)}, i);
+        materialTextures_.writeImages(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {textures_.texture(m ? m->normalTexture : kNoTexture)}, i);
+    }
+    setTime(0.0);
+}
+
+bool GpuScene::setTime(double time) {
+    if (timeSet_ && time == time_) return false;
+    bool moved = !timeSet_;
+    auto* data = static_cast<ObjectData*>(objects_.mapped());
+    for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
+        if (timeSet_ && !scene_.objects[o].isAnimated()) continue;
+        const glm::mat4 model = scene_.objects[o].worldMatrix(time);
+        data[o] = {model, glm::mat4(normalMatrix(model))};
+        for (std::size_t d = objectDraws_[o].first; d < objectDraws_[o].second; ++d) worldBounds_[d] = draws_[d].localBounds.transformed(model);
+        moved = true;
+    }
+    timeSet_ = true;
+    time_ = time;
+    return moved;
+}
+
+Aabb GpuScene::bounds() const {
+    Aabb b;
+    for (const Aabb& w : worldBounds_) b.extend(w);
+    return b;
+}
+
+std::vector<VkVertexInputBindingDescription> GpuScene::vertexBindings() { return {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}}; }
+
+std::vector<VkVertexInputAttributeDescription> GpuScene::vertexAttributes(bool positionOnly) {
+    std::vector<VkVertexInputAttributeDescription> a = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)}};
+    if (positionOnly) return a;
+    a.push_back({1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)});
+    a.push_back({2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)});
+    a.push_back({3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)});
+    return a;
+}
+
+void GpuScene::bind(VkCommandBuffer cb, VkPipelineLayout layout) const {
+    VkBuffer vb = vertices_.buffer();
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cb, 0, 1, &vb, &offset);
+    vkCmdBindIndexBuffer(cb, indices_.buffer(), 0, VK_INDEX_TYPE_UINT32);
+    VkDescriptorSet set = descriptors_.set();
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
+}
+
+void GpuScene::recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, std::size_t draw, bool textures) const {
+    const MeshDraw& d = draws_[draw];
+    if (textures) {
+        VkDescriptorSet set = materialTextures_.set(d.material);
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &set, 0, nullptr);
+    }
+    const DrawConstants c{viewProj, d.object, d.material, d.flags};
+    vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c, &c);
+    vkCmdDrawIndexed(cb, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+}
+
+std::size_t GpuScene::recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, DrawSet set,
+                                  bool textures) const {
+    const Frustum frustum(viewProj);
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < draws_.size(); ++i) {
+        if (set == DrawSet::ShadowCasters && !draws_[i].castsShadow) continue;
+        if (!frustum.intersects(worldBounds_[i])) continue;
+        recordDraw(cb, layout, viewProj, i, textures);
+        ++n;
+    }
+    return n;
+}
+
+}  // namespace hybridlab

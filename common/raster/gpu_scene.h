@@ -1,0 +1,92 @@
+#pragma once
+// A scene on the GPU, uploaded once: every mesh in one vertex and one index buffer, the materials,
+// the textures (SceneTextures), and the objects' matrices at the current time (re-written when the
+// time changes). The geometry passes (G-buffer, shadow maps, visible pixels) draw through it, one
+// draw per (object, mesh), culled against the pass's frustum.
+#include <memory>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "common/raster/gpu_buffer.h"
+#include "common/raster/pipelines.h"
+#include "common/raster/scene_textures.h"
+#include "common/scene/scene.h"
+
+namespace hybridlab {
+
+// Push constants of the geometry passes (shaders/scene_data.glsl, DrawConstants).
+struct DrawConstants {
+    glm::mat4 viewProj;
+    std::uint32_t object;
+    std::uint32_t material;
+    std::uint32_t flags;
+};
+inline constexpr std::uint32_t kHasTangentSpace = 1u;
+
+struct MeshDraw {
+    std::uint32_t object = 0;
+    std::uint32_t mesh = 0;
+    std::uint32_t material = 0;
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+    std::int32_t vertexOffset = 0;
+    std::uint32_t flags = 0;
+    bool castsShadow = true;  // see GpuScene::castsShadow
+    Aabb localBounds;
+};
+
+class GpuScene {
+public:
+    GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene);
+
+    const Scene& scene() const { return scene_; }
+    const VulkanDevice& device() const { return *device_; }
+
+    // Moves animated objects to `time`; true when anything moved (first call included).
+    bool setTime(double time);
+
+    // Set 0 of the geometry passes: objects (binding 0), materials (1).
+    const DescriptorSet& descriptors() const { return descriptors_; }
+    // Set 1 of the G-buffer pass, one per material: its diffuse (binding 0) and normal (1) texture.
+    const DescriptorSet& materialTextures() const { return materialTextures_; }
+    const SceneTextures& textures() const { return textures_; }
+
+    // The vertex layout: position, normal, uv, tangent (48 bytes); depth-only passes read the position only.
+    static std::vector<VkVertexInputBindingDescription> vertexBindings();
+    static std::vector<VkVertexInputAttributeDescription> vertexAttributes(bool positionOnly);
+
+    const std::vector<MeshDraw>& draws() const { return draws_; }
+    const Aabb& worldBounds(std::size_t draw) const { return worldBounds_[draw]; }
+    Aabb bounds() const;  // world space, at the current time
+    // Draw indices of one object: [first, last).
+    std::pair<std::size_t, std::size_t> objectDraws(std::uint32_t object) const { return objectDraws_[object]; }
+
+    // Binds the vertex and index buffers and descriptor set 0 of `layout`.
+    void bind(VkCommandBuffer cb, VkPipelineLayout layout) const;
+    enum class DrawSet { All, ShadowCasters };
+    // One draw with its push constants, and its material's textures as set 1 when `textures`.
+    void recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, std::size_t draw, bool textures) const;
+    // Every draw of `set` that meets the frustum of `viewProj`; returns how many.
+    std::size_t recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, DrawSet set, bool textures) const;
+
+    // A mesh goes into shadow maps when its material stops more than half of the light: shadow
+    // maps are binary, so the occluder's transmittance (occluderTransmittance(), the shadow rule of
+    // the ray tracer) is rounded to 0 or 1.
+    static bool castsShadow(const Material& m);
+
+private:
+    std::shared_ptr<VulkanDevice> device_;
+    const Scene& scene_;
+    SceneTextures textures_;
+    GpuBuffer vertices_, indices_, materials_, objects_;
+    DescriptorSet descriptors_;
+    DescriptorSet materialTextures_;
+    std::vector<MeshDraw> draws_;
+    std::vector<Aabb> worldBounds_;
+    std::vector<std::pair<std::size_t, std::size_t>> objectDraws_;
+    bool timeSet_ = false;
+    double time_ = 0.0;
+};
+
+}  // namespace hybridlab

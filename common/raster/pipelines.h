@@ -1,0 +1,61 @@
+#pragma once
+// Shader modules, descriptor sets and graphics pipelines: the boilerplate every pass shares.
+// Pipelines render with dynamic rendering (Vulkan 1.3): no render-pass or framebuffer objects.
+#include <string>
+#include <vector>
+
+#include "common/raster/vk_unique.h"
+#include "common/raster/vulkan_device.h"
+
+namespace hybridlab {
+
+UniqueShaderModule createShaderModule(const VulkanDevice& device, const std::string& embeddedName);
+
+// `count` descriptor sets of one layout, with their own pool.
+class DescriptorSet {
+public:
+    DescriptorSet() = default;
+    DescriptorSet(const VulkanDevice& device, const std::vector<VkDescriptorSetLayoutBinding>& bindings, std::uint32_t count = 1);
+
+    VkDescriptorSetLayout layout() const { return layout_; }
+    VkDescriptorSet set(std::size_t i = 0) const { return sets_[i]; }
+
+    void writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set = 0);
+    void writeImages(std::uint32_t binding, VkDescriptorType type, const std::vector<VkDescriptorImageInfo>& images, std::size_t set = 0);
+    void writeImage(std::uint32_t binding, VkDescriptorType type, VkImageView view, VkSampler sampler, VkImageLayout layout,
+                    std::size_t set = 0) {
+        writeImages(binding, type, {{sampler, view, layout}}, set);
+    }
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    UniqueDescriptorSetLayout layout_;
+    UniqueDescriptorPool pool_;
+    std::vector<VkDescriptorSet> sets_;  // freed with the pool
+};
+
+UniquePipelineLayout createPipelineLayout(const VulkanDevice& device, const std::vector<VkDescriptorSetLayout>& sets,
+                                          std::uint32_t pushConstantBytes);
+
+struct GraphicsPipelineDesc {
+    std::string vertexShader;
+    std::string fragmentShader;  // empty: depth only
+    std::vector<VkVertexInputBindingDescription> vertexBindings;
+    std::vector<VkVertexInputAttributeDescription> vertexAttributes;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    bool depthTest = false;
+    bool depthWrite = false;
+    VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z: nearer is greater
+    bool dynamicDepthBias = false;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
+// Viewport and scissor are dynamic state; culling is off (single-sided planes are seen from both
+// sides, as by the ray tracer); counter-clockwise triangles are front faces.
+UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const GraphicsPipelineDesc& desc);
+
+// Sets the viewport and scissor to the whole of a width x height target.
+void setViewport(VkCommandBuffer cb, std::uint32_t width, std::uint32_t height);
+
+}  // namespace hybridlab

@@ -1,0 +1,22 @@
+#pragma once
+// Options of the raster passes that techniques set (kept free of Vulkan headers).
+#include <cstdint>
+
+namespace hybridlab {
+
+struct ShadowSettings {
+    std::uint32_t resolution = 2048;  // texels per side of every shadow-map layer
+    int pcfRadius = 1;                // PCF over (2r + 1)^2 hardware-filtered comparisons
+    float normalOffsetTexels = 1.5f;  // receiver offset along its normal, in shadow-map texels
+    float slopeBias = 2.0f;           // slope-scaled depth bias when rendering the maps
+
+    bool operator==(const ShadowSettings&) const = default;
+};
+
+struct LightingOptions {
+    bool shadows = false;             // shadow-map visibility (else every light is unshadowed)
+    bool environmentMapping = false;  // reflective and refractive pixels compose with the sky (the `raster` technique)
+    bool walewskiBlend = false;       // composition rule BlendRule::Walewski2019 instead of DESIGN.md's
+};
+
+}  // namespace hybridlab

@@ -1,0 +1,144 @@
+#include "common/raster/rasterizer.h"
+
+#include <chrono>
+
+#include "common/raster/deferred_lighting.h"
+#include "common/raster/gbuffer_pass.h"
+#include "common/raster/gpu_scene.h"
+#include "common/raster/gpu_timer.h"
+#include "common/raster/shadow_maps.h"
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+}  // namespace
+
+double RasterFrame::gpuMilliseconds(const std::string& stage) const {
+    for (const auto& s : gpuStages)
+        if (s.name == stage) return s.milliseconds;
+    return 0.0;
+}
+
+struct Rasterizer::Impl {
+    std::shared_ptr<VulkanDevice> device;
+    GpuScene scene;
+    GBufferPass gbuffer;
+    ShadowMaps shadows;
+    DeferredLighting lighting;
+    GpuTimer timer;
+    UniqueCommandPool pool;
+    VkCommandBuffer commands = VK_NULL_HANDLE;  // freed with the pool
+    UniqueQueryPool occlusion;
+    double uploadMs = 0.0;
+
+    Impl(std::shared_ptr<VulkanDevice> d, const Scene& s)
+        : device(std::move(d)), scene(device, s), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, 8) {
+        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        VkCommandPool p;
+        checkVk(vkCreateCommandPool(device->device(), &pci, nullptr, &p), "creating the rasterizer's command pool");
+        pool = UniqueCommandPool(device->device(), p);
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = p;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        checkVk(vkAllocateCommandBuffers(device->device(), &ai, &commands), "allocating the rasterizer's command buffer");
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_OCCLUSION;
+        qci.queryCount = static_cast<std::uint32_t>(std::max<std::size_t>(1, s.objects.size()));
+        VkQueryPool q;
+        checkVk(vkCreateQueryPool(device->device(), &qci, nullptr, &q), "creating the occlusion query pool");
+        occlusion = UniqueQueryPool(device->device(), q);
+    }
+};
+
+Rasterizer::Rasterizer(const Scene& scene) {
+    const auto start = Clock::now();
+    impl_ = std::make_unique<Impl>(VulkanDevice::shared(), scene);
+    impl_->uploadMs = millisecondsSince(start);
+}
+
+Rasterizer::~Rasterizer() = default;
+
+std::string Rasterizer::deviceName() const { return impl_->device->name(); }
+double Rasterizer::uploadMilliseconds() const { return impl_->uploadMs; }
+
+RasterFrame Rasterizer::render(const RasterRequest& request) {
+    RasterFrame frame;
+    render(request, frame);
+    return frame;
+}
+
+void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
+    if (request.width <= 0 || request.height <= 0) throw VulkanError("Rasterizer: the frame size must be positive");
+    Impl& r = *impl_;
+    auto start = Clock::now();
+    const bool moved = r.scene.setTime(request.time);
+    r.gbuffer.resize(static_cast<std::uint32_t>(request.width), static_cast<std::uint32_t>(request.height));
+    const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+    const glm::mat4 viewProj = request.camera.projectionMatrix(aspect) * request.camera.view();
+
+    VkCommandBuffer cb = r.commands;
+    checkVk(vkResetCommandBuffer(cb, 0), "resetting the frame's command buffer");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    checkVk(vkBeginCommandBuffer(cb, &bi), "beginning the frame's command buffer");
+    r.timer.reset(cb);
+    frame.shadowMapsDrawn = false;
+    if (request.lighting && request.lightingOptions.shadows) {
+        r.timer.begin(cb, "shadow_maps");
+        frame.shadowMapsDrawn = r.shadows.record(cb, request.shadowSettings, moved || request.redrawShadowMaps);
+        r.timer.end(cb);
+    }
+    r.timer.begin(cb, "gbuffer");
+    frame.draws = r.gbuffer.record(cb, viewProj);
+    r.timer.end(cb);
+    if (request.occlusionQueries) {
+        r.timer.begin(cb, "visible_pixels");
+        r.gbuffer.recordVisiblePixelQueries(cb, viewProj, r.occlusion);
+        r.timer.end(cb);
+    }
+    r.gbuffer.recordFinish(cb);
+    if (request.lighting) {
+        r.timer.begin(cb, "lighting");
+        r.lighting.record(cb, request.camera, request.lightingOptions, request.shadowSettings);
+        r.timer.end(cb);
+    }
+    r.timer.begin(cb, "readback");
+    if (request.readback) r.gbuffer.recordReadback(cb, request.readback);
+    if (request.lighting) r.lighting.recordReadback(cb);
+    r.timer.end(cb);
+    checkVk(vkEndCommandBuffer(cb), "recording the frame");
+    frame.recordMilliseconds = millisecondsSince(start);
+
+    start = Clock::now();
+    r.device->submitAndWait(cb);
+    frame.submitMilliseconds = millisecondsSince(start);
+
+    start = Clock::now();
+    r.gbuffer.unpack(request.readback, frame.gbuffer);
+    if (request.lighting) r.lighting.unpack(frame.lighting);
+    else frame.lighting = Image();
+    frame.visiblePixelsByQuery.clear();
+    if (request.occlusionQueries) {
+        const std::size_t n = r.scene.scene().objects.size();
+        frame.visiblePixelsByQuery.resize(n);
+        if (n > 0) {
+            checkVk(vkGetQueryPoolResults(r.device->device(), r.occlusion, 0, static_cast<std::uint32_t>(n), n * sizeof(std::uint64_t),
+                                          frame.visiblePixelsByQuery.data(), sizeof(std::uint64_t),
+                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                    "reading the occlusion queries");
+        }
+    }
+    frame.gpuStages.clear();
+    for (const GpuStageTime& s : r.timer.read()) frame.gpuStages.push_back({s.name, s.milliseconds});
+    frame.unpackMilliseconds = millisecondsSince(start);
+}
+
+}  // namespace hybridlab

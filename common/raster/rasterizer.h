@@ -1,0 +1,73 @@
+#pragma once
+// The shared rasterizer of a scene (DESIGN.md "A frame, as data"): the G-buffer, deferred lighting
+// and shadow maps on a headless Vulkan device, with read-back of what the technique asks for. The
+// scene is uploaded once (geometry, materials, mip-mapped textures); each frame is one command
+// buffer, timed per pass with GPU timestamps. Free of Vulkan headers: techniques include it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/image/image.h"
+#include "common/raster/gbuffer.h"
+#include "common/raster/raster_options.h"
+#include "common/scene/camera.h"
+#include "common/scene/scene.h"
+
+namespace hybridlab {
+
+struct RasterRequest {
+    Camera camera;
+    double time = 0.0;
+    int width = 0;
+    int height = 0;
+    GBufferTargets readback = 0;        // G-buffer targets to read back (only these are copied)
+    bool lighting = true;               // run the lighting pass and read its image back
+    LightingOptions lightingOptions;
+    ShadowSettings shadowSettings;      // when lightingOptions.shadows
+    bool redrawShadowMaps = false;      // else shadow maps are redrawn only when something moved or the settings changed
+    bool occlusionQueries = false;      // visible pixels per object by precise occlusion queries in a depth-equal pass
+};
+
+struct RasterStageTime {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+struct RasterFrame {
+    GBuffer gbuffer;                      // the requested targets
+    Image lighting;                       // when RasterRequest::lighting: linear RGBA (the P-buffer)
+    std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
+    // GPU timestamps per pass, in order: shadow_maps (when drawn), gbuffer, visible_pixels (when
+    // asked), lighting (when asked), readback (the copies).
+    std::vector<RasterStageTime> gpuStages;
+    // Wall clock: recording the commands, submission until completion, unpacking the read-back.
+    double recordMilliseconds = 0.0, submitMilliseconds = 0.0, unpackMilliseconds = 0.0;
+    bool shadowMapsDrawn = false;
+    std::size_t draws = 0;                // G-buffer draws after frustum culling
+
+    double gpuMilliseconds(const std::string& stage) const;  // 0 when the stage did not run
+    double wallMilliseconds() const { return recordMilliseconds + submitMilliseconds + unpackMilliseconds; }
+};
+
+class Rasterizer {
+public:
+    // Uploads the scene. Throws VulkanUnavailable when there is no usable Vulkan device (the
+    // message says why), VulkanError for other failures.
+    explicit Rasterizer(const Scene& scene);
+    ~Rasterizer();
+    Rasterizer(const Rasterizer&) = delete;
+    Rasterizer& operator=(const Rasterizer&) = delete;
+
+    // Renders one frame into `frame`, reusing its buffers.
+    void render(const RasterRequest& request, RasterFrame& frame);
+    RasterFrame render(const RasterRequest& request);
+
+    std::string deviceName() const;
+    double uploadMilliseconds() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hybridlab

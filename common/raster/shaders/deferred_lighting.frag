@@ -1,0 +1,162 @@
+#version 460
+// Deferred lighting (Walewski 2019 §3.1, Listing 5): the local term C of the shading model from
+// the G-buffer, every light, with shadow-map visibility when shadows are on, into the P-buffer.
+// Where nothing was hit it draws the sky. With environment mapping on (the `raster` technique),
+// reflective and refractive pixels look up the sky in the reflected and refracted directions
+// (Blinn & Newell 1976) and compose by the shading model, as WhittedTracer::shade does with traced
+// rays.
+#extension GL_GOOGLE_include_directive : require
+#include "shading.glsl"
+
+const uint kShadows = 1u;
+const uint kEnvironmentMapping = 2u;
+const uint kWalewskiBlend = 4u;
+
+layout(std140, set = 0, binding = 0) uniform FrameUniforms {
+    vec4 cameraPosition;  // xyz; w 1 perspective, 0 orthographic
+    vec4 cameraRight;     // right * tan(fovY / 2) * aspect (perspective) or * half width (orthographic)
+    vec4 cameraUp;        // up * tan(fovY / 2) or * half height
+    vec4 cameraForward;
+    vec4 sceneAmbient;    // rgb; a = ambient IOR
+    vec4 skyColor;        // rgb; a = 1 when the sky is a cube map
+    uvec4 counts;         // x lights, y flags (k*), z width, w height
+    vec4 shadowParams;    // x PCF radius (texels), y normal offset (texels)
+} frame;
+
+struct ShadowLayer {
+    mat4 viewProj;  // world to the light's clip space (y down, reverse-Z)
+    vec4 params;    // x world size of a texel (at unit distance when y = 1: perspective)
+};
+
+layout(std430, set = 0, binding = 1) readonly buffer Lights { LightData lights[]; };
+layout(std430, set = 0, binding = 2) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
+layout(set = 0, binding = 3) uniform sampler2DArrayShadow shadowMaps;
+layout(set = 0, binding = 4) uniform sampler2DArray skyFaces;  // RGBA32F, read with texelFetch
+layout(set = 0, binding = 5) uniform sampler2D gPosition;
+layout(set = 0, binding = 6) uniform sampler2D gNormal;
+layout(set = 0, binding = 7) uniform sampler2D gEmission;
+layout(set = 0, binding = 8) uniform sampler2D gAmbient;
+layout(set = 0, binding = 9) uniform sampler2D gDiffuse;
+layout(set = 0, binding = 10) uniform sampler2D gSpecular;
+layout(set = 0, binding = 11) uniform sampler2D gOptical;
+layout(set = 0, binding = 12) uniform usampler2D gObjectId;
+
+layout(location = 0) out vec4 outColor;
+
+// Twin of Image::sampleBilinearWrap on sky face `face`.
+vec3 sampleFaceBilinearWrap(int face, float u, float v) {
+    ivec2 size = textureSize(skyFaces, 0).xy;
+    float x = u * float(size.x) - 0.5;
+    float y = v * float(size.y) - 0.5;
+    float fx = floor(x), fy = floor(y);
+    float tx = x - fx, ty = y - fy;
+    int x0 = int(fx) % size.x, y0 = int(fy) % size.y;
+    if (x0 < 0) x0 += size.x;
+    if (y0 < 0) y0 += size.y;
+    int x1 = x0 + 1 == size.x ? 0 : x0 + 1, y1 = y0 + 1 == size.y ? 0 : y0 + 1;
+    vec3 top = texelFetch(skyFaces, ivec3(x0, y0, face), 0).rgb * (1.0 - tx) + texelFetch(skyFaces, ivec3(x1, y0, face), 0).rgb * tx;
+    vec3 bottom = texelFetch(skyFaces, ivec3(x0, y1, face), 0).rgb * (1.0 - tx) + texelFetch(skyFaces, ivec3(x1, y1, face), 0).rgb * tx;
+    return top * (1.0 - ty) + bottom * ty;
+}
+
+// Twin of skyRadiance(): the cube map, or the constant colour.
+vec3 skyRadiance(vec3 d) {
+    if (frame.skyColor.a == 0.0) return frame.skyColor.rgb;
+    int face;
+    vec2 uv;
+    skyFaceCoordinates(d, face, uv);
+    vec2 size = vec2(textureSize(skyFaces, 0).xy);
+    // Clamp to the face instead of wrapping across its edge.
+    float x = clamp(uv.x * size.x, 0.5, size.x - 0.5) / size.x;
+    float y = clamp(uv.y * size.y, 0.5, size.y - 0.5) / size.y;
+    return sampleFaceBilinearWrap(face, x, y);
+}
+
+// Twin of Camera::rayThroughNdc's direction for the pixel centre (pixelCenterNdc()).
+vec3 cameraRayDirection(vec2 fragCoord) {
+    vec2 ndc = fragCoord / vec2(frame.counts.zw) * 2.0 - 1.0;
+    if (frame.cameraPosition.w == 0.0) return frame.cameraForward.xyz;
+    return normalize(ndc.x * frame.cameraRight.xyz - ndc.y * frame.cameraUp.xyz + frame.cameraForward.xyz);
+}
+
+// One depth comparison, bilinearly filtered by hand from the 2 x 2 texels a linear filter would use
+// (textureGather of comparisons: lavapipe cannot filter D32 linearly).
+float filteredComparison(vec2 uv, float layer, float depth, vec2 size) {
+    vec4 c = textureGather(shadowMaps, vec3(uv, layer), depth);  // (i0, j1), (i1, j1), (i1, j0), (i0, j0)
+    vec2 f = fract(uv * size - 0.5);
+    return mix(mix(c.w, c.z, f.x), mix(c.x, c.y, f.x), f.y);
+}
+
+// Shadow-map visibility of light `light` at p (normal n facing the viewer): the light's layer (the
+// cube face for point lights), a normal offset of a few texels against acne, and PCF over a
+// (2r + 1)^2 footprint of filtered comparisons.
+float shadowVisibility(LightData light, vec3 p, vec3 n) {
+    if (light.shadow.x < 0) return 1.0;
+    int layer = light.shadow.x;
+    if (light.shadow.y == 6) {
+        vec3 v = p - light.position.xyz, a = abs(v);
+        int face = a.x >= a.y && a.x >= a.z ? (v.x > 0.0 ? 0 : 1) : (a.y >= a.z ? (v.y > 0.0 ? 2 : 3) : (v.z > 0.0 ? 4 : 5));
+        layer += face;
+    }
+    ShadowLayer s = shadowLayers[layer];
+    float texel = s.params.x * (s.params.y > 0.0 ? distance(p, light.position.xyz) : 1.0);
+    vec4 clip = s.viewProj * vec4(p + n * (frame.shadowParams.y * texel), 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    vec3 ndc = clip.xyz / clip.w;
+    if (ndc.z <= 0.0) return 1.0;  // beyond the far plane: nothing there casts
+    vec2 uv = ndc.xy * 0.5 + 0.5;
+    vec2 size = vec2(textureSize(shadowMaps, 0).xy);
+    int r = int(frame.shadowParams.x);
+    float lit = 0.0;
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) lit += filteredComparison(uv + vec2(dx, dy) / size, float(layer), ndc.z, size);
+    return lit / float((2 * r + 1) * (2 * r + 1));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec3 incoming = cameraRayDirection(gl_FragCoord.xy);
+    if (texelFetch(gObjectId, pixel, 0).r == 0u) {
+        outColor = vec4(skyRadiance(incoming), 1.0);
+        return;
+    }
+    vec3 p = texelFetch(gPosition, pixel, 0).xyz;
+    vec4 normalAndFacing = texelFetch(gNormal, pixel, 0);
+    bool entering = normalAndFacing.w > 0.0;
+    // Work on the side the viewer sees, as WhittedTracer::shade.
+    vec3 n = entering ? normalAndFacing.xyz : -normalAndFacing.xyz;
+    vec3 diffuse = texelFetch(gDiffuse, pixel, 0).rgb;
+    vec4 specular = texelFetch(gSpecular, pixel, 0);
+    vec3 toViewer = -incoming;
+
+    // Twin of WhittedTracer::localColor, with shadow maps in place of shadow rays.
+    vec3 c = unlitTerm(texelFetch(gEmission, pixel, 0).rgb, texelFetch(gAmbient, pixel, 0).rgb, frame.sceneAmbient.rgb);
+    for (uint i = 0u; i < frame.counts.x; ++i) {
+        LightSample ls = sampleLight(lights[i], p);
+        vec3 direct = blinnPhong(n, diffuse, specular.rgb, specular.a, toViewer, ls);
+        if (direct == vec3(0.0)) continue;
+        if ((frame.counts.y & kShadows) != 0u) direct *= shadowVisibility(lights[i], p, n);
+        c += direct;
+    }
+
+    if ((frame.counts.y & kEnvironmentMapping) != 0u) {
+        // WhittedTracer::shade with the sky standing in for the reflected and refracted rays.
+        vec4 optical = texelFetch(gOptical, pixel, 0);
+        float orr = 1.0 - optical.z;
+        float n1 = entering ? frame.sceneAmbient.a : optical.y, n2 = entering ? optical.y : frame.sceneAmbient.a;
+        float cosi = max(-dot(incoming, n), 0.0);
+        float om = optical.w > 0.5 ? fresnelDielectric(cosi, n1, n2) : optical.x;
+        if (om > 0.0 || orr > 0.0) {
+            vec3 refracted;
+            bool tir = orr > 0.0 && !refractDirection(incoming, n, n1 / n2, refracted);
+            float weightM = tir ? om + (1.0 - om) * orr : om;
+            float weightR = tir ? 0.0 : (1.0 - om) * orr;
+            vec3 M = c, R = c;
+            if (weightM > 0.0) M = skyRadiance(reflectDirection(incoming, n));
+            if (tir) R = M;
+            else if (weightR > 0.0) R = skyRadiance(refracted);
+            c = compose(om, orr, M, R, c, (frame.counts.y & kWalewskiBlend) != 0u);
+        }
+    }
+    outColor = vec4(c, 1.0);
+}

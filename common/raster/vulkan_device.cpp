@@ -1,0 +1,254 @@
+#include "common/raster/vulkan_device.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <vector>
+
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool validationWanted() {
+#ifndef NDEBUG
+    return true;
+#else
+    const char* v = std::getenv("HYBRIDLAB_VULKAN_VALIDATION");
+    return v && std::strcmp(v, "0") != 0 && *v;
+#endif
+}
+
+bool layerInstalled(const char* name) {
+    std::uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    for (const auto& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
+    return VK_FALSE;
+}
+
+std::string versionText(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+// What the raster core needs of a device, or why it does not qualify.
+std::optional<std::string> unsuitable(VkPhysicalDevice pd, std::uint32_t& queueFamily) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(pd, &p);
+    if (p.apiVersion < VK_API_VERSION_1_3) return "supports Vulkan " + versionText(p.apiVersion) + ", not 1.3";
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
+    vkGetPhysicalDeviceFeatures2(pd, &f);
+    if (!f13.dynamicRendering) return std::string("lacks dynamicRendering");
+    if (!f.features.samplerAnisotropy) return std::string("lacks samplerAnisotropy");
+    if (!f.features.occlusionQueryPrecise) return std::string("lacks occlusionQueryPrecise");
+    if (p.limits.maxColorAttachments < 8) return "has " + std::to_string(p.limits.maxColorAttachments) + " colour attachments, the G-buffer needs 8";
+    if (!p.limits.timestampComputeAndGraphics) return std::string("has no timestamps on graphics queues");
+    std::uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && families[i].timestampValidBits > 0) {
+            queueFamily = i;
+            return std::nullopt;
+        }
+    }
+    return std::string("has no graphics queue with timestamps");
+}
+
+}  // namespace
+
+std::shared_ptr<VulkanDevice> VulkanDevice::shared() {
+    static std::mutex mutex;
+    static std::shared_ptr<VulkanDevice> device;
+    static std::optional<std::string> failure;
+    std::lock_guard lock(mutex);
+    if (device) return device;
+    if (failure) throw VulkanUnavailable(*failure);
+    try {
+        std::shared_ptr<VulkanDevice> d(new VulkanDevice());
+        d->create();
+        device = d;
+        return device;
+    } catch (const VulkanUnavailable& e) {
+        failure = e.what();
+        throw;
+    }
+}
+
+void VulkanDevice::create() {
+    const bool validation = validationWanted() && layerInstalled(kValidationLayer);
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "hybridlab";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ici.pApplicationInfo = &app;
+    ici.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
+    ici.ppEnabledLayerNames = layers.data();
+    ici.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    ici.ppEnabledExtensionNames = extensions.data();
+    if (VkResult r = vkCreateInstance(&ici, nullptr, &instance_); r != VK_SUCCESS) {
+        throw VulkanUnavailable(std::string("no Vulkan: cannot create a Vulkan instance (") + vkResultName(r) +
+                                "); install the Vulkan loader and Mesa's lavapipe driver (./setup.sh installs libvulkan1 and "
+                                "mesa-vulkan-drivers)");
+    }
+    if (validation) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+        mci.pfnUserCallback = debugMessage;
+        if (create) create(instance_, &mci, nullptr, &messenger_);
+    }
+
+    std::uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+    const char* wanted = std::getenv("HYBRIDLAB_VULKAN_DEVICE");
+    // Lavapipe first when present (the project's reference device), then any other device that qualifies.
+    std::string rejected;
+    int bestScore = -1;
+    for (VkPhysicalDevice pd : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        std::uint32_t family = 0;
+        if (auto why = unsuitable(pd, family)) {
+            rejected += std::string(rejected.empty() ? "" : "; ") + p.deviceName + " " + *why;
+            continue;
+        }
+        VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+        VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+        vkGetPhysicalDeviceProperties2(pd, &p2);
+        const bool isLavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+        int score = wanted && *wanted ? (std::strstr(p.deviceName, wanted) ? 2 : 0) : (isLavapipe ? 2 : 1);
+        if (wanted && *wanted && score == 0) continue;
+        if (score > bestScore) {
+            bestScore = score;
+            physical_ = pd;
+            queueFamily_ = family;
+            lavapipe_ = isLavapipe;
+        }
+    }
+    if (physical_ == VK_NULL_HANDLE) {
+        std::string message = "no usable Vulkan device: ";
+        if (count == 0) message += "the Vulkan loader found none (install mesa-vulkan-drivers for lavapipe; ./setup.sh does)";
+        else if (wanted && *wanted && rejected.empty()) message += std::string("none matches HYBRIDLAB_VULKAN_DEVICE=") + wanted;
+        else message += rejected;
+        throw VulkanUnavailable(message);
+    }
+    vkGetPhysicalDeviceProperties(physical_, &properties_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = queueFamily_;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    f13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
+    features.features.samplerAnisotropy = VK_TRUE;
+    features.features.occlusionQueryPrecise = VK_TRUE;
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    if (VkResult r = vkCreateDevice(physical_, &dci, nullptr, &device_); r != VK_SUCCESS) {
+        throw VulkanUnavailable(std::string("cannot create a Vulkan device on ") + properties_.deviceName + ": " + vkResultName(r));
+    }
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pci.queueFamilyIndex = queueFamily_;
+    VkCommandPool pool;
+    checkVk(vkCreateCommandPool(device_, &pci, nullptr, &pool), "creating a command pool");
+    pool_ = UniqueCommandPool(device_, pool);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    checkVk(vkCreateFence(device_, &fci, nullptr, &fence), "creating a fence");
+    fence_ = UniqueFence(device_, fence);
+}
+
+VulkanDevice::~VulkanDevice() {
+    if (device_) vkDeviceWaitIdle(device_);
+    fence_.reset();
+    pool_.reset();
+    if (device_) vkDestroyDevice(device_, nullptr);
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+std::uint32_t VulkanDevice::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags flags) const {
+    for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
+        if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    }
+    throw VulkanError("Vulkan: " + name() + " has no memory type with the properties the raster core needs (flags " +
+                      std::to_string(flags) + ")");
+}
+
+void VulkanDevice::requireFormat(VkFormat format, VkFormatFeatureFlags features, const char* purpose) const {
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(physical_, format, &p);
+    if ((p.optimalTilingFeatures & features) != features) {
+        throw VulkanUnavailable("Vulkan device " + name() + " does not support image format " + std::to_string(format) + " for " +
+                                purpose);
+    }
+}
+
+void VulkanDevice::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+    // The pool is externally synchronised, recording included: hold the lock throughout.
+    std::lock_guard lock(submitMutex_);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb;
+    checkVk(vkAllocateCommandBuffers(device_, &ai, &cb), "allocating a command buffer");
+    struct Free {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer cb;
+        ~Free() { vkFreeCommandBuffers(device, pool, 1, &cb); }
+    } freeLater{device_, pool_, cb};
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    checkVk(vkBeginCommandBuffer(cb, &bi), "beginning a command buffer");
+    record(cb);
+    checkVk(vkEndCommandBuffer(cb), "recording commands");
+    submitAndWait(cb);
+}
+
+void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
+    std::lock_guard lock(submitMutex_);
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &commands;
+    checkVk(vkQueueSubmit(queue_, 1, &si, fence_), "submitting commands");
+    checkVk(vkWaitForFences(device_, 1, fence_.ptr(), VK_TRUE, UINT64_MAX), "waiting for the GPU");
+    checkVk(vkResetFences(device_, 1, fence_.ptr()), "resetting a fence");
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,76 @@
+// `hybridlab run` and `hybridlab merge`: experiments (DESIGN.md "Experiments and results").
+#include <cstdio>
+
+#include "common/core/input_error.h"
+#include "experiments/cli/commands.h"
+#include "experiments/runner/experiment_runner.h"
+#include "experiments/runner/reference_cache.h"
+
+namespace hybridlab::cli {
+
+namespace {
+
+struct RunOptions {
+    std::string config;
+    std::string out;
+    std::string shard = "0/1";
+    std::string cache;
+    bool resume = false;
+    long maxRuns = -1;
+    bool quiet = false;
+};
+
+std::pair<int, int> parseShard(const std::string& text) {
+    int i = 0, n = 0;
+    char slash = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d", &i, &slash, &n) != 3 || slash != '/' || n < 1 || i < 0 || i >= n) {
+        throw InputError("--shard " + text + ": expected i/n with 0 <= i < n, e.g. 0/3");
+    }
+    return {i, n};
+}
+
+void run(const RunOptions& o) {
+    const ExperimentConfig config = loadExperimentConfig(o.config);
+    RunnerOptions r;
+    std::tie(r.shardIndex, r.shardCount) = parseShard(o.shard);
+    r.outDir = o.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(o.out);
+    if (o.out.empty() && r.shardCount > 1) r.outDir += "-shard" + std::to_string(r.shardIndex) + "of" + std::to_string(r.shardCount);
+    r.cacheDir = o.cache.empty() ? defaultReferenceCacheDir() : std::filesystem::path(o.cache);
+    r.resume = o.resume;
+    r.maxRuns = o.maxRuns;
+    r.quiet = o.quiet;
+    const RunnerSummary s = runExperiment(config, r);
+    std::printf("experiment %s (shard %d/%d): %zu runs, %zu rendered, %zu already done; references: %zu rendered, %zu from the cache (%s)\n",
+                config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
+                s.referenceCacheHits, r.cacheDir.string().c_str());
+    if (s.complete) std::printf("results in %s (results.csv, results.json)\n", r.outDir.string().c_str());
+    else std::printf("stopped with runs left; `hybridlab run %s --out %s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str());
+}
+
+}  // namespace
+
+void addRunCommand(CLI::App& app) {
+    auto o = std::make_shared<RunOptions>();
+    auto* cmd = app.add_subcommand("run", "Run an experiment: render every configured run, score it against the cached reference, record it");
+    cmd->add_option("config", o->config, "Experiment config (TOML, see experiments/README.md)")->required();
+    cmd->add_option("--out", o->out, "Output folder (default: results/<experiment name>)");
+    cmd->add_flag("--resume", o->resume, "Continue an interrupted run in --out, skipping recorded runs");
+    cmd->add_option("--shard", o->shard, "Run only the i-th of n parts of the run list (runs whose index mod n is i)")->capture_default_str();
+    cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
+    cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
+    cmd->add_flag("--quiet", o->quiet, "No progress output");
+    cmd->callback([o] { run(*o); });
+
+    auto out = std::make_shared<std::string>();
+    auto shards = std::make_shared<std::vector<std::string>>();
+    auto* merge = app.add_subcommand("merge", "Join the shard folders of one experiment into one result set");
+    merge->add_option("--out", *out, "Folder for the merged result set (new or empty)")->required();
+    merge->add_option("shards", *shards, "Shard folders written by `hybridlab run --shard i/n`")->required();
+    merge->callback([out, shards] {
+        std::vector<std::filesystem::path> dirs(shards->begin(), shards->end());
+        mergeShards(dirs, *out);
+        std::printf("merged %zu shards into %s\n", dirs.size(), out->c_str());
+    });
+}
+
+}  // namespace hybridlab::cli

@@ -1,0 +1,241 @@
+#include "experiments/runner/experiment_config.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "common/core/input_error.h"
+#include "common/core/toml_reader.h"
+#include "common/scene/scene_catalog.h"
+#include "common/scene/scene_file.h"
+#include "experiments/runner/content_hash.h"
+#include "techniques/technique.h"
+
+namespace hybridlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+// A TOML value as a technique parameter value; arrays are handled by the caller (sweeps).
+ParamValue toParamValue(const TomlTable& t, const std::string& key, const toml::node& n) {
+    if (auto b = n.as_boolean()) return b->get();
+    if (auto i = n.as_integer()) return static_cast<long long>(i->get());
+    if (auto f = n.as_floating_point()) return f->get();
+    if (auto s = n.as_string()) return s->get();
+    t.fail(key, "expected a boolean, number or string");
+}
+
+// Runs resolveParameters to check a set, re-raising its message at the table's position.
+void checkParameters(const TomlTable& at, const std::string& technique, const ParameterList& set) {
+    try {
+        const TechniqueInfo& info = findTechnique(technique);
+        resolveParameters(info.parameters, set, "technique " + technique);
+    } catch (const InputError& e) {
+        at.failHere(e.what());
+    }
+}
+
+// The table's keys with their values; a list of values makes a sweep: the Cartesian product, in
+// key order.
+std::vector<ParameterList> expandSweep(const TomlTable& t) {
+    std::vector<ParameterList> sets(1);
+    for (const auto& key : t.keys()) {
+        const toml::node& n = t.node(key);
+        std::vector<ParamValue> values;
+        if (auto a = n.as_array()) {
+            if (a->empty()) t.fail(key, "an empty list sweeps over nothing");
+            for (const auto& e : *a) values.push_back(toParamValue(t, key, e));
+        } else {
+            values.push_back(toParamValue(t, key, n));
+        }
+        std::vector<ParameterList> next;
+        for (const auto& s : sets) {
+            for (const auto& v : values) {
+                ParameterList p = s;
+                p.emplace_back(key, v);
+                next.push_back(std::move(p));
+            }
+        }
+        sets = std::move(next);
+    }
+    return sets;
+}
+
+std::string safeName(const std::string& s) {
+    std::string out;
+    for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.') ? c : '_';
+    return out;
+}
+
+}  // namespace
+
+ExperimentConfig loadExperimentConfig(const fs::path& file) {
+    TomlDocument doc(file);
+    TomlTable root = doc.root();
+    ExperimentConfig c;
+    c.file = file;
+    c.hash = ContentHash().addFile(file).hex();
+    c.name = file.stem().string();
+
+    if (auto e = root.table("experiment")) {
+        c.name = e->string("name", c.name);
+        c.description = e->string("description", "");
+        c.warmupFrames = e->integer("warmup_frames", c.warmupFrames, 0, 1000);
+        c.repeats = e->integer("repeats", c.repeats, 1, 1000);
+        c.keepErrorMaps = e->boolean("error_maps", c.keepErrorMaps);
+        e->rejectUnknownKeys();
+    }
+    if (auto r = root.table("reference")) {
+        if (auto p = r->table("params")) {
+            for (const auto& key : p->keys()) c.referenceParameters.emplace_back(key, toParamValue(*p, key, p->node(key)));
+            checkParameters(*p, "whitted", c.referenceParameters);
+            p->rejectUnknownKeys();
+        }
+        r->rejectUnknownKeys();
+    }
+
+    auto scenes = root.tableArray("scenes");
+    if (scenes.empty()) root.failHere("no [[scenes]]: an experiment needs at least one scene");
+    for (const auto& t : scenes) {
+        SceneSpec s;
+        s.name = t.requiredString("scene");
+        try {
+            s.file = findSceneFile(s.name);
+        } catch (const InputError& e) {
+            t.fail("scene", e.what());
+        }
+        Scene scene;
+        try {
+            scene = loadSceneFile(s.file, {.loadTextures = false});
+        } catch (const InputError& e) {
+            t.fail("scene", e.what());
+        }
+        const toml::node* res = t.has("resolutions") ? &t.node("resolutions") : nullptr;
+        if (!res) t.fail("resolutions", "missing (expected a list of [width, height] pairs)");
+        auto arr = res->as_array();
+        if (!arr || arr->empty()) t.fail("resolutions", "expected a non-empty list of [width, height] pairs");
+        for (const auto& r : *arr) {
+            auto pair = r.as_array();
+            if (!pair || pair->size() != 2 || !pair->get(0)->is_integer() || !pair->get(1)->is_integer())
+                t.fail("resolutions", "expected [width, height] pairs of integers");
+            int w = static_cast<int>(pair->get(0)->as_integer()->get()), h = static_cast<int>(pair->get(1)->as_integer()->get());
+            // SSIM's 11 x 11 window needs at least that many pixels.
+            if (w < 11 || h < 11 || w > 16384 || h > 16384) t.fail("resolutions", "each side must be in [11, 16384], got " + std::to_string(w) + "x" + std::to_string(h));
+            s.resolutions.emplace_back(w, h);
+        }
+        for (const auto& v : t.tableArray("views")) {
+            ViewSpec view;
+            view.cameraPath = v.string("path", "");
+            if (view.cameraPath.empty()) {
+                if (v.has("frames") || v.has("stride")) v.failHere("frames and stride need a camera path ('path')");
+            } else {
+                const CameraPath* p = scene.findCameraPath(view.cameraPath);
+                if (!p) {
+                    std::string known;
+                    for (const auto& cp : scene.cameraPaths) known += (known.empty() ? "" : ", ") + cp.name;
+                    v.fail("path", "scene " + s.name + " has no camera path '" + view.cameraPath + "'" + (known.empty() ? "" : " (paths: " + known + ")"));
+                }
+                const int last = p->frameCount() - 1;
+                view.stride = v.integer("stride", 1, 1, 1000000);
+                if (v.has("frames")) {
+                    auto fr = v.node("frames").as_array();
+                    if (!fr || fr->size() != 2 || !fr->get(0)->is_integer() || !fr->get(1)->is_integer())
+                        v.fail("frames", "expected [first, last] frame numbers");
+                    view.firstFrame = static_cast<int>(fr->get(0)->as_integer()->get());
+                    view.lastFrame = static_cast<int>(fr->get(1)->as_integer()->get());
+                    if (view.firstFrame < 0 || view.lastFrame > last || view.firstFrame > view.lastFrame)
+                        v.fail("frames", "expected 0 <= first <= last <= " + std::to_string(last) + " (path '" + view.cameraPath + "' has " +
+                                             std::to_string(last + 1) + " frames)");
+                    v.node("frames");  // (marked as read above)
+                } else {
+                    view.firstFrame = 0;
+                    view.lastFrame = last;
+                }
+            }
+            v.rejectUnknownKeys();
+            s.views.push_back(view);
+        }
+        if (s.views.empty()) s.views.push_back(ViewSpec{});
+        t.rejectUnknownKeys();
+        c.scenes.push_back(std::move(s));
+    }
+
+    auto techniques = root.tableArray("techniques");
+    if (techniques.empty()) root.failHere("no [[techniques]]: an experiment needs at least one technique");
+    std::set<std::string> labels;
+    for (const auto& t : techniques) {
+        TechniqueSpec s;
+        s.name = t.requiredString("name");
+        try {
+            findTechnique(s.name);
+        } catch (const InputError& e) {
+            t.fail("name", e.what());
+        }
+        s.label = t.string("label", s.name);
+        if (!labels.insert(s.label).second) t.fail("label", "two techniques are labelled '" + s.label + "' (give each entry its own label)");
+        auto params = t.table("params");
+        auto sets = t.tableArray("param_sets");
+        if (params && !sets.empty()) t.failHere("give 'params' (a sweep) or 'param_sets' (a list of sets), not both");
+        if (params) {
+            s.parameterSets = expandSweep(*params);
+            for (const auto& set : s.parameterSets) checkParameters(*params, s.name, set);
+            params->rejectUnknownKeys();
+        } else if (!sets.empty()) {
+            for (const auto& st : sets) {
+                ParameterList set;
+                for (const auto& key : st.keys()) set.emplace_back(key, toParamValue(st, key, st.node(key)));
+                checkParameters(st, s.name, set);
+                st.rejectUnknownKeys();
+                s.parameterSets.push_back(std::move(set));
+            }
+        } else {
+            s.parameterSets.emplace_back();
+        }
+        t.rejectUnknownKeys();
+        c.techniques.push_back(std::move(s));
+    }
+    root.rejectUnknownKeys();
+    return c;
+}
+
+std::vector<RunSpec> planRuns(const ExperimentConfig& config) {
+    std::vector<RunSpec> runs;
+    for (std::size_t si = 0; si < config.scenes.size(); ++si) {
+        const SceneSpec& scene = config.scenes[si];
+        for (const auto& [w, h] : scene.resolutions) {
+            for (const auto& view : scene.views) {
+                const bool onPath = !view.cameraPath.empty();
+                for (int f = onPath ? view.firstFrame : -1; f <= (onPath ? view.lastFrame : -1); f += onPath ? view.stride : 1) {
+                    for (std::size_t ti = 0; ti < config.techniques.size(); ++ti) {
+                        const TechniqueSpec& tech = config.techniques[ti];
+                        for (const auto& set : tech.parameterSets) {
+                            RunSpec r;
+                            r.index = runs.size();
+                            r.scene = si;
+                            r.cameraPath = view.cameraPath;
+                            r.frame = f;
+                            r.width = w;
+                            r.height = h;
+                            r.technique = ti;
+                            r.parameters = set;
+                            std::ostringstream text;
+                            for (const auto& [k, v] : set) text << (text.tellp() > 0 ? " " : "") << k << "=" << formatParamValue(v);
+                            r.parametersText = text.str();
+                            const std::string viewLabel = onPath ? view.cameraPath + "@" + std::to_string(f) : "camera";
+                            const std::string res = std::to_string(w) + "x" + std::to_string(h);
+                            r.sequenceKey = scene.name + "|" + view.cameraPath + "|" + res + "|" + tech.label + "|" + r.parametersText;
+                            char index[16];
+                            std::snprintf(index, sizeof index, "%05zu", r.index);
+                            r.id = std::string(index) + "-" + safeName(fs::path(scene.name).stem().string()) + "-" + safeName(viewLabel) + "-" + res +
+                                   "-" + safeName(tech.label) + "-" + ContentHash().add(r.parametersText).hex().substr(0, 8);
+                            runs.push_back(std::move(r));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    return runs;
+}
+
+}  // namespace hybridlab

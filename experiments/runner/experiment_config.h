@@ -1,0 +1,69 @@
+#pragma once
+// Experiment configs (TOML, experiments/configs/; format in experiments/README.md) and the run
+// list they expand to. Every error names the file, line and key, and is raised before anything
+// renders: scenes are loaded (without textures) to check their camera paths and frame ranges,
+// and every parameter set is checked against its technique's declarations.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "techniques/parameters.h"
+
+namespace hybridlab {
+
+using ParameterList = std::vector<std::pair<std::string, ParamValue>>;
+
+struct ViewSpec {
+    std::string cameraPath;  // empty: the scene's camera (one frame)
+    int firstFrame = 0;
+    int lastFrame = 0;       // inclusive
+    int stride = 1;
+};
+
+struct SceneSpec {
+    std::string name;  // as written: a scenes/ name or a path
+    std::filesystem::path file;
+    std::vector<std::pair<int, int>> resolutions;
+    std::vector<ViewSpec> views;
+};
+
+struct TechniqueSpec {
+    std::string name;   // in the registry
+    std::string label;  // distinguishes several entries of one technique; default: the name
+    std::vector<ParameterList> parameterSets;  // each checked; at least one (possibly empty)
+};
+
+struct ExperimentConfig {
+    std::filesystem::path file;
+    std::string name;
+    std::string description;
+    std::string hash;          // of the config file's bytes
+    int warmupFrames = 1;
+    int repeats = 3;
+    bool keepErrorMaps = true;
+    ParameterList referenceParameters;  // for the `whitted` reference
+    std::vector<SceneSpec> scenes;
+    std::vector<TechniqueSpec> techniques;
+};
+
+ExperimentConfig loadExperimentConfig(const std::filesystem::path& file);
+
+// One render of one technique with one parameter set at one frame.
+struct RunSpec {
+    std::size_t index = 0;       // position in the full run list
+    std::string id;              // stable, file-name safe, unique within the experiment
+    std::size_t scene = 0;       // into ExperimentConfig::scenes
+    std::string cameraPath;      // empty: the scene camera
+    int frame = -1;              // on the path; -1 for the scene camera
+    int width = 0, height = 0;
+    std::size_t technique = 0;   // into ExperimentConfig::techniques
+    ParameterList parameters;    // as given (defaults are filled in by the technique)
+    std::string parametersText;  // canonical "k=v k=v"
+    std::string sequenceKey;     // frames of one path with one technique and parameter set
+};
+
+// Scenes x resolutions x view frames x techniques x parameter sets, in that nesting order.
+std::vector<RunSpec> planRuns(const ExperimentConfig& config);
+
+}  // namespace hybridlab

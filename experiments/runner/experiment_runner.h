@@ -1,0 +1,39 @@
+#pragma once
+// `hybridlab run`: renders every run of an experiment (or one shard of them), scores each image
+// against its (cached) reference, and records the results (DESIGN.md "Experiments and results").
+#include <filesystem>
+#include <vector>
+
+#include "experiments/runner/experiment_config.h"
+
+namespace hybridlab {
+
+struct RunnerOptions {
+    std::filesystem::path outDir;
+    std::filesystem::path cacheDir;  // the reference cache
+    bool resume = false;
+    int shardIndex = 0;  // runs whose index % shardCount == shardIndex
+    int shardCount = 1;
+    long maxRuns = -1;   // stop after this many renders (as if killed; for tests), -1: all
+    bool quiet = false;
+};
+
+struct RunnerSummary {
+    std::size_t runsPlanned = 0;   // in this shard
+    std::size_t runsRendered = 0;
+    std::size_t runsSkipped = 0;   // already recorded (--resume)
+    std::size_t referencesRendered = 0;
+    std::size_t referenceCacheHits = 0;
+    bool complete = false;         // every run of the shard is recorded
+};
+
+// Throws InputError for an output folder that holds another experiment (or anything else), or
+// one that exists without --resume; nothing is written then.
+RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options);
+
+// `hybridlab merge`: joins shard folders of one experiment into `outDir`, as one unsharded run
+// would have written it. Throws InputError when they are not shards of the same experiment or
+// runs are missing.
+void mergeShards(const std::vector<std::filesystem::path>& shardDirs, const std::filesystem::path& outDir);
+
+}  // namespace hybridlab

@@ -1,0 +1,24 @@
+#pragma once
+// Progress of a long run on stderr: a bar with runs done, the current run and the estimated time
+// left on a terminal; plain log lines otherwise (CI logs, redirected output).
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace hybridlab {
+
+class Progress {
+public:
+    Progress(std::size_t total, bool quiet);
+    void start(std::size_t done, const std::string& current);
+    void finish();
+
+private:
+    std::size_t total_;
+    bool quiet_;
+    bool terminal_;
+    std::size_t started_ = 0;
+    std::chrono::steady_clock::time_point begin_;
+};
+
+}  // namespace hybridlab

@@ -1,0 +1,59 @@
+#include "metrics/metrics.h"
+
+#include <string>
+
+#include "common/core/input_error.h"
+
+namespace hybridlab {
+
+namespace {
+
+RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, const MetricMaps& maps, const cv::Mat1b* region) {
+    RegionMetrics m;
+    m.pixels = region ? static_cast<std::size_t>(cv::countNonZero(*region)) : maps.flip.total();
+    m.ssim = ssimMean(maps.ssim, region);
+    m.error = errorStats(test, reference, region);
+    m.flip = flipStats(maps.flip, region);
+    return m;
+}
+
+}  // namespace
+
+MetricReport computeMetrics(const Image& test, const Image& reference, const MetricOptions& options, const PixelMask* mask) {
+    requireSameSize(test, "the test image", reference, "the reference image");
+    if (mask) requireUsableMask(*mask, "the mask", test.width(), test.height());
+    MetricReport report;
+    report.width = test.width();
+    report.height = test.height();
+    report.options = options;
+
+    const cv::Mat3f displayTest = metricRgb(test, ValueSpace::Display), displayReference = metricRgb(reference, ValueSpace::Display);
+    const bool linear = options.errorSpace == ValueSpace::Linear;
+    const cv::Mat3f errorTest = linear ? metricRgb(test, ValueSpace::Linear) : displayTest;
+    const cv::Mat3f errorReference = linear ? metricRgb(reference, ValueSpace::Linear) : displayReference;
+
+    report.maps.ssim = ssimMap(displayTest, displayReference, options.ssimChannels);
+    report.maps.flip = flipMap(displayTest, displayReference, options.pixelsPerDegree);
+    report.maps.absoluteDifference = absoluteDifferenceMap(errorTest, errorReference);
+
+    report.whole = regionMetrics(errorTest, errorReference, report.maps, nullptr);
+    if (mask) report.masked = regionMetrics(errorTest, errorReference, report.maps, &mask->pixels());
+    return report;
+}
+
+std::vector<MetricReport> metricSeries(const std::vector<Image>& test, const std::vector<Image>& reference, const MetricOptions& options,
+                                       const PixelMask* mask) {
+    if (test.size() != reference.size()) {
+        throw InputError("metric series: " + std::to_string(test.size()) + " test frames but " + std::to_string(reference.size()) +
+                         " reference frames");
+    }
+    std::vector<MetricReport> series;
+    for (std::size_t k = 0; k < test.size(); ++k) {
+        MetricReport report = computeMetrics(test[k], reference[k], options, mask);
+        report.maps = MetricMaps{};
+        series.push_back(std::move(report));
+    }
+    return series;
+}
+
+}  // namespace hybridlab

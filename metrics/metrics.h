@@ -1,0 +1,60 @@
+#pragma once
+// Every metric of one test image against its reference, over the whole image and over an
+// optional mask (for example the pixels of reflective objects, or those a technique ray traced):
+// the numbers behind every chart (DESIGN.md "Experiments and results").
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "common/image/image.h"
+#include "metrics/error_stats.h"
+#include "metrics/flip.h"
+#include "metrics/metric_input.h"
+#include "metrics/ssim.h"
+
+namespace hybridlab {
+
+struct MetricOptions {
+    // RMSE, PSNR and the difference map: display values (default) or the linear HDR values.
+    // SSIM and FLIP always see the display image.
+    ValueSpace errorSpace = ValueSpace::Display;
+    SsimChannels ssimChannels = SsimChannels::Luma;
+    double pixelsPerDegree = kDefaultPixelsPerDegree;  // FLIP's viewing condition
+};
+
+struct RegionMetrics {
+    std::size_t pixels = 0;
+    double ssim = 0.0;  // MSSIM over the region (ssimMean)
+    ErrorStats error;   // RMSE, PSNR
+    FlipStats flip;
+};
+
+struct MetricMaps {
+    cv::Mat1f absoluteDifference;  // mean |test - reference| over R, G, B, in the error space
+    cv::Mat1f ssim;
+    cv::Mat1f flip;
+};
+
+struct MetricReport {
+    int width = 0;
+    int height = 0;
+    MetricOptions options;
+    RegionMetrics whole;
+    std::optional<RegionMetrics> masked;  // when a mask was given
+    MetricMaps maps;
+};
+
+// `test` and `reference` are linear, as rendered. Throws InputError when their sizes differ, when
+// the mask's size differs or it selects no pixel, or when the images are smaller than SSIM's
+// 11 x 11 window.
+MetricReport computeMetrics(const Image& test, const Image& reference, const MetricOptions& options = {},
+                            const PixelMask* mask = nullptr);
+
+// Per-frame metrics along a camera path (frame k of `test` against frame k of `reference`), so
+// that a chart can show where quality drops. The reports carry no maps: a long path's maps would
+// not fit in memory.
+std::vector<MetricReport> metricSeries(const std::vector<Image>& test, const std::vector<Image>& reference,
+                                       const MetricOptions& options = {}, const PixelMask* mask = nullptr);
+
+}  // namespace hybridlab

@@ -1,0 +1,106 @@
+#include "metrics/report_files.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <system_error>
+
+#include "common/image/image_io.h"
+
+namespace hybridlab {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Writes `path` through `write` into a temporary name beside it (the extension last, so that
+// OpenImageIO picks the writer), then renames it into place, as writeImageAtomically does.
+void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    const fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+    try {
+        write(tmp);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+nlohmann::json numberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json regionJson(const RegionMetrics& m) {
+    return {
+        {"pixels", m.pixels},
+        {"ssim", m.ssim},
+        {"rmse", m.error.rmse},
+        {"psnr_db", numberOrNull(m.error.psnr)},
+        {"flip",
+         {{"mean", m.flip.mean},
+          {"weighted_median", m.flip.weightedMedian},
+          {"weighted_first_quartile", m.flip.weightedFirstQuartile},
+          {"weighted_third_quartile", m.flip.weightedThirdQuartile}}},
+    };
+}
+
+}  // namespace
+
+std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report) {
+    double largest = 0.0;
+    cv::minMaxLoc(report.maps.absoluteDifference, nullptr, &largest);
+    // A legend from 0 to 0 says nothing; equal images show the bottom colour on 0 to 1.
+    const LegendRange differenceRange{0.0, largest > 0.0 ? largest : 1.0};
+    return {
+        {"diff.png", "|T-R|", ColorMap::Viridis, differenceRange, &report.maps.absoluteDifference},
+        {"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim},
+        {"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip},
+    };
+}
+
+nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources) {
+    nlohmann::json j;
+    j["test"] = sources.test;
+    j["reference"] = sources.reference;
+    j["mask"] = sources.mask ? nlohmann::json(*sources.mask) : nlohmann::json(nullptr);
+    j["width"] = report.width;
+    j["height"] = report.height;
+    j["settings"] = {
+        {"error_space", valueSpaceName(report.options.errorSpace)},
+        {"ssim_channels", ssimChannelsName(report.options.ssimChannels)},
+        {"flip_pixels_per_degree", report.options.pixelsPerDegree},
+    };
+    j["whole"] = regionJson(report.whole);
+    j["masked"] = report.masked ? regionJson(*report.masked) : nlohmann::json(nullptr);
+    nlohmann::json maps = nlohmann::json::object();
+    for (const HeatmapSpec& h : reportHeatmaps(report)) {
+        maps[fs::path(h.file).stem().string()] = {
+            {"file", h.file}, {"colormap", colorMapName(h.colorMap)}, {"range", {h.range.low, h.range.high}}};
+    }
+    j["maps"] = maps;
+    return j;
+}
+
+void writeReportFiles(const fs::path& dir, const MetricReport& report, const ReportSources& sources) {
+    fs::create_directories(dir);
+    for (const HeatmapSpec& h : reportHeatmaps(report)) {
+        const Image picture = heatmapWithLegend(*h.values, h.range, h.colorMap, h.title);
+        writeAtomically(dir / h.file, [&](const fs::path& tmp) { writePng(tmp, picture); });
+    }
+    const std::string text = reportJson(report, sources).dump(2) + "\n";
+    writeAtomically(dir / "metrics.json", [&](const fs::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+    });
+}
+
+}  // namespace hybridlab

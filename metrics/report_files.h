@@ -1,0 +1,43 @@
+#pragma once
+// A metric report as files: the error maps as PNG heat maps with legends, and the numbers as JSON.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "metrics/heatmap.h"
+#include "metrics/metrics.h"
+
+namespace hybridlab {
+
+// Where the compared images came from, for the record.
+struct ReportSources {
+    std::string test;
+    std::string reference;
+    std::optional<std::string> mask;
+};
+
+// One heat map of a report: its file name, colour map and range.
+struct HeatmapSpec {
+    const char* file;
+    const char* title;
+    ColorMap colorMap;
+    LegendRange range;
+    const cv::Mat1f* values;
+};
+
+// diff.png (|test - reference|, viridis, 0 to the largest difference), ssim.png (viridis, 0 to 1)
+// and flip.png (magma, 0 to 1, as NVIDIA's FLIP tool shows it).
+std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report);
+
+// The numbers: sources, size, settings, whole-image (and masked) metrics, the maps' files and
+// ranges. An infinite PSNR (equal images) is written as null, which JSON has for it.
+nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources);
+
+// Writes the heat maps and metrics.json into `dir` (created if missing). Each file is written to
+// a temporary name beside it and renamed, so no half-written file is ever left.
+void writeReportFiles(const std::filesystem::path& dir, const MetricReport& report, const ReportSources& sources);
+
+}  // namespace hybridlab

@@ -1,0 +1,240 @@
+#!/usr/bin/env python3
+"""The report of a hybridlab result set: index.html (works from the file system), report.md and
+the figures as SVG and PDF.
+
+    report.py RESULT_DIR --out REPORT_DIR
+
+Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
+the Pareto front drawn and labelled and the reference's frame time marked; per scene the stage-time
+breakdown of every technique (Walewski 2019 Table 5 as a chart); along each camera path the frame
+time, the error and the temporal error per frame."""
+import argparse
+import collections
+import html
+import os
+import statistics
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import results as rs  # noqa: E402
+
+
+def save(fig, out_dir, name):
+    paths = []
+    for ext in ("svg", "pdf"):
+        p = os.path.join(out_dir, "figures", name + "." + ext)
+        fig.savefig(p, bbox_inches="tight")
+        paths.append(p)
+    plt.close(fig)
+    return paths[0]
+
+
+def colours(variants):
+    cmap = plt.get_cmap("tab10" if len(variants) <= 10 else "tab20")
+    return {v: cmap(i % cmap.N) for i, v in enumerate(sorted(variants))}
+
+
+def speed_accuracy(records, out_dir, key, title):
+    """Frame time against SSIM and FLIP, every run a point, the Pareto front labelled."""
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    col = colours({rs.variant(r) for r in records})
+    ref_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
+    for ax, name, better_high in ((axes[0], "ssim", True), (axes[1], "flip", False)):
+        points = []
+        for v in sorted(col):
+            rows = [r for r in records if rs.variant(r) == v]
+            xs = [r["frame_ms"]["median"] for r in rows]
+            ys = [rs.metric(r, "whole", name) for r in rows]
+            ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85)
+            points += [(x, y, v) for x, y in zip(xs, ys)]
+        front = rs.pareto_front(points, better_high)
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1, label="Pareto front")
+        for t, v, p in front:
+            ax.annotate(p, (t, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
+        ax.axvline(ref_ms, color="grey", ls="--", lw=1)
+        ax.annotate("reference %.0f ms" % ref_ms, (ref_ms, ax.get_ylim()[0]), fontsize=7, rotation=90, va="bottom", ha="right")
+        ax.set_xscale("log")
+        ax.set_xlabel("frame time (ms, median; log scale)")
+        ax.set_ylabel("SSIM (higher is better)" if name == "ssim" else "FLIP mean (lower is better)")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=6, loc="lower right")
+    fig.suptitle(title)
+    return save(fig, out_dir, "speed-accuracy-" + key)
+
+
+def stage_breakdown(records, out_dir, key, title):
+    """Stacked median stage times per technique variant, averaged over the frames."""
+    by_variant = collections.defaultdict(list)
+    for r in records:
+        by_variant[rs.variant(r)].append(r)
+    stages = sorted({s for r in records for s in r["stages"]})
+    variants = sorted(by_variant)
+    fig, ax = plt.subplots(figsize=(max(6, 0.7 * len(variants) + 2), 4.5))
+    bottom = [0.0] * len(variants)
+    cmap = plt.get_cmap("tab20")
+    for i, s in enumerate(stages):
+        vals = [statistics.mean(r["stages"].get(s, {"median": 0.0})["median"] for r in by_variant[v]) for v in variants]
+        ax.bar(range(len(variants)), vals, bottom=bottom, label=s, color=cmap(i % 20))
+        bottom = [b + v for b, v in zip(bottom, vals)]
+    ax.set_xticks(range(len(variants)))
+    ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=7)
+    ax.set_ylabel("stage time (ms, median, mean over frames)")
+    ax.legend(fontsize=7)
+    ax.set_title(title)
+    ax.grid(axis="y", alpha=0.3)
+    return save(fig, out_dir, "stages-" + key)
+
+
+def along_path(records, out_dir, key, title):
+    """Frame time, FLIP and temporal error per frame along a camera path, one series a variant."""
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    col = colours({rs.variant(r) for r in records})
+    for v in sorted(col):
+        rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
+        frames = [r["frame"] for r in rows]
+        axes[0].plot(frames, [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
+        axes[1].plot(frames, [rs.metric(r, "whole", "flip") for r in rows], marker="o", ms=3, color=col[v])
+        temporal = [(r["frame"], r["temporal_error"]) for r in rows if "temporal_error" in r]
+        if temporal:
+            axes[2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
+    for ax, label in zip(axes, ("frame time (ms, median)", "FLIP mean", "temporal error")):
+        ax.set_xlabel("frame")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=6)
+    fig.suptitle(title)
+    return save(fig, out_dir, "path-" + key)
+
+
+def fmt(v, spec):
+    return "" if v is None else spec % v
+
+
+def rel(out_dir, result_dir, path):
+    return os.path.relpath(os.path.join(result_dir, path), out_dir)
+
+
+TABLE_SCRIPT = """<script>
+// Click a column header to sort the table by it (numbers numerically).
+document.querySelectorAll('table.runs th').forEach((th, i) => th.addEventListener('click', () => {
+  const body = th.closest('table').tBodies[0];
+  const asc = th.dataset.asc !== '1'; th.dataset.asc = asc ? '1' : '0';
+  const val = tr => { const t = tr.cells[i].dataset.v ?? tr.cells[i].textContent; const n = parseFloat(t); return isNaN(n) ? t : n; };
+  [...body.rows].sort((a, b) => { const x = val(a), y = val(b); return (x > y ? 1 : x < y ? -1 : 0) * (asc ? 1 : -1); })
+    .forEach(r => body.appendChild(r));
+}));
+</script>"""
+
+
+def runs_table(records, out_dir, result_dir):
+    head = ["run", "image", "scene", "view", "size", "technique", "parameters", "frame ms", "SSIM", "FLIP", "PSNR dB",
+            "SSIM refl./refr.", "FLIP refl./refr.", "temporal", "maps"]
+    rows = []
+    for r in records:
+        img = rel(out_dir, result_dir, r["images"]["png"])
+        maps = ""
+        if r["images"].get("maps"):
+            maps = " ".join('<a href="%s">%s</a>' % (html.escape(rel(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
+                            for m in ("diff", "ssim", "flip"))
+        cells = [
+            '<td data-v="%d">%d</td>' % (r["index"], r["index"]),
+            '<td><a href="%s"><img src="%s" width="96" loading="lazy" alt="%s"></a> <a href="%s">exr</a> <a href="%s">ref</a></td>'
+            % (html.escape(img), html.escape(img), html.escape(r["id"]), html.escape(rel(out_dir, result_dir, r["images"]["exr"])),
+               html.escape(rel(out_dir, result_dir, r["reference"]["png"]))),
+            "<td>%s</td>" % html.escape(r["scene"]),
+            "<td>%s</td>" % html.escape(rs.view_name(r)),
+            "<td>%s</td>" % rs.resolution(r),
+            "<td>%s</td>" % html.escape(r["label"]),
+            "<td>%s</td>" % html.escape(r["parameters_text"]),
+            "<td>%.2f</td>" % r["frame_ms"]["median"],
+            "<td>%s</td>" % fmt(rs.metric(r, "whole", "ssim"), "%.4f"),
+            "<td>%s</td>" % fmt(rs.metric(r, "whole", "flip"), "%.4f"),
+            "<td>%s</td>" % fmt(rs.metric(r, "whole", "psnr"), "%.2f"),
+            "<td>%s</td>" % fmt(rs.metric(r, "masked", "ssim"), "%.4f"),
+            "<td>%s</td>" % fmt(rs.metric(r, "masked", "flip"), "%.4f"),
+            "<td>%s</td>" % fmt(r.get("temporal_error"), "%.5f"),
+            "<td>%s</td>" % maps,
+        ]
+        rows.append("<tr>" + "".join(cells) + "</tr>")
+    return ('<table class="runs"><thead><tr>' + "".join("<th>%s</th>" % h for h in head) + "</tr></thead><tbody>\n" + "\n".join(rows)
+            + "\n</tbody></table>")
+
+
+def markdown_summary(records):
+    """Per scene and resolution: each variant's mean frame time, SSIM and FLIP."""
+    lines = []
+    groups = collections.defaultdict(list)
+    for r in records:
+        groups[(r["scene"], rs.resolution(r))].append(r)
+    for (scene, res), rows in sorted(groups.items()):
+        lines += ["", "### %s at %s" % (scene, res), "", "| technique | frames | frame ms (median, mean over frames) | SSIM | FLIP |",
+                  "|---|---|---|---|---|"]
+        by = collections.defaultdict(list)
+        for r in rows:
+            by[rs.variant(r)].append(r)
+        for v, vs in sorted(by.items()):
+            lines.append("| %s | %d | %.2f | %.4f | %.4f |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
+                                                             statistics.mean(rs.metric(r, "whole", "ssim") for r in vs),
+                                                             statistics.mean(rs.metric(r, "whole", "flip") for r in vs)))
+        lines.append("| reference (whitted) | | %.2f | 1 | 0 |" % statistics.median(r["reference"]["frame_ms"] for r in rows))
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    records = rs.load(a.result_dir)
+    if not records:
+        sys.exit("report: %s holds no runs" % a.result_dir)
+    os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
+
+    sections = []
+    by_scene = collections.defaultdict(list)
+    for r in records:
+        by_scene[(r["scene"], rs.resolution(r))].append(r)
+    for (scene, res), rows in sorted(by_scene.items()):
+        key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
+        figs = [speed_accuracy(rows, a.out, key, "%s at %s: speed against accuracy" % (scene, res)),
+                stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res))]
+        paths = collections.defaultdict(list)
+        for r in rows:
+            if r["frame"] >= 0:
+                paths[r["view"]].append(r)
+        for path, prs in sorted(paths.items()):
+            figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path)))
+        sections.append((scene, res, figs))
+
+    figure_html = []
+    for scene, res, figs in sections:
+        figure_html.append("<h2>%s at %s</h2>" % (html.escape(scene), res))
+        for f in figs:
+            r = os.path.relpath(f, a.out)
+            figure_html.append('<p><a href="%s"><img src="%s" style="max-width:100%%"></a> <a href="%s">pdf</a></p>'
+                               % (html.escape(r), html.escape(r), html.escape(r[:-4] + ".pdf")))
+    title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
+    page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
+            "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
+            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
+            "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
+            "Click a column header to sort.</p>%s<h2>Every run</h2>%s%s</body></html>"
+            % (html.escape(title), html.escape(title), len(records), html.escape(rel(a.out, a.result_dir, "results.csv")),
+               html.escape(rel(a.out, a.result_dir, "results.json")), "\n".join(figure_html), runs_table(records, a.out, a.result_dir),
+               TABLE_SCRIPT))
+    with open(os.path.join(a.out, "index.html"), "w") as f:
+        f.write(page)
+    md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
+    for scene, res, figs in sections:
+        md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
+    with open(os.path.join(a.out, "report.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    print("report: %s" % os.path.join(a.out, "index.html"))
+
+
+if __name__ == "__main__":
+    main()

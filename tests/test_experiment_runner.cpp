@@ -1,0 +1,232 @@
+// The experiment runner end to end on built-in scenes at a small size: the run list, the
+// reference cache, resume after an interruption, shards and merge, and bad configs.
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "common/core/input_error.h"
+#include "experiments/runner/experiment_runner.h"
+#include "test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::TempDir;
+
+// 2 scenes x (1 camera + 2 path frames, and 1 camera) x (3 + 2 parameter sets) = (3 + 1) * 5 = 20.
+const char* kConfig = R"(
+[experiment]
+name = "e2e"
+warmup_frames = 0
+repeats = 1
+
+[reference]
+params = { max_depth = 4 }
+
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[48, 27]]
+[[scenes.views]]
+[[scenes.views]]
+path = "orbit"
+frames = [0, 30]
+stride = 30
+
+[[scenes]]
+scene = "cornell-mirror-glass"
+resolutions = [[48, 27]]
+
+[[techniques]]
+name = "whitted"
+label = "depth"
+params = { max_depth = [0, 1, 2] }
+
+[[techniques]]
+name = "whitted"
+label = "cutoff"
+param_sets = [ { importance_cutoff = 0.1 }, { importance_cutoff = 0.3, max_depth = 3 } ]
+)";
+
+fs::path writeConfig(const TempDir& dir, const std::string& text, const std::string& name = "e2e.toml") {
+    fs::path p = dir.path() / name;
+    test::writeTextFile(p, text);
+    return p;
+}
+
+std::vector<json> results(const fs::path& out) {
+    std::ifstream in(out / "results.json");
+    return json::parse(in).get<std::vector<json>>();
+}
+
+// A record without what legitimately differs between two runs of the same experiment: timings
+// and whether the reference came from the cache.
+json comparable(json r) {
+    r.erase("frame_ms");
+    r.erase("stages");
+    r["reference"].erase("cache_hit");
+    r["reference"].erase("frame_ms");
+    return r;
+}
+
+void expectSameResults(const fs::path& a, const fs::path& b) {
+    auto ra = results(a), rb = results(b);
+    ASSERT_EQ(ra.size(), rb.size());
+    for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_EQ(comparable(ra[i]), comparable(rb[i])) << ra[i].at("id");
+}
+
+RunnerOptions options(const fs::path& out, const fs::path& cache) {
+    RunnerOptions o;
+    o.outDir = out;
+    o.cacheDir = cache;
+    o.quiet = true;
+    return o;
+}
+
+TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
+    TempDir dir;
+    const ExperimentConfig config = loadExperimentConfig(writeConfig(dir, kConfig));
+    const fs::path cache = dir.path() / "cache";
+
+    // Rows: scenes x frames x techniques x parameter sets.
+    RunnerSummary first = runExperiment(config, options(dir.path() / "a", cache));
+    EXPECT_TRUE(first.complete);
+    EXPECT_EQ(first.runsRendered, 20u);
+    // One per distinct camera and size: orbit's frame 0 is the scene camera of whitted-classic,
+    // and the cache keys on the camera, not on the view's name.
+    EXPECT_EQ(first.referencesRendered, 3u);
+    auto rows = results(dir.path() / "a");
+    ASSERT_EQ(rows.size(), 20u);
+    std::string csv;
+    {
+        std::ifstream in(dir.path() / "a" / "results.csv");
+        csv.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);  // header + 20 rows
+    for (const auto& r : rows) {
+        for (const char* key : {"exr", "png"}) EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("images").at(key).get<std::string>()));
+        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("reference").at("exr").get<std::string>()));
+        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("images").at("maps").get<std::string>() / "flip.png"));
+        // Frame 30 of the path has a temporal error against frame 0; the camera views have none.
+        EXPECT_EQ(r.contains("temporal_error"), r.at("frame").get<int>() == 30) << r.at("id");
+    }
+    // depth 0 is the local colour only: far from the reference on the reflective pixels.
+    EXPECT_LT(rows[0].at("metrics").at("masked").at("ssim").get<double>(), rows[2].at("metrics").at("masked").at("ssim").get<double>());
+
+    // The same experiment again: every reference from the cache, identical metrics.
+    RunnerSummary second = runExperiment(config, options(dir.path() / "b", cache));
+    EXPECT_EQ(second.referencesRendered, 0u);
+    EXPECT_EQ(second.referenceCacheHits, 20u);
+    expectSameResults(dir.path() / "a", dir.path() / "b");
+
+    // Interrupted after 7 runs, then resumed: the same result set as the uninterrupted run.
+    RunnerOptions stop = options(dir.path() / "c", cache);
+    stop.maxRuns = 7;
+    RunnerSummary part = runExperiment(config, stop);
+    EXPECT_FALSE(part.complete);
+    EXPECT_EQ(results(dir.path() / "c").size(), 7u);
+    RunnerOptions resume = options(dir.path() / "c", cache);
+    resume.resume = true;
+    RunnerSummary rest = runExperiment(config, resume);
+    EXPECT_TRUE(rest.complete);
+    EXPECT_EQ(rest.runsSkipped, 7u);
+    EXPECT_EQ(rest.runsRendered, 13u);
+    expectSameResults(dir.path() / "a", dir.path() / "c");
+
+    // Three shards merged: the same result set as the unsharded run.
+    std::vector<fs::path> shards;
+    for (int i = 0; i < 3; ++i) {
+        RunnerOptions s = options(dir.path() / ("shard" + std::to_string(i)), cache);
+        s.shardIndex = i;
+        s.shardCount = 3;
+        EXPECT_TRUE(runExperiment(config, s).complete);
+        shards.push_back(s.outDir);
+    }
+    mergeShards(shards, dir.path() / "merged");
+    expectSameResults(dir.path() / "a", dir.path() / "merged");
+    EXPECT_THROW(mergeShards({shards[0], shards[1]}, dir.path() / "merged2"), InputError);  // shard 2 missing
+
+    // An output folder is never overwritten without --resume.
+    EXPECT_THROW(runExperiment(config, options(dir.path() / "a", cache)), InputError);
+
+    // The report: every link and image of index.html resolves to a file, every figure has content.
+    const fs::path report = dir.path() / "report";
+    test::CliResult r = test::runHybridlab({"report", (dir.path() / "a").string(), "--out", report.string()});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    std::ifstream in(report / "index.html");
+    const std::string page((std::istreambuf_iterator<char>(in)), {});
+    std::size_t links = 0;
+    for (const std::string attr : {"href=\"", "src=\""}) {
+        for (std::size_t at = page.find(attr); at != std::string::npos; at = page.find(attr, at + 1)) {
+            const std::size_t start = at + attr.size(), end = page.find('"', start);
+            const std::string target = page.substr(start, end - start);
+            EXPECT_TRUE(fs::exists(report / target)) << target;
+            ++links;
+        }
+    }
+    EXPECT_GT(links, 20u * 4);  // per run at least: thumbnail, image, exr, reference (+ maps)
+    std::size_t figures = 0;
+    for (const auto& f : fs::directory_iterator(report / "figures")) {
+        ++figures;
+        EXPECT_GT(fs::file_size(f.path()), 2000u) << f.path();
+    }
+    EXPECT_GE(figures, 2u * (2 * 2 + 1));  // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path
+    EXPECT_TRUE(fs::exists(report / "report.md"));
+}
+
+TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
+    TempDir dir;
+    fs::copy_file(test::builtinSceneFile("whitted-classic"), dir.path() / "scene.toml");
+    std::string config = "[experiment]\nrepeats = 1\nwarmup_frames = 0\n[[scenes]]\nscene = \"" + (dir.path() / "scene.toml").string() +
+                         "\"\nresolutions = [[24, 16]]\n[[techniques]]\nname = \"whitted\"\n";
+    const ExperimentConfig c = loadExperimentConfig(writeConfig(dir, config));
+    const fs::path cache = dir.path() / "cache";
+    EXPECT_EQ(runExperiment(c, options(dir.path() / "a", cache)).referencesRendered, 1u);
+    EXPECT_EQ(runExperiment(c, options(dir.path() / "b", cache)).referencesRendered, 0u);
+    std::ofstream(dir.path() / "scene.toml", std::ios::app) << "\n# an edit\n";
+    EXPECT_EQ(runExperiment(c, options(dir.path() / "c", cache)).referencesRendered, 1u);
+}
+
+TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
+    TempDir dir;
+    const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 18]]\n";
+    const std::string technique = "[[techniques]]\nname = \"whitted\"\n";
+    struct Case {
+        std::string name, text, message;
+    };
+    const std::vector<Case> cases = {
+        {"syntax", "[experiment\n", "TOML syntax error"},
+        {"unknown-key", "[experiment]\nrepeat = 3\n" + scene + technique, "experiment.repeat: unknown key"},
+        {"unknown-technique", scene + "[[techniques]]\nname = \"raytrace-everything\"\n", "unknown technique 'raytrace-everything'"},
+        {"unknown-parameter", scene + "[[techniques]]\nname = \"whitted\"\nparams = { depth = 3 }\n", "unknown parameter 'depth'"},
+        {"parameter-range", scene + "[[techniques]]\nname = \"whitted\"\nparams = { max_depth = [1, 99] }\n", "an integer in [0, 64], got 99"},
+        {"sweep-and-sets", scene + "[[techniques]]\nname = \"whitted\"\nparams = { max_depth = 1 }\nparam_sets = [ { max_depth = 2 } ]\n",
+         "not both"},
+        {"duplicate-label", scene + technique + technique, "two techniques are labelled 'whitted'"},
+        {"unknown-scene", "[[scenes]]\nscene = \"atlantis\"\nresolutions = [[32, 18]]\n" + technique, "unknown scene 'atlantis'"},
+        {"unknown-path", scene + "[[scenes.views]]\npath = \"spiral\"\n" + technique, "has no camera path 'spiral' (paths: orbit)"},
+        {"frames-out-of-range", scene + "[[scenes.views]]\npath = \"orbit\"\nframes = [0, 500]\n" + technique, "path 'orbit' has 61 frames"},
+        {"tiny-resolution", "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[8, 8]]\n" + technique, "each side must be in [11, 16384]"},
+        {"no-techniques", scene, "an experiment needs at least one technique"},
+        {"no-scenes", technique, "an experiment needs at least one scene"},
+    };
+    std::vector<test::CliRun> runs;
+    for (const auto& c : cases) {
+        fs::path config = writeConfig(dir, c.text, c.name + ".toml");
+        runs.push_back({{"run", config.string(), "--out", (dir.path() / ("out-" + c.name)).string(), "--quiet"}, {}});
+    }
+    auto outcomes = test::runHybridlabAll(runs);
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        SCOPED_TRACE(cases[i].name);
+        EXPECT_EQ(outcomes[i].exitStatus, 2) << outcomes[i].err;
+        EXPECT_NE(outcomes[i].err.find(cases[i].message), std::string::npos) << outcomes[i].err;
+        EXPECT_NE(outcomes[i].err.find(cases[i].name + ".toml:"), std::string::npos) << outcomes[i].err;  // file and line
+        EXPECT_FALSE(fs::exists(dir.path() / ("out-" + cases[i].name)));
+    }
+}
+
+}  // namespace
+}  // namespace hybridlab

@@ -1,0 +1,145 @@
+// `hybridlab compare` through the real program: the numbers it prints and writes are the
+// library's, the maps have their legends, and bad input exits with status 2 writing nothing.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/image/image_io.h"
+#include "metrics/heatmap.h"
+#include "metrics/metrics.h"
+#include "tests/cli_runner.h"
+#include "tests/metric_test_images.h"
+#include "tests/test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+using test::CliRun;
+using test::runHybridlabAll;
+using test::TempDir;
+
+struct Files {
+    TempDir dir;
+    fs::path test = dir / "test.exr", reference = dir / "reference.exr", mask = dir / "mask.png";
+    fs::path small = dir / "small.exr", wrongMask = dir / "wrong-mask.png", emptyMask = dir / "empty-mask.png";
+    Image testImage, referenceImage, maskImage;
+
+    Files() {
+        const cv::Mat3f pattern = test::displayPattern(64, 48);
+        referenceImage = test::fromDisplay(pattern);
+        testImage = referenceImage;
+        for (int y = 10; y < 30; ++y) {
+            for (int x = 8; x < 40; ++x) testImage.at(x, y) *= 0.7f;
+        }
+        maskImage = Image(64, 48, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        for (int y = 0; y < 24; ++y) {
+            for (int x = 0; x < 32; ++x) maskImage.at(x, y) = glm::vec4(1.0f);
+        }
+        writeExr(test, testImage);
+        writeExr(reference, referenceImage);
+        writePng(mask, maskImage);
+        writeExr(small, Image(32, 24, glm::vec4(0.5f)));
+        writePng(wrongMask, Image(32, 24, glm::vec4(1.0f)));
+        writePng(emptyMask, Image(64, 48, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)));
+    }
+};
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+struct BadInputCase {
+    std::vector<std::string> args;
+    std::string fragment;  // of the one-line message
+};
+
+std::vector<BadInputCase> badInputCases(const Files& f) {
+    return {
+        {{(f.dir / "missing.exr").string(), f.reference.string()}, "missing.exr: image file not found"},
+        {{f.small.string(), f.reference.string()}, "small.exr is 32x24 but " + f.reference.string() + " is 64x48"},
+        {{f.test.string(), f.reference.string(), "--mask", f.wrongMask.string()}, "wrong-mask.png is 32x24 but the images are 64x48"},
+        {{f.test.string(), f.reference.string(), "--mask", f.emptyMask.string()}, "empty-mask.png: the mask selects no pixel"},
+        {{f.test.string(), f.reference.string(), "--ppd", "0"}, "--ppd"},
+    };
+}
+
+void expectReportFilesHoldTheLibrarysNumbers(const Files& f, const fs::path& out) {
+    // The JSON holds the library's numbers for the files as read (EXR: linear, as written).
+    const PixelMask mask = PixelMask::fromImage(readImage(f.mask));
+    const MetricReport expected = computeMetrics(readImage(f.test), readImage(f.reference), {}, &mask);
+    const nlohmann::json j = nlohmann::json::parse(readText(out / "metrics.json"));
+    EXPECT_EQ(j.at("width"), 64);
+    EXPECT_EQ(j.at("height"), 48);
+    EXPECT_EQ(j.at("settings").at("error_space"), "display");
+    EXPECT_EQ(j.at("whole").at("pixels"), 64 * 48);
+    EXPECT_DOUBLE_EQ(j.at("whole").at("ssim").get<double>(), expected.whole.ssim);
+    EXPECT_DOUBLE_EQ(j.at("whole").at("rmse").get<double>(), expected.whole.error.rmse);
+    EXPECT_DOUBLE_EQ(j.at("whole").at("psnr_db").get<double>(), expected.whole.error.psnr);
+    EXPECT_DOUBLE_EQ(j.at("whole").at("flip").at("mean").get<double>(), expected.whole.flip.mean);
+    EXPECT_DOUBLE_EQ(j.at("whole").at("flip").at("weighted_median").get<double>(), expected.whole.flip.weightedMedian);
+    EXPECT_EQ(j.at("masked").at("pixels"), 32 * 24);
+    EXPECT_DOUBLE_EQ(j.at("masked").at("flip").at("mean").get<double>(), expected.masked->flip.mean);
+    EXPECT_EQ(j.at("maps").at("flip").at("colormap"), "magma");
+
+    for (const char* name : {"diff.png", "ssim.png", "flip.png"}) {
+        SCOPED_TRACE(name);
+        const Image map = readImage(out / name);
+        EXPECT_EQ(map.width(), 64);
+        EXPECT_EQ(map.height(), 48 + legendHeight(64));
+    }
+    std::vector<std::string> written;
+    for (const auto& e : fs::directory_iterator(out)) written.push_back(e.path().filename().string());
+    std::sort(written.begin(), written.end());
+    EXPECT_EQ(written, (std::vector<std::string>{"diff.png", "flip.png", "metrics.json", "ssim.png"}));  // no temporary left
+}
+
+// One test, so that the program's start-up (~0.3 s) is paid by all the runs at once.
+TEST(CompareCommand, WritesTheMetricsAndMapsAndRejectsBadInputWritingNothing) {
+    Files f;
+    const fs::path out = f.dir / "out", badOut = f.dir / "bad-out";
+    std::vector<CliRun> runs = {
+        {{"compare", f.test.string(), f.reference.string(), "--mask", f.mask.string(), "--out", out.string()}, {}},
+        {{"compare", f.test.string(), f.reference.string(), "--linear", "--channels", "--ppd", "30"}, {}},
+    };
+    const std::vector<BadInputCase> bad = badInputCases(f);
+    for (const BadInputCase& c : bad) {
+        std::vector<std::string> args{"compare"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        args.insert(args.end(), {"--out", badOut.string()});
+        runs.push_back({args, {}});
+    }
+    const std::vector<CliResult> results = runHybridlabAll(runs);
+
+    const CliResult& r = results[0];
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    for (const char* row : {"SSIM", "RMSE", "PSNR (dB)", "FLIP mean", "FLIP weighted median", "FLIP weighted 1st quartile",
+                            "FLIP weighted 3rd quartile", "whole image", "mask"}) {
+        EXPECT_CONTAINS(r.out, row);
+    }
+    expectReportFilesHoldTheLibrarysNumbers(f, out);
+
+    const CliResult& options = results[1];
+    ASSERT_EQ(options.exitStatus, 0) << options.err;
+    EXPECT_CONTAINS(options.out, "SSIM on R, G, B (mean); RMSE and PSNR on linear values; FLIP at 30 pixels per degree");
+
+    for (std::size_t i = 0; i < bad.size(); ++i) {
+        SCOPED_TRACE(bad[i].fragment);
+        const CliResult& b = results[2 + i];
+        EXPECT_EQ(b.exitStatus, 2) << b.err;
+        EXPECT_EQ(b.out, "");
+        EXPECT_EQ(b.err.rfind("hybridlab: error: ", 0), 0u) << b.err;
+        EXPECT_CONTAINS(b.err, bad[i].fragment);
+    }
+    EXPECT_FALSE(fs::exists(badOut));
+}
+
+}  // namespace
+}  // namespace hybridlab
