@@ -1,6 +1,12 @@
 // The experiment runner end to end on built-in scenes at a small size: the run list, the
 // reference cache, resume after an interruption, shards and merge, and bad configs.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -175,6 +181,55 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     }
     EXPECT_GE(figures, 2u * (2 * 2 + 1));  // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path
     EXPECT_TRUE(fs::exists(report / "report.md"));
+}
+
+std::size_t recordCount(const fs::path& out) {
+    std::size_t n = 0;
+    if (fs::exists(out / "runs"))
+        for (const auto& e : fs::directory_iterator(out / "runs")) n += e.path().filename().string().front() != '.';
+    return n;
+}
+
+TEST(ExperimentRunner, KilledMidRunLeavesWholeFilesAndResumesToTheSameResults) {
+    TempDir dir;
+    std::string text = kConfig;
+    text.replace(text.find("repeats = 1"), 11, "repeats = 2");  // slower runs: room to kill mid-way
+    const fs::path configFile = writeConfig(dir, text);
+    const fs::path cache = dir.path() / "cache", killed = dir.path() / "killed";
+
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl(HYBRIDLAB_BIN, HYBRIDLAB_BIN, "run", configFile.c_str(), "--out", killed.c_str(), "--cache", cache.c_str(), "--quiet",
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    // Kill it (no chance to clean up) once a few runs are recorded.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (recordCount(killed) < 4 && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    const std::size_t before = recordCount(killed);
+    ASSERT_GE(before, 4u);
+    if (WIFEXITED(status)) GTEST_SKIP() << "the run finished before it could be killed";
+    // Every file it left is whole: the records and results parse, and hold the same runs.
+    for (const auto& e : fs::directory_iterator(killed / "runs")) {
+        if (e.path().filename().string().front() == '.') continue;  // an interrupted temporary, ignored by design
+        std::ifstream in(e.path());
+        EXPECT_NO_THROW(json::parse(in)) << e.path();
+    }
+    EXPECT_GE(results(killed).size() + 1, before);  // at most the run in progress is missing
+
+    // Resumed, and an uninterrupted run to compare with, through the same program (the program's
+    // hash is part of the reference cache key).
+    auto outcomes = test::runHybridlabAll(
+        {{{"run", configFile.string(), "--out", killed.string(), "--cache", cache.string(), "--resume", "--quiet"}, {}},
+         {{"run", configFile.string(), "--out", (dir.path() / "whole").string(), "--cache", cache.string(), "--quiet"}, {}}});
+    ASSERT_EQ(outcomes[0].exitStatus, 0) << outcomes[0].err;
+    ASSERT_EQ(outcomes[1].exitStatus, 0) << outcomes[1].err;
+    EXPECT_NE(outcomes[0].out.find(std::to_string(before) + " already done"), std::string::npos) << outcomes[0].out;
+    expectSameResults(dir.path() / "whole", killed);
 }
 
 TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
