@@ -245,6 +245,16 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
     EXPECT_EQ(runExperiment(c, options(dir.path() / "c", cache)).referencesRendered, 1u);
 }
 
+TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
+    // quick.toml needs no assets; paper.toml needs the paper scenes' models.
+    const fs::path configs = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "experiments" / "configs";
+    const ExperimentConfig quick = loadExperimentConfig(configs / "quick.toml");
+    EXPECT_GT(planRuns(quick).size(), 10u);
+    if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: paper.toml not checked";
+    const ExperimentConfig paper = loadExperimentConfig(configs / "paper.toml");
+    for (const auto& r : planRuns(paper)) EXPECT_EQ(std::make_pair(r.width, r.height), std::make_pair(1280, 720));
+}
+
 TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
     TempDir dir;
     const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 18]]\n";
