@@ -1,13 +1,12 @@
 #include "metrics/report_files.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <system_error>
 
+#include "common/core/atomic_file.h"
 #include "common/image/image_io.h"
 
 namespace hybridlab {
@@ -15,25 +14,6 @@ namespace hybridlab {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Writes `path` through `write` into a temporary name beside it (the extension last, so that
-// OpenImageIO picks the writer), then renames it into place, as writeImageAtomically does.
-void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-    const fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-    try {
-        write(tmp);
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
-    }
-}
 
 nlohmann::json numberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 

@@ -8,18 +8,15 @@
 
 namespace hybridlab {
 
-void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
     namespace fs = std::filesystem;
-    fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << contents;
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw std::runtime_error(path.string() + ": cannot write");
-        }
+    const fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
+    try {
+        write(tmp);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        throw;
     }
     std::error_code ec;
     fs::rename(tmp, path, ec);
@@ -27,6 +24,15 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& c
         fs::remove(tmp, ec);
         throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
     }
+}
+
+void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+    writeAtomically(path, [&](const std::filesystem::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << contents;
+        out.flush();
+        if (!out) throw std::runtime_error(path.string() + ": cannot write");
+    });
 }
 
 }  // namespace hybridlab

@@ -3,14 +3,13 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <system_error>
 #include <vector>
 
 #include <glm/common.hpp>
 
+#include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
 #include "common/image/color.h"
 
@@ -131,22 +130,10 @@ void writeImageAtomically(const fs::path& path, const Image& linear) {
     if (ext != ".exr" && ext != ".png") {
         throw InputError(path.string() + ": unsupported image extension '" + ext + "' (expected .exr or .png)");
     }
-    // A name of this process's own, with the extension last so that OpenImageIO picks the writer.
-    fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.stem().string() + ext);
-    try {
+    writeAtomically(path, [&](const fs::path& tmp) {
         if (ext == ".exr") writeExr(tmp, linear);
         else writeDisplayPng(tmp, linear);
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp);
-        throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
-    }
+    });
 }
 
 }  // namespace hybridlab

@@ -13,6 +13,7 @@
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/view_options.h"
 #include "techniques/stage_clock.h"
 #include "techniques/technique.h"
 
@@ -23,13 +24,8 @@ namespace fs = std::filesystem;
 namespace {
 
 struct RenderOptions {
-    std::string scene;
+    ViewOptions view;
     std::string technique = "whitted";
-    std::string cameraPath;
-    std::optional<int> frame;
-    std::optional<double> time;
-    int width = 1280;
-    int height = 720;
     std::string out;
     std::vector<std::string> params;
     int threads = 0;
@@ -52,8 +48,8 @@ void run(const RenderOptions& o) {
     std::vector<std::pair<std::string, ParamValue>> params;
     for (const auto& p : o.params) params.push_back(parseParamAssignment(p));
     auto technique = createTechnique(o.technique, params);
-    Scene scene = loadSceneFile(findSceneFile(o.scene));
-    View view = resolveView(scene, o.cameraPath, o.frame, o.time);
+    Scene scene = loadSceneFile(findSceneFile(o.view.scene));
+    View view = o.view.resolve(scene);
     if (!exrPath.parent_path().empty()) fs::create_directories(exrPath.parent_path());
 
     std::optional<tbb::global_control> threadLimit;
@@ -65,14 +61,14 @@ void run(const RenderOptions& o) {
     technique->prepare(context);
     prepClock.lap("prepare");
 
-    FrameRequest request{view.camera, view.time, o.width, o.height};
+    FrameRequest request{view.camera, view.time, o.view.width, o.view.height};
     FrameResult result = technique->render(context, request);
 
     writeImageAtomically(exrPath, result.image);
     writeImageAtomically(pngPath, result.image);
 
     std::printf("scene %s, technique %s, %dx%d, view %s, time %.4g s, %d threads\n", scene.name.c_str(), o.technique.c_str(),
-                o.width, o.height, view.label.c_str(), view.time, o.threads > 0 ? o.threads : tbb::info::default_concurrency());
+                o.view.width, o.view.height, view.label.c_str(), view.time, o.threads > 0 ? o.threads : tbb::info::default_concurrency());
     std::printf("%-22s %10.3f ms\n", "prepare", prep.stages[0].milliseconds);
     for (const auto& s : result.stages) std::printf("stage %-16s %10.3f ms\n", s.name.c_str(), s.milliseconds);
     std::printf("%-22s %10.3f ms\n", "frame", result.totalMilliseconds());
@@ -88,13 +84,8 @@ void run(const RenderOptions& o) {
 void addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     auto* cmd = app.add_subcommand("render", "Render one frame with one technique; writes a linear EXR and a display PNG");
-    cmd->add_option("--scene", o->scene, "Scene file, or the name of a built-in scene")->required();
+    o->view.addTo(cmd);
     cmd->add_option("--technique", o->technique, "Technique name (see `hybridlab techniques`)")->capture_default_str();
-    cmd->add_option("--camera-path", o->cameraPath, "Render from this camera path of the scene");
-    cmd->add_option("--frame", o->frame, "Frame number on the camera path");
-    cmd->add_option("--time", o->time, "Scene time in seconds (animation, and position on the camera path)");
-    cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();
-    cmd->add_option("--height", o->height, "Image height")->check(CLI::Range(1, 16384))->capture_default_str();
     cmd->add_option("--out", o->out, "Output image (.exr; a display .png is written beside it)")->required();
     cmd->add_option("--param", o->params, "Technique parameter key=value (repeatable)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
