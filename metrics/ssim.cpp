@@ -7,6 +7,7 @@
 
 #include "common/core/input_error.h"
 #include "metrics/metric_input.h"
+#include "metrics/parallel_tasks.h"
 
 namespace hybridlab {
 
@@ -37,19 +38,25 @@ cv::Mat1f ssimMap(const cv::Mat1d& test, const cv::Mat1d& reference) {
         throw InputError("SSIM needs images of at least " + std::to_string(window) + "x" + std::to_string(window) +
                          " pixels (its window), not " + std::to_string(test.cols) + "x" + std::to_string(test.rows));
     }
-    const cv::Mat1d muX = localMean(test), muY = localMean(reference);
-    const cv::Mat1d xx = localMean(test.mul(test)), yy = localMean(reference.mul(reference)), xy = localMean(test.mul(reference));
+    cv::Mat1d muX, muY, xx, yy, xy;
+    runInParallel({[&] { muX = localMean(test); },
+                   [&] { muY = localMean(reference); },
+                   [&] { xx = localMean(test.mul(test)); },
+                   [&] { yy = localMean(reference.mul(reference)); },
+                   [&] { xy = localMean(test.mul(reference)); }});
     cv::Mat1f map(test.rows, test.cols);
-    for (int y = 0; y < map.rows; ++y) {
-        for (int x = 0; x < map.cols; ++x) {
-            const double mx = muX(y, x), my = muY(y, x);
-            // Population moments under the window: E[X^2] - E[X]^2 (eqs. 14-16, weights sum to 1).
-            const double varX = xx(y, x) - mx * mx, varY = yy(y, x) - my * my, cov = xy(y, x) - mx * my;
-            // Eq. 13.
-            map(y, x) = static_cast<float>(((2.0 * mx * my + kC1) * (2.0 * cov + kC2)) /
-                                           ((mx * mx + my * my + kC1) * (varX + varY + kC2)));
+    cv::parallel_for_(cv::Range(0, map.rows), [&](const cv::Range& rows) {
+        for (int y = rows.start; y < rows.end; ++y) {
+            for (int x = 0; x < map.cols; ++x) {
+                const double mx = muX(y, x), my = muY(y, x);
+                // Population moments under the window: E[X^2] - E[X]^2 (eqs. 14-16, weights sum to 1).
+                const double varX = xx(y, x) - mx * mx, varY = yy(y, x) - my * my, cov = xy(y, x) - mx * my;
+                // Eq. 13.
+                map(y, x) = static_cast<float>(((2.0 * mx * my + kC1) * (2.0 * cov + kC2)) /
+                                               ((mx * mx + my * my + kC1) * (varX + varY + kC2)));
+            }
         }
-    }
+    });
     return map;
 }
 

@@ -1,4 +1,6 @@
 // The one place that lists the techniques. Adding a technique: one folder, one line here.
+#include "techniques/raster/raster_technique.h"
+#include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/technique.h"
 #include "techniques/whitted/whitted_technique.h"
 
@@ -7,6 +9,8 @@ namespace hybridlab {
 const std::vector<TechniqueInfo>& registeredTechniques() {
     static const std::vector<TechniqueInfo> registry = {
         WhittedTechnique::info(),
+        RasterTechnique::info(),
+        rtOnlyTechniqueInfo(),
     };
     return registry;
 }

@@ -7,14 +7,18 @@ height x width x 3, display sRGB in [0, 1], exactly the values the C++ metrics r
 NAME.ssim_map.npy (the C++ luma SSIM map, float32). For each pair this prints one JSON line with
 scikit-image's SSIM (on the Rec. 709 luma of the sRGB values, and per channel), the largest
 difference between scikit-image's SSIM map and the C++ one, and numpy's RMSE and scikit-image's
-PSNR of the R, G, B values.
+PSNR of the R, G, B values. Exits with status 3 when numpy or scikit-image is missing.
 """
 import json
 import pathlib
 import sys
 
-import numpy as np
-from skimage.metrics import peak_signal_noise_ratio, structural_similarity
+try:
+    import numpy as np
+    from skimage.metrics import peak_signal_noise_ratio, structural_similarity
+except ImportError as error:
+    print(f"metrics_reference.py: {error}", file=sys.stderr)
+    sys.exit(3)  # the test tries another python3, or skips
 
 
 def ssim(a, b, **kwargs):

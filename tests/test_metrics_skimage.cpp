@@ -3,16 +3,17 @@
 // by tests/metrics_reference.py on six image pairs this test writes: noise, blur, JPEG-like
 // blocking, brightness shift, contrast change, and a rendered pair. No reference number is
 // stored here; scikit-image computes them every time.
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <map>
-#include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -53,23 +54,32 @@ void writeNpy(const fs::path& path, const cv::Mat& values) {
     if (!out) throw std::runtime_error("cannot write " + path.string());
 }
 
-// A python3 that has scikit-image: Debian's (the set-up script installs python3-skimage for it),
-// or whichever python3 comes first on the PATH.
-std::string pythonWithScikitImage() {
-    for (const char* python : {"/usr/bin/python3", "python3"}) {
-        const std::string probe = std::string(python) + " -c 'import numpy, skimage' >/dev/null 2>&1";
-        if (std::system(probe.c_str()) == 0) return python;
-    }
-    return "";
+struct CommandOutput {
+    int exitStatus = -1;
+    std::string out;
+};
+
+CommandOutput runAndCapture(const std::string& command) {
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) throw std::runtime_error("cannot run " + command);
+    CommandOutput result;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.out.append(buffer.data(), n);
+    const int status = ::pclose(pipe);
+    result.exitStatus = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
 }
 
-std::string runAndCapture(const std::string& command) {
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-    if (!pipe) throw std::runtime_error("cannot run " + command);
-    std::string out;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe.get())) out.append(buffer.data(), n);
-    return out;
+// Runs the reference script with a python3 that has scikit-image: Debian's (the set-up script
+// installs python3-skimage for it), else whichever python3 comes first on the PATH. Nothing when
+// neither has it.
+std::optional<std::string> referenceNumbers(const fs::path& script, const fs::path& dir) {
+    for (const char* python : {"/usr/bin/python3", "python3"}) {
+        const CommandOutput r = runAndCapture(std::string(python) + " '" + script.string() + "' '" + dir.string() + "' 2>/dev/null");
+        if (r.exitStatus == 0) return r.out;
+        if (r.exitStatus != 3 && r.exitStatus != 127) throw std::runtime_error(script.string() + " failed:\n" + r.out);
+    }
+    return std::nullopt;
 }
 
 struct ImagePair {
@@ -134,11 +144,6 @@ std::vector<ImagePair> imagePairs() {
 }
 
 TEST(MetricsAgainstScikitImage, SsimRmseAndPsnrAgreeOnSixPairs) {
-    const std::string python = pythonWithScikitImage();
-    if (python.empty()) {
-        GTEST_SKIP() << "no python3 with scikit-image and numpy (Debian: apt-get install python3-skimage python3-numpy; "
-                        "setup.sh installs them)";
-    }
     test::TempDir dir;
     struct Ours {
         double ssimLuma, ssimRgb, rmse, psnr;
@@ -165,7 +170,12 @@ TEST(MetricsAgainstScikitImage, SsimRmseAndPsnrAgreeOnSixPairs) {
     }
 
     const fs::path script = test::fixturesDir().parent_path() / "metrics_reference.py";
-    const std::string output = runAndCapture(python + " '" + script.string() + "' '" + dir.path().string() + "' 2>&1");
+    const std::optional<std::string> numbers = referenceNumbers(script, dir.path());
+    if (!numbers) {
+        GTEST_SKIP() << "no python3 with scikit-image and numpy (Debian: apt-get install python3-skimage python3-numpy; "
+                        "setup.sh installs them)";
+    }
+    const std::string& output = *numbers;
     std::istringstream lines(output);
     std::size_t compared = 0;
     double worstSsim = 0.0, worstMap = 0.0, worstRmse = 0.0, worstPsnr = 0.0;

@@ -202,6 +202,24 @@ TEST(Whitted, RendersAreByteIdenticalWhateverTheThreadCount) {
     }
 }
 
+TEST(RtOnly, IsWhittedWithWalewskisImportanceCutoff) {
+    // Same code, other default: with the cut-off at 0 rt_only renders the reference exactly.
+    Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
+    auto render = [&](const std::string& name, std::vector<std::pair<std::string, ParamValue>> params) {
+        SceneContext context(scene);
+        auto t = createTechnique(name, params);
+        t->prepare(context);
+        return t->render(context, {scene.camera, 0.0, 96, 54});
+    };
+    FrameResult reference = render("whitted", {});
+    FrameResult rtOnly = render("rt_only", {});
+    FrameResult uncut = render("rt_only", {{"importance_cutoff", 0.0}});
+    EXPECT_TRUE(uncut.image == reference.image);
+    EXPECT_EQ(uncut.counters, reference.counters);
+    EXPECT_LT(rtOnly.counters.at("rays_reflection") + rtOnly.counters.at("rays_refraction"),
+              reference.counters.at("rays_reflection") + reference.counters.at("rays_refraction"));
+}
+
 TEST(Whitted, ParametersAreCheckedAgainstTheirDeclarations) {
     EXPECT_NO_THROW(createTechnique("whitted", {{"max_depth", std::string("3")}}));
     EXPECT_THROW(createTechnique("whitted", {{"max_depth", std::string("-1")}}), InputError);

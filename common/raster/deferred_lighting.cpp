@@ -13,7 +13,6 @@ namespace hybridlab {
 namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr std::uint32_t kShadows = 1u, kEnvironmentMapping = 2u, kWalewskiBlend = 4u;
 
 // std140 twin of FrameUniforms in shaders/deferred_lighting.frag.
 struct FrameUniforms {
@@ -37,19 +36,13 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
     device.requireFormat(kOutputFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT, "the lighting pass's output (P-buffer)");
     const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
     std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
-                                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, fs, nullptr},
+                                                          {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
                                                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, fs, nullptr},
                                                           {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr},
                                                           {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr}};
     for (std::uint32_t i = 0; i < GBufferPass::kColorTargets; ++i) bindings.push_back({5 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr});
     descriptors_ = DescriptorSet(device, bindings);
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
-    GraphicsPipelineDesc d;
-    d.vertexShader = "fullscreen.vert";
-    d.fragmentShader = "deferred_lighting.frag";
-    d.colorFormats = {kOutputFormat};
-    d.layout = layout_;
-    pipeline_ = createGraphicsPipeline(device, d);
 
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
@@ -68,7 +61,8 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
         data.push_back({glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
                         glm::ivec4(shadows.firstLayer(i), shadows.layerCount(i), 0, 0)});
     }
-    lights_ = GpuBuffer::withData(device, data.data(), data.size() * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    data.resize(72);
+    lights_ = GpuBuffer::withData(device, data.data(), data.size() * sizeof(LightData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }
 
 void DeferredLighting::resize(std::uint32_t width, std::uint32_t height) {
@@ -92,18 +86,15 @@ void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const Li
     u.cameraUp = glm::vec4(camera.up() * halfHeight, 0.0f);
     u.cameraForward = glm::vec4(camera.forward(), 0.0f);
     u.sceneAmbient = glm::vec4(scene.ambient, scene.ambientIor);
-    u.skyColor = glm::vec4(scene.sky.color, scene.sky.hasCubeMap() ? 1.0f : 0.0f);
-    u.counts = glm::uvec4(static_cast<std::uint32_t>(scene.lights.size()),
-                          (options.shadows ? kShadows : 0u) | (options.environmentMapping ? kEnvironmentMapping : 0u) |
-                              (options.walewskiBlend ? kWalewskiBlend : 0u),
-                          width, height);
+    u.skyColor = glm::vec4(scene.sky.color, 0.0f);
+    u.counts = glm::uvec4(static_cast<std::uint32_t>(scene.lights.size()), 0u, width, height);
     u.shadowParams = glm::vec4(static_cast<float>(shadowSettings.pcfRadius), shadowSettings.normalOffsetTexels, 0.0f, 0.0f);
     uniforms_.write(&u, sizeof u);
 
     // Rewritten every frame: the G-buffer and shadow images are recreated when their sizes change
     // (the previous frame has completed, so the set is not in use).
     descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.buffer());
-    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.buffer());
+    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, lights_.buffer());
     descriptors_.writeBuffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, shadows_.layerBuffer());
     descriptors_.writeImages(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {shadows_.depthArray()});
     descriptors_.writeImages(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {scene_.textures().sky()});
@@ -123,7 +114,19 @@ void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const Li
     ri.colorAttachmentCount = 1;
     ri.pColorAttachments = &color;
     vkCmdBeginRendering(cb, &ri);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
+    const std::array<std::uint32_t, 4> variant = {options.shadows, options.environmentMapping, options.walewskiBlend,
+                                                  scene.sky.hasCubeMap()};
+    const std::size_t key = variant[0] | variant[1] << 1 | variant[2] << 2 | variant[3] << 3;
+    if (!pipelines_[key]) {
+        GraphicsPipelineDesc d;
+        d.vertexShader = "fullscreen.vert";
+        d.fragmentShader = "deferred_lighting.frag";
+        d.fragmentConstants.assign(variant.begin(), variant.end());
+        d.colorFormats = {kOutputFormat};
+        d.layout = layout_;
+        pipelines_[key] = createGraphicsPipeline(scene_.device(), d);
+    }
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[key]);
     setViewport(cb, width, height);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set, 0, nullptr);

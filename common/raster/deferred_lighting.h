@@ -3,6 +3,8 @@
 // the shading model's local term from the G-buffer (shaders/deferred_lighting.frag, the GLSL twin
 // of common/raytrace/shading) into an RGBA32F image, Walewski's P-buffer; the sky where nothing
 // was hit; optionally shadow-map visibility, and environment-mapped reflection and refraction.
+#include <array>
+
 #include "common/image/image.h"
 #include "common/raster/gbuffer_pass.h"
 #include "common/raster/shadow_maps.h"
@@ -31,7 +33,7 @@ private:
     const ShadowMaps& shadows_;
     DescriptorSet descriptors_;
     UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    std::array<UniquePipeline, 16> pipelines_;  // variants by option bits, created at first use
     UniqueSampler nearest_;
     GpuBuffer uniforms_, lights_;
     GpuImage output_;

@@ -23,7 +23,7 @@ enum GBufferTarget : std::uint32_t {
     kGBufferSpecular = 1u << 5,  // RGBA16F: specular colour; w the Blinn-Phong exponent
     kGBufferOptical = 1u << 6,   // RGBA16F: reflectivity, IOR, opacity, fresnel (1 or 0)
     kGBufferObjectId = 1u << 7,  // R32_UINT: object index + 1; 0 where the sky shows
-    kGBufferDepth = 1u << 8,     // D32_SFLOAT: reverse-Z depth (near 1, far and sky 0)
+    kGBufferDepth = 1u << 8,     // 32-bit float reverse-Z depth (near 1, far and sky 0)
 };
 using GBufferTargets = std::uint32_t;
 inline constexpr GBufferTargets kGBufferMaterial =

@@ -22,7 +22,9 @@ constexpr std::array<VkFormat, GBufferPass::kColorTargets> kFormats = {
     VK_FORMAT_R16G16B16A16_SFLOAT,  // optical
     VK_FORMAT_R32_UINT,             // object id
 };
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// 32-bit float reverse-Z depth (Walewski 2019 §3.1, Table 2); the stencil serves the visible-pixel
+// queries only.
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT_S8_UINT;
 constexpr std::array<const char*, GBufferPass::kColorTargets> kNames = {"position", "normal", "emission", "ambient",
                                                                         "diffuse", "specular", "optical", "object id"};
 
@@ -67,25 +69,39 @@ GBufferPass::GBufferPass(const GpuScene& scene) : scene_(scene) {
     }
     device.requireFormat(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "the G-buffer's reverse-Z depth buffer");
     layout_ = createPipelineLayout(device, {scene.descriptors().layout(), scene.materialTextures().layout()}, sizeof(DrawConstants));
+    // One vertex stage for the pre-pass, the G-buffer and the visible-pixel pass: its gl_Position
+    // is invariant, so the depths repeat exactly and EQUAL tests are exact.
     GraphicsPipelineDesc d;
     d.vertexShader = "gbuffer.vert";
-    d.fragmentShader = "gbuffer.frag";
     d.vertexBindings = GpuScene::vertexBindings();
     d.vertexAttributes = GpuScene::vertexAttributes(false);
-    d.colorFormats.assign(kFormats.begin(), kFormats.end());
     d.depthFormat = kDepthFormat;
+    d.stencilFormat = kDepthFormat;
     d.depthTest = true;
+    d.layout = layout_;
     d.depthWrite = true;
     d.depthCompare = VK_COMPARE_OP_GREATER;
-    d.layout = layout_;
-    pipeline_ = createGraphicsPipeline(device, d);
+    prepassPipeline_ = createGraphicsPipeline(device, d);
 
-    // The same vertex stage (its gl_Position is invariant), so depths repeat exactly.
-    d.fragmentShader.clear();
-    d.colorFormats.clear();
+    // Coincident fragments (Sponza has coincident faces) all pass EQUAL; the stencil lets the first
+    // drawn through and no other, in the G-buffer as in the visible-pixel queries, so that both
+    // give a pixel to the same object.
     d.depthWrite = false;
     d.depthCompare = VK_COMPARE_OP_EQUAL;
+    d.stencilPassOnce = true;
     queryPipeline_ = createGraphicsPipeline(device, d);
+
+    d.fragmentShader = "gbuffer.frag";
+    d.colorFormats.assign(kFormats.begin(), kFormats.end());
+    for (int v = 0; v < 4; ++v) {
+        d.fragmentConstants = {v & 1 ? 1u : 0u, v & 2 ? 1u : 0u};
+        pipelines_[v] = createGraphicsPipeline(device, d);
+    }
+    for (const MeshDraw& draw : scene.draws()) {
+        const Material& m = scene.scene().materials[draw.material];
+        drawVariant_.push_back((m.diffuseTexture != kNoTexture ? 1 : 0) |
+                               (m.normalTexture != kNoTexture && (draw.flags & kHasTangentSpace) ? 2 : 0));
+    }
 }
 
 void GBufferPass::resize(std::uint32_t width, std::uint32_t height) {
@@ -107,9 +123,34 @@ std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     }
-    transitionImage(cb, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+    transitionImage(cb, depth_.image(), depth_.aspect(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+    const Frustum frustum(viewProj);
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: the far plane; stencil 0
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {width_, height_}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &depth;
+    ri.pStencilAttachment = &depth;
+    vkCmdBeginRendering(cb, &ri);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, prepassPipeline_);
+    setViewport(cb, width_, height_);
+    scene_.bind(cb, layout_);
+    for (std::size_t d = 0; d < scene_.draws().size(); ++d)
+        if (frustum.intersects(scene_.worldBounds(d))) scene_.recordDraw(cb, layout_, viewProj, d, false);
+    vkCmdEndRendering(cb);
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
+                         nullptr);
 
     std::array<VkRenderingAttachmentInfo, kColorTargets> colors{};
     for (int i = 0; i < kColorTargets; ++i) {
@@ -120,23 +161,23 @@ std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
         colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         colors[i].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // object id 0: the sky
     }
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depth_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: the far plane
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {width_, height_}};
-    ri.layerCount = 1;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     ri.colorAttachmentCount = kColorTargets;
     ri.pColorAttachments = colors.data();
-    ri.pDepthAttachment = &depth;
     vkCmdBeginRendering(cb, &ri);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
     setViewport(cb, width_, height_);
-    scene_.bind(cb, layout_);
-    const std::size_t draws = scene_.recordDraws(cb, layout_, viewProj, GpuScene::DrawSet::All, true);
+    // In object order, as the visible-pixel pass.
+    std::size_t draws = 0;
+    int bound = -1;
+    for (std::size_t d = 0; d < scene_.draws().size(); ++d) {
+        if (!frustum.intersects(scene_.worldBounds(d))) continue;
+        if (drawVariant_[d] != bound) {
+            bound = drawVariant_[d];
+            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_[bound]);
+        }
+        scene_.recordDraw(cb, layout_, viewProj, d, true);
+        ++draws;
+    }
     vkCmdEndRendering(cb);
     return draws;
 }
@@ -146,18 +187,22 @@ void GBufferPass::recordVisiblePixelQueries(VkCommandBuffer cb, const glm::mat4&
     vkCmdResetQueryPool(cb, queries, 0, objects);
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
                          nullptr);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingAttachmentInfo stencil = depth;  // the G-buffer pass marked its pixels: start from 0 again
+    stencil.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    stencil.clearValue.depthStencil = {0.0f, 0};
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     ri.renderArea = {{0, 0}, {width_, height_}};
     ri.layerCount = 1;
     ri.pDepthAttachment = &depth;
+    ri.pStencilAttachment = &stencil;
     vkCmdBeginRendering(cb, &ri);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, queryPipeline_);
     setViewport(cb, width_, height_);
@@ -180,7 +225,7 @@ void GBufferPass::recordFinish(VkCommandBuffer cb) {
                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
     }
-    transitionImage(cb, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+    transitionImage(cb, depth_.image(), depth_.aspect(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_TRANSFER_READ_BIT);
 }
@@ -195,7 +240,7 @@ void GBufferPass::recordReadback(VkCommandBuffer cb, GBufferTargets targets) {
         if (!readback_[i].valid())
             readback_[i] = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
         VkBufferImageCopy copy{};
-        copy.imageSubresource = {image.aspect(), 0, 0, 1};
+        copy.imageSubresource = {isDepth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT) : image.aspect(), 0, 0, 1};
         copy.imageExtent = {width_, height_, 1};
         vkCmdCopyImageToBuffer(cb, image.image(), VK_IMAGE_LAYOUT_GENERAL, readback_[i].buffer(), 1, &copy);
     }

@@ -2,7 +2,9 @@
 // The G-buffer pass (Walewski 2019 §3.1, Table 2): every object drawn once into eight render
 // targets and a 32-bit float reverse-Z depth buffer (Upchurch & Desbrun; cleared to 0, depth test
 // GREATER), sampling at pixel centres with the camera's projection, so that each texel holds the
-// surface the reference's primary ray through that pixel centre hits. Also the depth-equal pass
+// surface the reference's primary ray through that pixel centre hits. A depth-only pre-pass comes
+// first, so that the material shader runs once per pixel (depth test EQUAL) however deep the
+// overdraw: on lavapipe the shader, not the rasterization, is what costs. Also the depth-equal pass
 // with one precise occlusion query per object (Walewski 2019 Listing 6), and the read-back of the
 // targets a technique asks for.
 #include <array>
@@ -44,7 +46,10 @@ public:
 private:
     const GpuScene& scene_;
     UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    // Variants by the material's textures: bit 0 diffuse texture, bit 1 normal map.
+    std::array<UniquePipeline, 4> pipelines_;
+    std::vector<int> drawVariant_;  // per GpuScene draw
+    UniquePipeline prepassPipeline_;  // depth only
     UniquePipeline queryPipeline_;
     std::uint32_t width_ = 0, height_ = 0;
     std::array<GpuImage, kColorTargets> color_;

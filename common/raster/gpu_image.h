@@ -25,7 +25,7 @@ public:
     VkImage image() const { return image_; }
     VkImageView view() const { return view_; }
     const ImageDesc& desc() const { return desc_; }
-    VkImageAspectFlags aspect() const { return aspect_; }
+    VkImageAspectFlags aspect() const { return aspect_; }  // every aspect (depth and stencil for a combined format)
     bool valid() const { return static_cast<bool>(image_); }
 
     // A 2D view of one layer (render targets of layered images).
@@ -41,6 +41,7 @@ private:
 };
 
 bool isDepthFormat(VkFormat format);
+bool hasStencil(VkFormat format);
 
 // One image memory barrier with a layout transition, over the given mip levels and layers.
 void transitionImage(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,

@@ -162,12 +162,12 @@ void GpuScene::recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm
     vkCmdDrawIndexed(cb, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
 }
 
-std::size_t GpuScene::recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, DrawSet set,
-                                  bool textures) const {
+std::size_t GpuScene::recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, bool textures,
+                                  const std::function<bool(const MeshDraw&)>& include) const {
     const Frustum frustum(viewProj);
     std::size_t n = 0;
     for (std::size_t i = 0; i < draws_.size(); ++i) {
-        if (set == DrawSet::ShadowCasters && !draws_[i].castsShadow) continue;
+        if (include && !include(draws_[i])) continue;
         if (!frustum.intersects(worldBounds_[i])) continue;
         recordDraw(cb, layout, viewProj, i, textures);
         ++n;

@@ -3,6 +3,7 @@
 // the textures (SceneTextures), and the objects' matrices at the current time (re-written when the
 // time changes). The geometry passes (G-buffer, shadow maps, visible pixels) draw through it, one
 // draw per (object, mesh), culled against the pass's frustum.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -64,11 +65,12 @@ public:
 
     // Binds the vertex and index buffers and descriptor set 0 of `layout`.
     void bind(VkCommandBuffer cb, VkPipelineLayout layout) const;
-    enum class DrawSet { All, ShadowCasters };
     // One draw with its push constants, and its material's textures as set 1 when `textures`.
     void recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, std::size_t draw, bool textures) const;
-    // Every draw of `set` that meets the frustum of `viewProj`; returns how many.
-    std::size_t recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, DrawSet set, bool textures) const;
+    // Every draw that `include` accepts (all without it) and that meets the frustum of `viewProj`;
+    // returns how many.
+    std::size_t recordDraws(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, bool textures,
+                            const std::function<bool(const MeshDraw&)>& include = {}) const;
 
     // A mesh goes into shadow maps when its material stops more than half of the light: shadow
     // maps are binary, so the occluder's transmittance (occluderTransmittance(), the shadow rule of

@@ -91,10 +91,14 @@ UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const Graphics
     s.module = vs;
     s.pName = "main";
     stages.push_back(s);
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::uint32_t i = 0; i < desc.fragmentConstants.size(); ++i) entries.push_back({i, 4 * i, 4});
+    const VkSpecializationInfo spec{static_cast<std::uint32_t>(entries.size()), entries.data(), 4 * entries.size(), desc.fragmentConstants.data()};
     if (!desc.fragmentShader.empty()) {
         fs = createShaderModule(device, desc.fragmentShader);
         s.stage = VK_SHADER_STAGE_FRAGMENT_BIT;
         s.module = fs;
+        s.pSpecializationInfo = entries.empty() ? nullptr : &spec;
         stages.push_back(s);
     }
 
@@ -120,6 +124,11 @@ UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const Graphics
     ds.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
     ds.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
     ds.depthCompareOp = desc.depthCompare;
+    if (desc.stencilPassOnce) {
+        ds.stencilTestEnable = VK_TRUE;
+        ds.front = {VK_STENCIL_OP_KEEP, VK_STENCIL_OP_INCREMENT_AND_CLAMP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL, 0xFF, 0xFF, 0};
+        ds.back = ds.front;
+    }
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
     for (auto& b : blends) b.colorWriteMask = 0xF;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -135,6 +144,7 @@ UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const Graphics
     rendering.colorAttachmentCount = static_cast<std::uint32_t>(desc.colorFormats.size());
     rendering.pColorAttachmentFormats = desc.colorFormats.data();
     rendering.depthAttachmentFormat = desc.depthFormat;
+    rendering.stencilAttachmentFormat = desc.stencilFormat;
 
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
     ci.stageCount = static_cast<std::uint32_t>(stages.size());

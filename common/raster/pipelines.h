@@ -40,10 +40,16 @@ UniquePipelineLayout createPipelineLayout(const VulkanDevice& device, const std:
 struct GraphicsPipelineDesc {
     std::string vertexShader;
     std::string fragmentShader;  // empty: depth only
+    // Specialization constants of the fragment stage: constant_id i gets value i (bools as 0 or 1).
+    // Lavapipe runs both sides of every branch, so features a pass does not use are compiled out.
+    std::vector<std::uint32_t> fragmentConstants;
     std::vector<VkVertexInputBindingDescription> vertexBindings;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkFormat stencilFormat = VK_FORMAT_UNDEFINED;
+    // Stencil test "equal 0, then increment": each pixel passes once, however many fragments reach it.
+    bool stencilPassOnce = false;
     bool depthTest = false;
     bool depthWrite = false;
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z: nearer is greater

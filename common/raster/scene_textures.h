@@ -1,7 +1,7 @@
 #pragma once
 // A scene's textures on the GPU, uploaded once per scene: material textures with full mip chains
-// (sampled trilinearly with anisotropic filtering; sRGB ones as *_SRGB images, so the sampler
-// decodes to linear before it filters), and the sky's cube faces as a float array image that the
+// (sampled trilinearly with anisotropic filtering where the device does it well; sRGB ones as
+// *_SRGB images, so the sampler decodes to linear before it filters), and the sky's cube faces as a float array image that the
 // lighting pass reads exactly as skyRadiance() does.
 #include <vector>
 

@@ -173,7 +173,7 @@ bool ShadowMaps::record(VkCommandBuffer cb, const ShadowSettings& settings, bool
         // Reverse-Z: a negative bias pushes the stored depth away from the light.
         vkCmdSetDepthBias(cb, -1.0f, 0.0f, -settings.slopeBias);
         scene_.bind(cb, layout_);
-        scene_.recordDraws(cb, layout_, layers_[i].viewProj, GpuScene::DrawSet::ShadowCasters, false);
+        scene_.recordDraws(cb, layout_, layers_[i].viewProj, false, [](const MeshDraw& d) { return d.castsShadow; });
         vkCmdEndRendering(cb);
     }
     transitionImage(cb, image_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,

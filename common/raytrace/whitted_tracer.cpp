@@ -39,7 +39,7 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
         LightSample ls = sampleLight(light, cones_[i], hit.position);
         glm::vec3 direct = blinnPhong(sp, tex, toViewer, ls);
         if (direct == glm::vec3(0.0f)) continue;  // facing away, or outside a spot cone: no ray needed
-        if (light.castsShadows) {
+        if (light.castsShadows && settings_.shadows) {
             ++stats.shadow;
             direct *= rays_.transmittance(shadowOrigin, ls.toLight, ls.distance);
         }

@@ -17,6 +17,7 @@ struct WhittedSettings {
                                    // traced and the surface's local colour stands in, as at the depth
                                    // limit (0: the full ray tree)
     BlendRule blend = BlendRule::Design;
+    bool shadows = true;           // shadow rays; off: every light unshadowed (to compare with raster without shadows)
 };
 
 class WhittedTracer {

@@ -10,6 +10,7 @@ void addSceneInfoCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addTechniquesCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addBenchRasterCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 void addExportPovCommand(CLI::App& app);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/core/input_error.h"
+#include "common/raster/vulkan_error.h"
 #include "experiments/cli/commands.h"
 
 namespace {
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addRenderCommand(app);
     hybridlab::cli::addTechniquesCommand(app);
     hybridlab::cli::addBenchCommand(app);
+    hybridlab::cli::addBenchRasterCommand(app);
     hybridlab::cli::addRunCommand(app);
     hybridlab::cli::addReportCommand(app);
     hybridlab::cli::addExportPovCommand(app);
@@ -48,6 +50,10 @@ int main(int argc, char** argv) {
     } catch (const hybridlab::InputError& e) {
         std::fprintf(stderr, "hybridlab: error: %s\n", e.what());
         return 2;
+    } catch (const hybridlab::VulkanError& e) {
+        // No usable Vulkan device, a missing format, out of memory: the machine, not the program.
+        std::fprintf(stderr, "hybridlab: error: %s\n", e.what());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "hybridlab: internal error: %s\n", e.what());
         return 1;

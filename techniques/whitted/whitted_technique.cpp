@@ -8,24 +8,29 @@
 
 namespace hybridlab {
 
+std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportanceCutoff) {
+    return {
+        ParamSpec::integer("max_depth", 10, 0, 64, "secondary bounces before the local colour is returned"),
+        ParamSpec::real("importance_cutoff", defaultImportanceCutoff, 0.0, 1.0,
+                        "do not trace secondary rays whose weight in the pixel is below this (0: full ray tree)"),
+        ParamSpec::integer("supersample", 1, 1, 16, "n x n samples per pixel for display images (metrics use 1)"),
+        ParamSpec::choice("blend", "design", {"design", "walewski2019"},
+                          "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+        ParamSpec::boolean("shadows", true, "trace shadow rays (false: every light unshadowed, to compare with raster shadows off)"),
+    };
+}
+
 TechniqueInfo WhittedTechnique::info() {
     return {"whitted",
             "Reference: full recursive Whitted ray tracing (Embree), hard shadows, reflection and refraction to depth 10",
-            {
-                ParamSpec::integer("max_depth", 10, 0, 64, "secondary bounces before the local colour is returned"),
-                ParamSpec::real("importance_cutoff", 0.0, 0.0, 1.0,
-                                "do not trace secondary rays whose weight in the pixel is below this (0: full ray tree)"),
-                ParamSpec::integer("supersample", 1, 1, 16, "n x n samples per pixel for display images (metrics use 1)"),
-                ParamSpec::choice("blend", "design", {"design", "walewski2019"},
-                                  "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
-            },
-            [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
+            parameterSpecs(0.0), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
 }
 
 WhittedTechnique::WhittedTechnique(const ParameterSet& p) {
     settings_.maxDepth = static_cast<int>(p.getInt("max_depth"));
     settings_.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
     settings_.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+    settings_.shadows = p.getBool("shadows");
     supersample_ = static_cast<int>(p.getInt("supersample"));
 }
 

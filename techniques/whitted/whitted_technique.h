@@ -10,6 +10,8 @@ namespace hybridlab {
 class WhittedTechnique : public Technique {
 public:
     static TechniqueInfo info();
+    // The declared parameters, with the importance cut-off's default (0: the full ray tree).
+    static std::vector<ParamSpec> parameterSpecs(double defaultImportanceCutoff);
     explicit WhittedTechnique(const ParameterSet& params);
 
     void prepare(SceneContext& context) override;

@@ -8,9 +8,12 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shading.glsl"
 
-const uint kShadows = 1u;
-const uint kEnvironmentMapping = 2u;
-const uint kWalewskiBlend = 4u;
+// Pipeline variants (lavapipe runs both sides of every branch, so what a frame does not use is
+// compiled out rather than skipped).
+layout(constant_id = 0) const bool kShadows = false;             // shadow-map visibility
+layout(constant_id = 1) const bool kEnvironmentMapping = false;  // sky in the reflected and refracted directions
+layout(constant_id = 2) const bool kWalewskiBlend = false;       // BlendRule::Walewski2019
+layout(constant_id = 3) const bool kSkyCubeMap = false;          // the sky is a cube map, not a colour
 
 layout(std140, set = 0, binding = 0) uniform FrameUniforms {
     vec4 cameraPosition;  // xyz; w 1 perspective, 0 orthographic
@@ -18,8 +21,8 @@ layout(std140, set = 0, binding = 0) uniform FrameUniforms {
     vec4 cameraUp;        // up * tan(fovY / 2) or * half height
     vec4 cameraForward;
     vec4 sceneAmbient;    // rgb; a = ambient IOR
-    vec4 skyColor;        // rgb; a = 1 when the sky is a cube map
-    uvec4 counts;         // x lights, y flags (k*), z width, w height
+    vec4 skyColor;        // rgb
+    uvec4 counts;         // x lights, z width, w height
     vec4 shadowParams;    // x PCF radius (texels), y normal offset (texels)
 } frame;
 
@@ -28,7 +31,7 @@ struct ShadowLayer {
     vec4 params;    // x world size of a texel (at unit distance when y = 1: perspective)
 };
 
-layout(std430, set = 0, binding = 1) readonly buffer Lights { LightData lights[]; };
+layout(std140, set = 0, binding = 1) uniform Lights { LightData lights[72]; };
 layout(std430, set = 0, binding = 2) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
 layout(set = 0, binding = 3) uniform sampler2DArrayShadow shadowMaps;
 layout(set = 0, binding = 4) uniform sampler2DArray skyFaces;  // RGBA32F, read with texelFetch
@@ -61,7 +64,7 @@ vec3 sampleFaceBilinearWrap(int face, float u, float v) {
 
 // Twin of skyRadiance(): the cube map, or the constant colour.
 vec3 skyRadiance(vec3 d) {
-    if (frame.skyColor.a == 0.0) return frame.skyColor.rgb;
+    if (!kSkyCubeMap) return frame.skyColor.rgb;
     int face;
     vec2 uv;
     skyFaceCoordinates(d, face, uv);
@@ -135,11 +138,11 @@ void main() {
         LightSample ls = sampleLight(lights[i], p);
         vec3 direct = blinnPhong(n, diffuse, specular.rgb, specular.a, toViewer, ls);
         if (direct == vec3(0.0)) continue;
-        if ((frame.counts.y & kShadows) != 0u) direct *= shadowVisibility(lights[i], p, n);
+        //SHADOWOFF
         c += direct;
     }
 
-    if ((frame.counts.y & kEnvironmentMapping) != 0u) {
+    if (kEnvironmentMapping) {
         // WhittedTracer::shade with the sky standing in for the reflected and refracted rays.
         vec4 optical = texelFetch(gOptical, pixel, 0);
         float orr = 1.0 - optical.z;
@@ -155,7 +158,7 @@ void main() {
             if (weightM > 0.0) M = skyRadiance(reflectDirection(incoming, n));
             if (tir) R = M;
             else if (weightR > 0.0) R = skyRadiance(refracted);
-            c = compose(om, orr, M, R, c, (frame.counts.y & kWalewskiBlend) != 0u);
+            c = compose(om, orr, M, R, c, kWalewskiBlend);
         }
     }
     outColor = vec4(c, 1.0);

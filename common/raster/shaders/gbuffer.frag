@@ -6,6 +6,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "scene_data.glsl"
 
+// Pipeline variants (lavapipe runs both sides of a branch, so a texture lookup that a material
+// does not need is compiled out rather than skipped).
+layout(constant_id = 0) const bool kDiffuseTexture = true;  // the material has a diffuse texture
+layout(constant_id = 1) const bool kNormalMap = true;       // it has a normal map and the mesh uvs and tangents
+
 layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;  // the draw's material's (a white placeholder without one)
 layout(set = 1, binding = 1) uniform sampler2D normalTexture;
 
@@ -26,15 +31,20 @@ layout(location = 7) out uint outObjectId;  // object index + 1; 0 is the sky
 void main() {
     MaterialData m = materials[draw.material];
     vec2 tc = uv * m.tilingOffset.xy + m.tilingOffset.zw;
+    // Texture gradients from the interpolated uv, scaled by the tiling: on lavapipe (Mesa 22.3) a
+    // quad's helper lanes read 0 from storage buffers, so implicit derivatives of `tc` (which uses
+    // the material) are spoilt where a quad straddles two triangles, and the lookup falls to the
+    // coarsest mip level (grey dots along triangle edges).
+    vec2 dtcdx = dFdx(uv) * m.tilingOffset.xy, dtcdy = dFdy(uv) * m.tilingOffset.xy;
     vec3 n = normalize(worldNormal);
-    if (m.textures.y >= 0 && (draw.flags & kHasTangentSpace) != 0u) {
+    if (kNormalMap) {
         vec3 t = normalize(worldTangent.xyz);
         t = normalize(t - n * dot(n, t));
         vec3 b = cross(n, t) * (worldTangent.w < 0.0 ? -1.0 : 1.0);
-        vec3 tn = texture(normalTexture, tc).xyz * 2.0 - 1.0;
+        vec3 tn = textureGrad(normalTexture, tc, dtcdx, dtcdy).xyz * 2.0 - 1.0;
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
-    vec3 texel = m.textures.x >= 0 ? texture(diffuseTexture, tc).rgb : vec3(1.0);
+    vec3 texel = kDiffuseTexture ? textureGrad(diffuseTexture, tc, dtcdx, dtcdy).rgb : vec3(1.0);
 
     outPosition = vec4(worldPosition, 1.0);
     outNormal = vec4(n, gl_FrontFacing ? 1.0 : -1.0);

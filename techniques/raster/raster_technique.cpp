@@ -1,0 +1,74 @@
+#include "techniques/raster/raster_technique.h"
+
+#include <algorithm>
+
+namespace hybridlab {
+
+TechniqueInfo RasterTechnique::info() {
+    return {"raster",
+            "Rasterization only (headless Vulkan): G-buffer, deferred Blinn-Phong lighting, shadow maps, sky environment mapping",
+            {
+                ParamSpec::choice("shadows", "map", {"map", "off"}, "shadow maps with PCF, or every light unshadowed"),
+                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
+                ParamSpec::integer("pcf_radius", 1, 0, 4, "percentage-closer filtering over (2r + 1)^2 filtered taps"),
+                ParamSpec::boolean("redraw_shadow_maps", false,
+                                   "redraw shadow maps every frame (false: only when something moved or the settings changed)"),
+                ParamSpec::choice("blend", "design", {"design", "walewski2019"},
+                                  "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+            },
+            [](const ParameterSet& p) { return std::make_unique<RasterTechnique>(p); }};
+}
+
+RasterTechnique::RasterTechnique(const ParameterSet& p) {
+    lighting_.shadows = p.getChoice("shadows") == "map";
+    lighting_.environmentMapping = true;
+    lighting_.walewskiBlend = p.getChoice("blend") == "walewski2019";
+    shadows_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
+    shadows_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
+    redrawShadowMaps_ = p.getBool("redraw_shadow_maps");
+}
+
+RasterRequest RasterTechnique::request(const FrameRequest& frame) const {
+    RasterRequest r;
+    r.camera = frame.camera;
+    r.time = frame.time;
+    r.width = frame.width;
+    r.height = frame.height;
+    r.lighting = true;
+    r.lightingOptions = lighting_;
+    r.shadowSettings = shadows_;
+    r.redrawShadowMaps = redrawShadowMaps_;
+    return r;
+}
+
+void RasterTechnique::prepare(SceneContext& context) {
+    FrameRequest warmUp{context.scene().camera, 0.0, 64, 36};
+    context.rasterizer().render(request(warmUp), frame_);
+}
+
+FrameResult RasterTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
+        context.rasterizer().render(request(frame), frame_);
+        warmWidth_ = frame.width;
+        warmHeight_ = frame.height;
+    }
+    context.rasterizer().render(request(frame), frame_);
+    FrameResult result;
+    // GPU timestamps per pass; the read-back includes unpacking on the CPU; what the timestamps do
+    // not cover (recording, submission, waking up) is `overhead`, so the stages add up to the wall clock.
+    double gpu = 0.0;
+    for (const RasterStageTime& s : frame_.gpuStages) {
+        gpu += s.milliseconds;
+        result.stages.push_back({s.name, s.milliseconds + (s.name == "readback" ? frame_.unpackMilliseconds : 0.0)});
+    }
+    result.stages.push_back({"overhead", frame_.recordMilliseconds + std::max(0.0, frame_.submitMilliseconds - gpu)});
+    result.image = std::move(frame_.lighting);
+    result.counters["draws"] = static_cast<double>(frame_.draws);
+    result.counters["shadow_maps_drawn"] = frame_.shadowMapsDrawn ? 1.0 : 0.0;
+    result.counters["wall_ms"] = frame_.wallMilliseconds();
+    result.counters["rays_total"] = 0.0;
+    result.counters["pixels_ray_traced"] = 0.0;
+    return result;
+}
+
+}  // namespace hybridlab

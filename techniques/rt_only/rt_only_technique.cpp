@@ -1,0 +1,14 @@
+#include "techniques/rt_only/rt_only_technique.h"
+
+#include "techniques/whitted/whitted_technique.h"
+
+namespace hybridlab {
+
+TechniqueInfo rtOnlyTechniqueInfo() {
+    return {"rt_only",
+            "Walewski 2019's ray-tracing-only variant: everything ray traced from the camera, with an importance cut-off",
+            WhittedTechnique::parameterSpecs(kRtOnlyImportanceCutoff),
+            [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
+}
+
+}  // namespace hybridlab
