@@ -22,7 +22,7 @@ struct FrameUniforms {
     glm::vec4 shadowParams;
 };
 
-// std430 twin of LightData in shaders/shading.glsl.
+// std140 twin of LightData in shaders/shading.glsl.
 struct LightData {
     glm::vec4 radiance, position, direction;
     glm::ivec4 shadow;
@@ -37,7 +37,7 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
     const VkShaderStageFlags fs = VK_SHADER_STAGE_FRAGMENT_BIT;
     std::vector<VkDescriptorSetLayoutBinding> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
                                                           {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
-                                                          {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, fs, nullptr},
+                                                          {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fs, nullptr},
                                                           {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr},
                                                           {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr}};
     for (std::uint32_t i = 0; i < GBufferPass::kColorTargets; ++i) bindings.push_back({5 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fs, nullptr});
@@ -61,7 +61,7 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
         data.push_back({glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
                         glm::ivec4(shadows.firstLayer(i), shadows.layerCount(i), 0, 0)});
     }
-    data.resize(72);
+    if (data.empty()) data.emplace_back();  // the array has at least one element
     lights_ = GpuBuffer::withData(device, data.data(), data.size() * sizeof(LightData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }
 
@@ -95,7 +95,7 @@ void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const Li
     // (the previous frame has completed, so the set is not in use).
     descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.buffer());
     descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, lights_.buffer());
-    descriptors_.writeBuffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, shadows_.layerBuffer());
+    descriptors_.writeBuffer(2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, shadows_.layerBuffer());
     descriptors_.writeImages(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {shadows_.depthArray()});
     descriptors_.writeImages(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {scene_.textures().sky()});
     for (int i = 0; i < GBufferPass::kColorTargets; ++i)
@@ -122,6 +122,8 @@ void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const Li
         d.vertexShader = "fullscreen.vert";
         d.fragmentShader = "deferred_lighting.frag";
         d.fragmentConstants.assign(variant.begin(), variant.end());
+        d.fragmentConstants.push_back(static_cast<std::uint32_t>(std::max<std::size_t>(1, scene.lights.size())));
+        d.fragmentConstants.push_back(static_cast<std::uint32_t>(std::max<std::size_t>(1, shadows_.layers())));
         d.colorFormats = {kOutputFormat};
         d.layout = layout_;
         pipelines_[key] = createGraphicsPipeline(scene_.device(), d);

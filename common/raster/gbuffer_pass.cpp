@@ -142,7 +142,7 @@ std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
     vkCmdBeginRendering(cb, &ri);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, prepassPipeline_);
     setViewport(cb, width_, height_);
-    scene_.bind(cb, layout_);
+    scene_.bind(cb);
     for (std::size_t d = 0; d < scene_.draws().size(); ++d)
         if (frustum.intersects(scene_.worldBounds(d))) scene_.recordDraw(cb, layout_, viewProj, d, false);
     vkCmdEndRendering(cb);
@@ -206,7 +206,7 @@ void GBufferPass::recordVisiblePixelQueries(VkCommandBuffer cb, const glm::mat4&
     vkCmdBeginRendering(cb, &ri);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, queryPipeline_);
     setViewport(cb, width_, height_);
-    scene_.bind(cb, layout_);
+    scene_.bind(cb);
     const Frustum frustum(viewProj);
     for (std::uint32_t o = 0; o < objects; ++o) {
         vkCmdBeginQuery(cb, queries, o, VK_QUERY_CONTROL_PRECISE_BIT);

@@ -1,6 +1,7 @@
 #include "common/raster/gpu_scene.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "common/raster/frustum.h"
 #include "common/raytrace/shading.h"
@@ -17,7 +18,7 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 48);
 
-// std430 twins of shaders/scene_data.glsl.
+// std140 twins of shaders/scene_data.glsl.
 struct ObjectData {
     glm::mat4 model;
     glm::mat4 normalMatrix;
@@ -27,6 +28,12 @@ struct MaterialData {
     glm::vec4 emission, ambient, diffuse, specular, optical, tilingOffset;
     glm::ivec4 textures;
 };
+
+struct DrawRecord {
+    ObjectData object;
+    MaterialData material;
+};
+static_assert(sizeof(DrawRecord) == 240);
 
 MaterialData materialData(const Material& m) {
     return {glm::vec4(m.emission, 0.0f),
@@ -84,16 +91,18 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
     const VulkanDevice& dev = *device_;
     vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     indices_ = GpuBuffer::withData(dev, indices.data(), indices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    std::vector<MaterialData> materials;
-    for (const Material& m : scene.materials) materials.push_back(materialData(m));
-    materials_ = GpuBuffer::withData(dev, materials.data(), materials.size() * sizeof(MaterialData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    objects_ = GpuBuffer(dev, scene.objects.size() * sizeof(ObjectData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    const VkDeviceSize align = std::max<VkDeviceSize>(16, dev.properties().limits.minUniformBufferOffsetAlignment);
+    recordStride_ = (sizeof(DrawRecord) + align - 1) / align * align;
+    drawRecords_ = GpuBuffer(dev, std::max<std::size_t>(1, draws_.size()) * recordStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             GpuBuffer::Memory::HostVisible);
+    for (std::size_t d = 0; d < draws_.size(); ++d) {
+        const MaterialData m = materialData(scene.materials[draws_[d].material]);
+        drawRecords_.write(&m, sizeof m, d * recordStride_ + offsetof(DrawRecord, material));
+    }
 
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    descriptors_ = DescriptorSet(dev, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr},
-                                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr}});
-    descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, objects_.buffer());
-    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, materials_.buffer());
+    descriptors_ = DescriptorSet(dev, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, both, nullptr}});
+    descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, drawRecords_.buffer(), 0, sizeof(DrawRecord));
     // One set per material rather than one array of every texture: indexing a sampler array by a
     // material index needs shaderSampledImageArrayDynamicIndexing, which lavapipe lacks.
     const auto materialCount = static_cast<std::uint32_t>(std::max<std::size_t>(1, scene.materials.size()));
@@ -112,12 +121,14 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
 bool GpuScene::setTime(double time) {
     if (timeSet_ && time == time_) return false;
     bool moved = !timeSet_;
-    auto* data = static_cast<ObjectData*>(objects_.mapped());
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
         if (timeSet_ && !scene_.objects[o].isAnimated()) continue;
         const glm::mat4 model = scene_.objects[o].worldMatrix(time);
-        data[o] = {model, glm::mat4(normalMatrix(model))};
-        for (std::size_t d = objectDraws_[o].first; d < objectDraws_[o].second; ++d) worldBounds_[d] = draws_[d].localBounds.transformed(model);
+        const ObjectData data{model, glm::mat4(normalMatrix(model))};
+        for (std::size_t d = objectDraws_[o].first; d < objectDraws_[o].second; ++d) {
+            drawRecords_.write(&data, sizeof data, d * recordStride_ + offsetof(DrawRecord, object));
+            worldBounds_[d] = draws_[d].localBounds.transformed(model);
+        }
         moved = true;
     }
     timeSet_ = true;
@@ -142,22 +153,23 @@ std::vector<VkVertexInputAttributeDescription> GpuScene::vertexAttributes(bool p
     return a;
 }
 
-void GpuScene::bind(VkCommandBuffer cb, VkPipelineLayout layout) const {
+void GpuScene::bind(VkCommandBuffer cb) const {
     VkBuffer vb = vertices_.buffer();
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cb, 0, 1, &vb, &offset);
     vkCmdBindIndexBuffer(cb, indices_.buffer(), 0, VK_INDEX_TYPE_UINT32);
-    VkDescriptorSet set = descriptors_.set();
-    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
 }
 
 void GpuScene::recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, std::size_t draw, bool textures) const {
     const MeshDraw& d = draws_[draw];
+    const auto recordOffset = static_cast<std::uint32_t>(draw * recordStride_);
+    VkDescriptorSet set = descriptors_.set();
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 1, &recordOffset);
     if (textures) {
-        VkDescriptorSet set = materialTextures_.set(d.material);
-        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &set, 0, nullptr);
+        VkDescriptorSet t = materialTextures_.set(d.material);
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &t, 0, nullptr);
     }
-    const DrawConstants c{viewProj, d.object, d.material, d.flags};
+    const DrawConstants c{viewProj, d.object, d.flags};
     vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c, &c);
     vkCmdDrawIndexed(cb, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
 }

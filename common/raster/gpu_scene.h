@@ -20,7 +20,6 @@ namespace hybridlab {
 struct DrawConstants {
     glm::mat4 viewProj;
     std::uint32_t object;
-    std::uint32_t material;
     std::uint32_t flags;
 };
 inline constexpr std::uint32_t kHasTangentSpace = 1u;
@@ -47,7 +46,8 @@ public:
     // Moves animated objects to `time`; true when anything moved (first call included).
     bool setTime(double time);
 
-    // Set 0 of the geometry passes: objects (binding 0), materials (1).
+    // Set 0 of the geometry passes: the draw's object and material (binding 0, a dynamic uniform
+    // buffer; recordDraw binds it at the draw's record).
     const DescriptorSet& descriptors() const { return descriptors_; }
     // Set 1 of the G-buffer pass, one per material: its diffuse (binding 0) and normal (1) texture.
     const DescriptorSet& materialTextures() const { return materialTextures_; }
@@ -63,9 +63,9 @@ public:
     // Draw indices of one object: [first, last).
     std::pair<std::size_t, std::size_t> objectDraws(std::uint32_t object) const { return objectDraws_[object]; }
 
-    // Binds the vertex and index buffers and descriptor set 0 of `layout`.
-    void bind(VkCommandBuffer cb, VkPipelineLayout layout) const;
-    // One draw with its push constants, and its material's textures as set 1 when `textures`.
+    // Binds the vertex and index buffers.
+    void bind(VkCommandBuffer cb) const;
+    // One draw: its record as set 0, its push constants, and its material's textures as set 1 when `textures`.
     void recordDraw(VkCommandBuffer cb, VkPipelineLayout layout, const glm::mat4& viewProj, std::size_t draw, bool textures) const;
     // Every draw that `include` accepts (all without it) and that meets the frustum of `viewProj`;
     // returns how many.
@@ -81,7 +81,9 @@ private:
     std::shared_ptr<VulkanDevice> device_;
     const Scene& scene_;
     SceneTextures textures_;
-    GpuBuffer vertices_, indices_, materials_, objects_;
+    GpuBuffer vertices_, indices_;
+    GpuBuffer drawRecords_;  // one DrawRecord per draw, recordStride_ apart
+    VkDeviceSize recordStride_ = 0;
     DescriptorSet descriptors_;
     DescriptorSet materialTextures_;
     std::vector<MeshDraw> draws_;

@@ -47,8 +47,8 @@ DescriptorSet::DescriptorSet(const VulkanDevice& device, const std::vector<VkDes
     checkVk(vkAllocateDescriptorSets(device_, &ai, sets_.data()), "allocating descriptor sets");
 }
 
-void DescriptorSet::writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set) {
-    VkDescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
+void DescriptorSet::writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set, VkDeviceSize range) {
+    VkDescriptorBufferInfo info{buffer, 0, range};
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = sets_[set];
     w.dstBinding = binding;

@@ -20,7 +20,7 @@ public:
     VkDescriptorSetLayout layout() const { return layout_; }
     VkDescriptorSet set(std::size_t i = 0) const { return sets_[i]; }
 
-    void writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set = 0);
+    void writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set = 0, VkDeviceSize range = VK_WHOLE_SIZE);
     void writeImages(std::uint32_t binding, VkDescriptorType type, const std::vector<VkDescriptorImageInfo>& images, std::size_t set = 0);
     void writeImage(std::uint32_t binding, VkDescriptorType type, VkImageView view, VkSampler sampler, VkImageLayout layout,
                     std::size_t set = 0) {

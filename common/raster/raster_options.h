@@ -6,7 +6,7 @@ namespace hybridlab {
 
 struct ShadowSettings {
     std::uint32_t resolution = 2048;  // texels per side of every shadow-map layer
-    int pcfRadius = 1;                // PCF over (2r + 1)^2 hardware-filtered comparisons
+    int pcfRadius = 0;                // PCF over (2r + 1)^2 bilinearly filtered comparisons (0: one 2 x 2 bilinear tap)
     float normalOffsetTexels = 1.5f;  // receiver offset along its normal, in shadow-map texels
     float slopeBias = 2.0f;           // slope-scaled depth bias when rendering the maps
 

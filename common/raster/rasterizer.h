@@ -37,8 +37,9 @@ struct RasterFrame {
     GBuffer gbuffer;                      // the requested targets
     Image lighting;                       // when RasterRequest::lighting: linear RGBA (the P-buffer)
     std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
-    // GPU timestamps per pass, in order: shadow_maps (when drawn), gbuffer, visible_pixels (when
-    // asked), lighting (when asked), readback (the copies).
+    // GPU timestamps per pass, in order: shadow_maps (when shadows are on; near 0 when the maps were
+    // kept), gbuffer (depth pre-pass included), visible_pixels (when asked), lighting (when asked),
+    // readback (the copies).
     std::vector<RasterStageTime> gpuStages;
     // Wall clock: recording the commands, submission until completion, unpacking the read-back.
     double recordMilliseconds = 0.0, submitMilliseconds = 0.0, unpackMilliseconds = 0.0;

@@ -106,8 +106,13 @@ ShadowMaps::ShadowMaps(const GpuScene& scene) : scene_(scene) {
         next += n;
     }
     layers_.resize(static_cast<std::size_t>(next));
-    layerBuffer_ = GpuBuffer(device, std::max<std::size_t>(1, layers_.size()) * sizeof(ShadowLayerData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                             GpuBuffer::Memory::HostVisible);
+    const VkDeviceSize bytes = std::max<std::size_t>(1, layers_.size()) * sizeof(ShadowLayerData);
+    if (bytes > device.properties().limits.maxUniformBufferRange) {
+        throw VulkanUnavailable("Vulkan device " + device.name() + " takes uniform buffers up to " +
+                                std::to_string(device.properties().limits.maxUniformBufferRange) + " bytes; the shadow maps of " +
+                                std::to_string(lights.size()) + " lights need " + std::to_string(bytes));
+    }
+    layerBuffer_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     // Until shadows are first rendered, a 1 x 1 placeholder keeps the lighting pass's binding valid.
     image_ = GpuImage(device, {kFormat, 1, 1, 1, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                VK_IMAGE_VIEW_TYPE_2D_ARRAY});
@@ -172,7 +177,7 @@ bool ShadowMaps::record(VkCommandBuffer cb, const ShadowSettings& settings, bool
         setViewport(cb, settings.resolution, settings.resolution);
         // Reverse-Z: a negative bias pushes the stored depth away from the light.
         vkCmdSetDepthBias(cb, -1.0f, 0.0f, -settings.slopeBias);
-        scene_.bind(cb, layout_);
+        scene_.bind(cb);
         scene_.recordDraws(cb, layout_, layers_[i].viewProj, false, [](const MeshDraw& d) { return d.castsShadow; });
         vkCmdEndRendering(cb);
     }

@@ -16,7 +16,7 @@
 
 namespace hybridlab {
 
-// std430 twin of ShadowLayer in shaders/deferred_lighting.frag.
+// std140 twin of ShadowLayer in shaders/deferred_lighting.frag.
 struct ShadowLayerData {
     glm::mat4 viewProj;
     glm::vec4 params;  // x texel world size (per unit distance when y = 1: perspective)

@@ -10,7 +10,8 @@ TechniqueInfo RasterTechnique::info() {
             {
                 ParamSpec::choice("shadows", "map", {"map", "off"}, "shadow maps with PCF, or every light unshadowed"),
                 ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
-                ParamSpec::integer("pcf_radius", 1, 0, 4, "percentage-closer filtering over (2r + 1)^2 filtered taps"),
+                ParamSpec::integer("pcf_radius", 0, 0, 4,
+                                   "percentage-closer filtering over (2r + 1)^2 bilinearly filtered taps (0: one tap, nearest to hard shadows)"),
                 ParamSpec::boolean("redraw_shadow_maps", false,
                                    "redraw shadow maps every frame (false: only when something moved or the settings changed)"),
                 ParamSpec::choice("blend", "design", {"design", "walewski2019"},

@@ -14,6 +14,10 @@ layout(constant_id = 0) const bool kShadows = false;             // shadow-map v
 layout(constant_id = 1) const bool kEnvironmentMapping = false;  // sky in the reflected and refracted directions
 layout(constant_id = 2) const bool kWalewskiBlend = false;       // BlendRule::Walewski2019
 layout(constant_id = 3) const bool kSkyCubeMap = false;          // the sky is a cube map, not a colour
+// Sizes of the light and shadow-layer arrays (at least 1). They are uniform buffers, not storage
+// buffers: lavapipe loads uniforms several times faster.
+layout(constant_id = 4) const int kLightArraySize = 1;
+layout(constant_id = 5) const int kShadowLayerArraySize = 1;
 
 layout(std140, set = 0, binding = 0) uniform FrameUniforms {
     vec4 cameraPosition;  // xyz; w 1 perspective, 0 orthographic
@@ -31,8 +35,10 @@ struct ShadowLayer {
     vec4 params;    // x world size of a texel (at unit distance when y = 1: perspective)
 };
 
-layout(std140, set = 0, binding = 1) uniform Lights { LightData lights[72]; };
-layout(std430, set = 0, binding = 2) readonly buffer ShadowLayers { ShadowLayer shadowLayers[]; };
+
+
+layout(std140, set = 0, binding = 1) uniform Lights { LightData lights[kLightArraySize]; };
+layout(std140, set = 0, binding = 2) uniform ShadowLayers { ShadowLayer shadowLayers[kShadowLayerArraySize]; };
 layout(set = 0, binding = 3) uniform sampler2DArrayShadow shadowMaps;
 layout(set = 0, binding = 4) uniform sampler2DArray skyFaces;  // RGBA32F, read with texelFetch
 layout(set = 0, binding = 5) uniform sampler2D gPosition;
@@ -138,7 +144,7 @@ void main() {
         LightSample ls = sampleLight(lights[i], p);
         vec3 direct = blinnPhong(n, diffuse, specular.rgb, specular.a, toViewer, ls);
         if (direct == vec3(0.0)) continue;
-        //SHADOWOFF
+        if (kShadows) direct *= shadowVisibility(lights[i], p, n);
         c += direct;
     }
 

@@ -7,5 +7,5 @@
 layout(location = 0) in vec3 inPosition;
 
 void main() {
-    gl_Position = draw.viewProj * (objects[draw.object].model * vec4(inPosition, 1.0));
+    gl_Position = draw.viewProj * (drawData.object.model * vec4(inPosition, 1.0));
 }

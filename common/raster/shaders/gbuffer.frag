@@ -29,11 +29,11 @@ layout(location = 6) out vec4 outOptical;   // reflectivity, IOR, opacity, fresn
 layout(location = 7) out uint outObjectId;  // object index + 1; 0 is the sky
 
 void main() {
-    MaterialData m = materials[draw.material];
+    MaterialData m = drawData.material;
     vec2 tc = uv * m.tilingOffset.xy + m.tilingOffset.zw;
     // Texture gradients from the interpolated uv, scaled by the tiling: on lavapipe (Mesa 22.3) a
-    // quad's helper lanes read 0 from storage buffers, so implicit derivatives of `tc` (which uses
-    // the material) are spoilt where a quad straddles two triangles, and the lookup falls to the
+    // quad's helper lanes read 0 from buffers, so implicit derivatives of `tc` (which uses the
+    // material) are spoilt where a quad straddles two triangles, and the lookup falls to the
     // coarsest mip level (grey dots along triangle edges).
     vec2 dtcdx = dFdx(uv) * m.tilingOffset.xy, dtcdy = dFdy(uv) * m.tilingOffset.xy;
     vec3 n = normalize(worldNormal);

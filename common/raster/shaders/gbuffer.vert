@@ -1,7 +1,9 @@
 #version 460
 // G-buffer pass, vertex stage (Walewski 2019 §3.1): world-space position, normal, uv and tangent.
-// Also the vertex stage of the depth-equal visible-pixel pass, which must reproduce the depths
-// exactly: hence `invariant`.
+// Also the vertex stage of the depth pre-pass and of the depth-equal visible-pixel pass, which
+// must reproduce the depths exactly: the same code, and `precise` so that no pipeline contracts
+// the arithmetic differently (`invariant gl_Position` would do too, but the validation layers
+// warn about the decoration glslang puts on gl_PerVertex).
 #extension GL_GOOGLE_include_directive : require
 #include "scene_data.glsl"
 
@@ -15,14 +17,13 @@ layout(location = 1) out vec3 worldNormal;   // not normalised: interpolated, th
 layout(location = 2) out vec2 uv;
 layout(location = 3) out vec4 worldTangent;  // xyz world tangent, w bitangent sign
 
-invariant gl_Position;
-
 void main() {
-    ObjectData o = objects[draw.object];
-    vec4 p = o.model * vec4(inPosition, 1.0);
+    ObjectData o = drawData.object;
+    precise vec4 p = o.model * vec4(inPosition, 1.0);
     worldPosition = p.xyz;
     worldNormal = mat3(o.normalMatrix) * inNormal;
     uv = inUv;
     worldTangent = vec4(mat3(o.model) * inTangent.xyz, inTangent.w);
-    gl_Position = draw.viewProj * p;
+    precise vec4 clip = draw.viewProj * p;
+    gl_Position = clip;
 }

@@ -1,5 +1,5 @@
 // Scene data shared by the geometry passes (G-buffer, shadow maps, visible-pixel queries). The
-// layouts mirror the C++ structs in common/raster/gpu_scene.cpp (std430).
+// layouts mirror the C++ structs in common/raster/gpu_scene.cpp (std140).
 #ifndef SCENE_DATA_GLSL
 #define SCENE_DATA_GLSL
 
@@ -22,13 +22,17 @@ struct MaterialData {
 layout(push_constant) uniform DrawConstants {
     mat4 viewProj;
     uint object;
-    uint material;
     uint flags;         // kHasTangentSpace: the mesh has uvs and tangents (normal mapping possible)
 } draw;
 
 const uint kHasTangentSpace = 1u;
 
-layout(std430, set = 0, binding = 0) readonly buffer Objects { ObjectData objects[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Materials { MaterialData materials[]; };
+// The draw's object and material: one record per draw in a dynamic uniform buffer, bound at the
+// draw's offset. Uniform loads are what lavapipe does fast (storage-buffer loads cost it several
+// times more per pixel).
+layout(std140, set = 0, binding = 0) uniform DrawData {
+    ObjectData object;
+    MaterialData material;
+} drawData;
 
 #endif
