@@ -71,6 +71,20 @@ TEST(Image, StorageAndBilinearSampling) {
     EXPECT_VEC_NEAR(ramp.sampleBilinearWrap(-0.25f, 0.5f), glm::vec4(1.0f), 1e-6f);
 }
 
+TEST(Image, AMovedFromImageIsEmptyAndZeroSized) {
+    Image a(4, 3, glm::vec4(1.0f));
+    Image b = std::move(a);
+    EXPECT_EQ(b.width(), 4);
+    EXPECT_EQ(b.pixelCount(), 12u);
+    EXPECT_EQ(a.width(), 0);  // NOLINT(bugprone-use-after-move): the state after a move is the point
+    EXPECT_EQ(a.height(), 0);
+    EXPECT_TRUE(a.empty());
+    Image c;
+    c = std::move(b);
+    EXPECT_EQ(c.height(), 3);
+    EXPECT_EQ(b.width(), 0);  // NOLINT(bugprone-use-after-move)
+}
+
 TEST(ImageIo, ExrRoundTripIsExact) {
     TempDir dir;
     const Image img = testImage();

@@ -83,6 +83,24 @@ INSTANTIATE_TEST_SUITE_P(Raster, RasterAgainstWhitted, ::testing::Values("cornel
                              return n;
                          });
 
+// The experiment runner renders a technique many times into fresh FrameResults; every frame must
+// be whole and the same (a moved-out read-back image once left the second frame without pixels).
+TEST(RasterTechnique, RepeatedFramesAreWholeAndIdentical) {
+    const Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
+    RASTERIZER_OR_SKIP(probe, scene);
+    SceneContext context(scene);
+    auto t = createTechnique("raster", {});
+    t->prepare(context);
+    const FrameRequest request{scene.camera, 0.0, 96, 54};
+    const Image first = t->render(context, request).image;
+    for (int i = 0; i < 3; ++i) {
+        const Image again = t->render(context, request).image;
+        ASSERT_EQ(again.width(), 96);
+        ASSERT_EQ(again.pixelCount(), 96u * 54u);
+        EXPECT_EQ(again, first) << "frame " << i + 2;
+    }
+}
+
 TEST(RasterTechnique, RendersFromTheCommandLineLikeWhitted) {
     {
         const Scene probeScene = loadSceneFile(findSceneFile("cornell-mirror-glass"));

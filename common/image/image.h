@@ -2,6 +2,7 @@
 // A float RGBA image in row-major order, row 0 at the top (the Vulkan framebuffer convention).
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -12,6 +13,20 @@ class Image {
 public:
     Image() = default;
     Image(int width, int height, glm::vec4 fill = glm::vec4(0.0f));
+    // A moved-from image is 0x0, never a size without pixels: code that reuses an image when its
+    // size already matches (the rasterizer's read-back) must see that it has to reallocate.
+    Image(const Image&) = default;
+    Image& operator=(const Image&) = default;
+    Image(Image&& other) noexcept : width_(other.width_), height_(other.height_), pixels_(std::move(other.pixels_)) { other.clear(); }
+    Image& operator=(Image&& other) noexcept {
+        if (this != &other) {
+            width_ = other.width_;
+            height_ = other.height_;
+            pixels_ = std::move(other.pixels_);
+            other.clear();
+        }
+        return *this;
+    }
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -30,6 +45,10 @@ public:
     bool operator==(const Image&) const = default;
 
 private:
+    void clear() {
+        width_ = height_ = 0;
+        pixels_.clear();
+    }
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
     int width_ = 0;
     int height_ = 0;
