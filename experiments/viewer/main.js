@@ -314,10 +314,18 @@ function togglePlay() {
   $('play').textContent = state.player ? 'pause' : 'play';
 }
 
+// A change of the panes' number or width fits the image again.
+function refit() {
+  state.transform = null;
+  render();
+}
+
 function setMode(mode) {
+  const refitNeeded = (mode === 'side') !== (state.mode === 'side');
   state.mode = mode;
   if (mode !== 'side' && state.paneCount < 2) state.paneCount = 2;
-  render();
+  if (refitNeeded) refit();
+  else render();
 }
 
 function flip() {
@@ -362,10 +370,7 @@ const ACTIONS = {
   play: togglePlay,
   side: () => setMode('side'),
   swipe: () => setMode('swipe'),
-  fit: () => {
-    state.transform = null;
-    render();
-  },
+  fit: refit,
 };
 
 document.addEventListener('keydown', (e) => {
@@ -394,7 +399,7 @@ $('view').addEventListener('change', () => select(state.sel.scene, state.sel.siz
 $('pane-count').addEventListener('change', () => {
   state.paneCount = Number($('pane-count').value);
   state.active = Math.min(state.active, state.paneCount - 1);
-  render();
+  refit();
 });
 $('mode').addEventListener('change', () => setMode($('mode').value));
 $('frame').addEventListener('input', () => {
@@ -405,9 +410,6 @@ $('play').addEventListener('click', togglePlay);
 $('fit').addEventListener('click', ACTIONS.fit);
 $('help-button').addEventListener('click', () => toggleHelp());
 window.addEventListener('hashchange', openFromHash);
-window.addEventListener('resize', () => {
-  state.transform = null;
-  render();
-});
+window.addEventListener('resize', refit);
 
 if (!openFromHash()) select(null, null, null, null, []);

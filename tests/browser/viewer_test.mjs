@@ -184,6 +184,20 @@ try {
     await page.keyboard.press('f');
     await panesLoaded();
     assert.equal((await shown())[0].src, first[0].src);
+  });
+
+  await check('swipe shows two images cut at the divider, which drags', async () => {
+    await page.keyboard.press('w');
+    await panesLoaded();
+    const clip = () => page.$eval('#panes img.top', (i) => Number(/inset\(0px 0px 0px ([\d.]+)px\)/.exec(i.style.clipPath)[1]));
+    assert.deepEqual((await shown()).map((i) => i.file), expectedFiles(0).slice(0, 2));
+    const before = await clip();
+    const d = await page.locator('#panes .divider').boundingBox();
+    await page.mouse.move(d.x + 1, d.y + d.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(d.x - 100, d.y + d.height / 2, { steps: 4 });
+    await page.mouse.up();
+    assert.ok((await clip()) < before, `${before} -> ${await clip()}`);
     await page.keyboard.press('s');
     await panesLoaded();
     assert.equal((await shown()).length, 3);
