@@ -371,6 +371,7 @@ const ACTIONS = {
   side: () => setMode('side'),
   swipe: () => setMode('swipe'),
   fit: refit,
+  overlays: () => document.body.classList.toggle('no-overlays'),
 };
 
 document.addEventListener('keydown', (e) => {

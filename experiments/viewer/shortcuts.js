@@ -11,6 +11,7 @@ export const SHORTCUTS = [
   { keys: ['s', 'S'], label: 'S', help: 'side-by-side mode', action: 'side' },
   { keys: ['w', 'W'], label: 'W', help: 'swipe mode (drag the divider)', action: 'swipe' },
   { keys: ['0'], label: '0', help: 'fit the image to the panes', action: 'fit' },
+  { keys: ['i', 'I'], label: 'I', help: 'hide or show the panes\' overlays', action: 'overlays' },
   { keys: ['Escape'], label: 'Esc', help: 'close this help', action: 'close' },
 ];
 

@@ -243,6 +243,16 @@ try {
     assert.deepEqual((await shown()).map((i) => i.file), expectedFiles(40));
   });
 
+  await check('number keys pick the technique of the active pane', async () => {
+    await viewport(0).click();
+    await page.keyboard.press('3');
+    await panesLoaded();
+    assert.equal((await shown())[0].file, runAt(40, variants[1]).image);
+    await page.keyboard.press('1');
+    await panesLoaded();
+    assert.equal((await shown())[0].file, runAt(40, variants[0]).reference);
+  });
+
   await check('E cycles the error maps of every technique pane; ? shows the shortcuts', async () => {
     await page.keyboard.press('e');
     await panesLoaded();
