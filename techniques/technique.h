@@ -22,6 +22,16 @@ struct FrameRequest {
     int width = 0;
     int height = 0;
     float aspect() const { return static_cast<float>(width) / static_cast<float>(height); }
+    // The rasterizer's request for this frame's view (camera, time, size); the caller adds what to
+    // draw and read back.
+    RasterRequest rasterRequest() const {
+        RasterRequest r;
+        r.camera = camera;
+        r.time = time;
+        r.width = width;
+        r.height = height;
+        return r;
+    }
 };
 
 struct StageTime {

@@ -134,11 +134,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     StageClock clock(result);
 
     // rast: the G-buffer and the P-buffer.
-    RasterRequest request;
-    request.camera = frame.camera;
-    request.time = frame.time;
-    request.width = frame.width;
-    request.height = frame.height;
+    RasterRequest request = frame.rasterRequest();
     request.readback = kGBufferSurfaceTargets;
     request.lighting = true;
     request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};

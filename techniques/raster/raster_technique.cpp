@@ -30,11 +30,7 @@ RasterTechnique::RasterTechnique(const ParameterSet& p) {
 }
 
 RasterRequest RasterTechnique::request(const FrameRequest& frame) const {
-    RasterRequest r;
-    r.camera = frame.camera;
-    r.time = frame.time;
-    r.width = frame.width;
-    r.height = frame.height;
+    RasterRequest r = frame.rasterRequest();
     r.lighting = true;
     r.lightingOptions = lighting_;
     r.shadowSettings = shadows_;
