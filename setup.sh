@@ -29,6 +29,8 @@ PACKAGES=(
   python3-skimage python3-numpy
   # reports and paper figures (Debian's /usr/bin/python3)
   python3-matplotlib
+  # layered-EM inference (sparse least squares by conjugate gradient)
+  libeigen3-dev
 )
 
 missing=()
