@@ -1,5 +1,8 @@
 #pragma once
 // Small lens systems for the layered-EM tests: a glass slab and a glass sphere.
+#include <cmath>
+
+#include "common/scene/camera.h"
 #include "tests/scene_fixtures.h"
 
 namespace hybridlab::test {
@@ -22,6 +25,15 @@ inline double handFresnel(double thetaI, double n1, double n2) {
     double thetaT = std::asin(s), ci = std::cos(thetaI), ct = std::cos(thetaT);
     double rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct), rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
     return 0.5 * (rs * rs + rp * rp);
+}
+
+// A perspective camera at `eye` looking at `target`.
+inline Camera lookingAt(glm::vec3 eye, glm::vec3 target, float fov) {
+    Camera c;
+    c.position = eye;
+    c.orientation = Camera::lookAtOrientation(eye, target);
+    c.fovYDegrees = fov;
+    return c;
 }
 
 // A glass sphere of radius `radius` at `center` (a UV sphere fine enough for 1e-3 agreement).

@@ -6,6 +6,7 @@
 
 #include "common/scene/scene_file.h"
 #include "techniques/layered_em/em_cache.h"
+#include "tests/cli_runner.h"
 #include "tests/test_support.h"
 
 namespace hybridlab {
@@ -107,6 +108,40 @@ TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
     // A truncated file is not an entry.
     std::filesystem::resize_file(file, std::filesystem::file_size(file) - 3);
     EXPECT_FALSE(readLayeredEm(file).has_value());
+}
+
+}  // namespace
+}  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
+    REQUIRE_ASSETS();
+    test::TempDir dir;
+    const std::string cache = (dir / "cache").string();
+    const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache, "--quiet",
+                                            "--width", "24", "--height", "18", "--supersampling", "1", "--em-size", "4",
+                                            "--max-viewpoints", "2", "--layers", "2"};
+    auto results = test::runHybridlabAll({{quick, {}},
+                                          {{"bake-em", "--scene", "teapot-lens", "--system", "vase", "--cache", cache}, {}},
+                                          {{"bake-em", "--scene", "whitted-classic", "--cache", cache}, {}},
+                                          {{"bake-em", "--scene", "teapot-lens", "--em-size", "1", "--cache", cache}, {}}});
+    EXPECT_EQ(results[0].exitStatus, 0) << results[0].err;
+    EXPECT_CONTAINS(results[0].out, "lens system cup (1 objects)");
+    EXPECT_CONTAINS(results[0].out, "stage inference");
+    EXPECT_CONTAINS(results[0].out, "full ray tree");
+    EXPECT_EQ(results[1].exitStatus, 2);
+    EXPECT_CONTAINS(results[1].err, "has no lens system 'vase'");
+    EXPECT_EQ(results[2].exitStatus, 2);
+    EXPECT_CONTAINS(results[2].err, "the scene has no lens objects");
+    EXPECT_EQ(results[3].exitStatus, 2);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache), std::filesystem::directory_iterator()), 1)
+        << "one entry; bad input writes nothing";
+    // The second run finds the entry.
+    test::CliResult again = test::runHybridlab(quick);
+    EXPECT_EQ(again.exitStatus, 0) << again.err;
+    EXPECT_CONTAINS(again.out, "in the cache: 2 layers, 2 viewpoints");
 }
 
 }  // namespace

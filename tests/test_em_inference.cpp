@@ -14,14 +14,6 @@
 namespace hybridlab {
 namespace {
 
-Camera lookingAt(glm::vec3 eye, glm::vec3 target, float fov) {
-    Camera c;
-    c.position = eye;
-    c.orientation = Camera::lookAtOrientation(eye, target);
-    c.fovYDegrees = fov;
-    return c;
-}
-
 // The known environment: premultiplied RGBA by direction from the EM origin.
 glm::vec4 environmentTexture(glm::vec3 d) {
     d = glm::normalize(d);
@@ -32,7 +24,7 @@ glm::vec4 environmentTexture(glm::vec3 d) {
 struct MirrorSetup {
     Scene scene;
     std::unique_ptr<LensSystem> system;
-    Camera camera = lookingAt({0, 0.5f, 4}, {0, 0, 0}, 35.0f);
+    Camera camera = test::lookingAt({0, 0.5f, 4}, {0, 0, 0}, 35.0f);
     int width = 64, height = 64;
     TessellatedLens lens;
     LensRaster raster;

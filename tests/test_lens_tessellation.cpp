@@ -13,14 +13,6 @@
 namespace hybridlab {
 namespace {
 
-Camera lookingAt(glm::vec3 eye, glm::vec3 target, float fov) {
-    Camera c;
-    c.position = eye;
-    c.orientation = Camera::lookAtOrientation(eye, target);
-    c.fovYDegrees = fov;
-    return c;
-}
-
 std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUses(const std::vector<glm::uvec3>& triangles) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
     for (const glm::uvec3& t : triangles) {
@@ -35,7 +27,7 @@ TEST(LensTessellation, GlassSphereRefinesWherePathsDifferWithoutTJunctions) {
     LensMesh mesh = buildLensMesh(system);
     ASSERT_EQ(mesh.positions.size(), 24u * 11u + 2u) << "seam and pole vertices welded";
     const int width = 160, height = 160;
-    const Camera camera = lookingAt({0, 0, 6}, {0, 0, 0}, 40.0f);
+    const Camera camera = test::lookingAt({0, 0, 6}, {0, 0, 0}, 40.0f);
     TessellationSettings settings;
     settings.tauPixels = 4.0f;
     TessellatedLens t = tessellateLens(system, mesh, camera, width, height, settings);
@@ -87,7 +79,7 @@ TEST(LensTessellation, DistantFlatMirrorIsNotRefined) {
     b.scene().objects[0].lens = true;
     LensSystem system(b.scene(), findLensSystems(b.scene()).at(0));
     LensMesh mesh = buildLensMesh(system);
-    TessellatedLens t = tessellateLens(system, mesh, lookingAt({0, 0, 50}, {0, 0, 0}, 3.0f), 160, 160, {});
+    TessellatedLens t = tessellateLens(system, mesh, test::lookingAt({0, 0, 50}, {0, 0, 0}, 3.0f), 160, 160, {});
     EXPECT_EQ(t.stats.splits, 0u);
     EXPECT_EQ(t.stats.tracedVertices, 4u) << "only the front face faces the viewer";
     EXPECT_EQ(t.triangles.size(), 12u);

@@ -70,7 +70,15 @@ void run(BakeEmOptions& o) {
             }
         }
         EmBakeStats stats;
-        const std::size_t views = viewpointSamples(scene, LensSystem(scene, info).center(), o.settings.viewpoints).size();
+        const LensSystem lens(scene, info);
+        const std::size_t views = viewpointSamples(scene, lens.center(), o.settings.viewpoints).size();
+        // Figure 2: the greedy two-path model against the full ray tree, on the scene camera's rays.
+        const RayQueryComparison q = compareRayQueries(lens.lensRays(), scene.camera, o.settings.width, o.settings.height, o.settings.records.paths);
+        std::printf("  ray queries from the scene camera at %dx%d: %llu of %llu rays hit the lens; two greedy paths %llu, full "
+                    "ray tree %llu (%.2fx)\n",
+                    o.settings.width, o.settings.height, static_cast<unsigned long long>(q.lensHits),
+                    static_cast<unsigned long long>(q.cameraRays), static_cast<unsigned long long>(q.pathQueries),
+                    static_cast<unsigned long long>(q.treeQueries), q.ratio());
         Progress progress(2 * views, o.quiet);
         LayeredEm em = bakeLayeredEm(scene, info, o.settings, stats, [&](const std::string& stage, int done, int total) {
             const std::size_t offset = stage == "records" ? 0 : views;

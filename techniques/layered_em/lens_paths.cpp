@@ -118,4 +118,22 @@ std::uint64_t fullRayTreeQueries(const RayScene& lens, const Ray& ray, const Len
     return treeQueries(lens, ray, 0, settings);
 }
 
+RayQueryComparison compareRayQueries(const RayScene& lens, const Camera& camera, int width, int height,
+                                     const LensPathSettings& settings) {
+    RayQueryComparison c;
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
+            LensRayCounter counter;
+            TwoTermPaths paths;
+            ++c.cameraRays;
+            if (traceTwoTermPaths(lens, ray, settings, counter, paths)) ++c.lensHits;
+            c.pathQueries += counter.queries;
+            c.treeQueries += fullRayTreeQueries(lens, ray, settings);
+        }
+    }
+    return c;
+}
+
 }  // namespace hybridlab

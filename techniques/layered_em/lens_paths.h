@@ -63,6 +63,15 @@ bool traceTwoTermPaths(const RayScene& lens, const Ray& ray, const LensPathSetti
 // interface limit). The first query (finding the first interface) is counted as in the paths.
 std::uint64_t fullRayTreeQueries(const RayScene& lens, const Ray& ray, const LensPathSettings& settings);
 
+// Figure 2's comparison over the pixel centres of a width x height view: the lens-system ray
+// queries of the two greedy paths and of the full binary tree on the same camera rays.
+struct RayQueryComparison {
+    std::uint64_t cameraRays = 0, lensHits = 0, pathQueries = 0, treeQueries = 0;
+    double ratio() const { return pathQueries ? static_cast<double>(treeQueries) / static_cast<double>(pathQueries) : 0.0; }
+};
+RayQueryComparison compareRayQueries(const RayScene& lens, const Camera& camera, int width, int height,
+                                     const LensPathSettings& settings);
+
 // The Fresnel split at one interface (the composition rule of DESIGN.md without the local colour):
 // coefficient of the reflected child, of the refracted child, and the refracted direction.
 struct InterfaceSplit {
