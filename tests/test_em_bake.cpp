@@ -1,12 +1,17 @@
 // Baking layered EMs end to end (Hakura & Snyder 2001 §4, §6): on the paper's teapot-lens scene
 // the clustering finds the cup, the columns and the walls as the teapot's three layers (Figure 7),
 // and disocclusion prevention leaves fewer texels unobserved than single-viewpoint inference; the
-// cache round-trips an entry exactly.
+// cache round-trips an entry exactly; viewpoint samples and the bake-em command.
+#include <cmath>
+
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "common/core/input_error.h"
 #include "common/scene/scene_file.h"
 #include "techniques/layered_em/em_cache.h"
 #include "tests/cli_runner.h"
+#include "tests/scene_fixtures.h"
 #include "tests/test_support.h"
 
 namespace hybridlab {
@@ -142,6 +147,60 @@ TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     test::CliResult again = test::runHybridlab(quick);
     EXPECT_EQ(again.exitStatus, 0) << again.err;
     EXPECT_CONTAINS(again.out, "in the cache: 2 layers, 2 viewpoints");
+}
+
+}  // namespace
+}  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+TEST(EmBake, ViewpointSamplesCircleTheLensOrFollowACameraPath) {
+    test::SceneBuilder b;
+    b.object("ball", makeSphere(8, 4), b.material(test::matte(glm::vec3(0.5f))));
+    Scene& s = b.scene();
+    s.camera.position = {1.0f, 2.0f, 5.0f};
+    s.camera.fovYDegrees = 33.0f;
+    const glm::vec3 center(1.0f, 0.5f, 1.0f);
+    auto circle = viewpointSamples(s, center, {});
+    ASSERT_EQ(circle.size(), 45u) << "every 8 degrees";
+    EXPECT_VEC_NEAR(circle[0].position, s.camera.position, 1e-5f) << "starts at the scene camera's bearing";
+    for (const Camera& c : circle) {
+        EXPECT_NEAR(std::hypot(c.position.x - center.x, c.position.z - center.z), 4.0f, 1e-4f);
+        EXPECT_NEAR(c.position.y, 2.0f, 1e-6f);
+        EXPECT_VEC_NEAR(c.forward(), glm::normalize(center - c.position), 1e-5f);
+        EXPECT_EQ(c.fovYDegrees, 33.0f);
+    }
+    const glm::vec3 a = circle[1].position - center, c0 = circle[0].position - center;
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(glm::normalize(glm::vec2(a.x, a.z)), glm::normalize(glm::vec2(c0.x, c0.z))))), 8.0f, 1e-3f);
+
+    ViewpointSettings v;
+    v.stepDegrees = 90.0f;
+    v.radius = 2.0f;
+    v.height = -1.0f;
+    v.heightSet = true;
+    v.maxSamples = 3;
+    auto few = viewpointSamples(s, center, v);
+    ASSERT_EQ(few.size(), 3u);
+    EXPECT_FALSE(v.closed()) << "a cut circle does not wrap around";
+    EXPECT_VEC_NEAR(few[1].position, glm::vec3(3.0f, -1.0f, 1.0f), 1e-5f);
+
+    CameraPath path;
+    path.name = "line";
+    path.interpolation = Interpolation::Linear;
+    path.times = {0.0, 1.0};
+    path.positions = {{0, 1, 5}, {4, 1, 5}};
+    path.targets = {{0, 0, 0}, {0, 0, 0}};
+    path.framesPerSecond = 4.0;
+    s.cameraPaths.push_back(path);
+    ViewpointSettings onPath;
+    onPath.cameraPath = "line";
+    onPath.frameStride = 2;
+    auto frames = viewpointSamples(s, center, onPath);
+    ASSERT_EQ(frames.size(), 3u) << "frames 0, 2, 4 of 5";
+    EXPECT_VEC_NEAR(frames[1].position, glm::vec3(2, 1, 5), 1e-5f);
+    onPath.cameraPath = "circle";
+    EXPECT_THROW(viewpointSamples(s, center, onPath), InputError);
 }
 
 }  // namespace
