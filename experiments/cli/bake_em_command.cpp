@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/core/input_error.h"
+#include "common/image/image_io.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "experiments/cli/commands.h"
@@ -20,6 +21,7 @@ struct BakeEmOptions {
     std::string scene;
     std::string system;
     std::string cache;
+    std::string images;
     bool force = false;
     bool quiet = false;
     bool noPrevention = false;
@@ -41,6 +43,20 @@ void printSummary(const Scene& scene, const LayeredEm& em) {
                     kindName(layer.shell.kind), layer.meanDistance, unobserved, em.viewpoints.size());
         for (std::uint32_t o : layer.objects) std::printf(" %s", scene.objects[o].name.c_str());
         std::printf("\n");
+    }
+}
+
+// The inferred cube maps of viewpoint sample 0, one cross per layer (EXR, and PNG for a look).
+void writeLayerImages(const std::filesystem::path& dir, const LayeredEm& em) {
+    if (em.viewpoints.empty()) return;
+    std::filesystem::create_directories(dir);
+    for (std::size_t l = 0; l < em.layers.size(); ++l) {
+        const Image cross = cubeMapCross(em.viewpoints[0].maps[l]);
+        for (const char* ext : {".exr", ".png"}) {
+            const auto file = dir / (em.system + "-v0-L" + std::to_string(l + 1) + ext);
+            writeImageAtomically(file, cross);
+            std::printf("  wrote %s\n", file.string().c_str());
+        }
     }
 }
 
@@ -66,6 +82,7 @@ void run(BakeEmOptions& o) {
             if (auto cached = readLayeredEm(file)) {
                 std::printf("  in the cache: %zu layers, %zu viewpoints\n", cached->layers.size(), cached->viewpoints.size());
                 printSummary(scene, *cached);
+                if (!o.images.empty()) writeLayerImages(o.images, *cached);
                 continue;
             }
         }
@@ -103,6 +120,7 @@ void run(BakeEmOptions& o) {
                     static_cast<unsigned long long>(stats.tessellatedVertices), static_cast<unsigned long long>(stats.tessellatedTriangles),
                     static_cast<unsigned long long>(stats.inferenceRows), stats.maxIterations, stats.maxRelativeResidual);
         printSummary(scene, em);
+        if (!o.images.empty()) writeLayerImages(o.images, em);
     }
 }
 
@@ -115,6 +133,7 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--scene", o->scene, "Scene file, or the name of a built-in scene")->required();
     cmd->add_option("--system", o->system, "Only this lens system (a lens_group, or a lone lens object's name)");
     cmd->add_option("--cache", o->cache, "Cache folder (default: $HYBRIDLAB_CACHE/layered-em or ~/.cache/hybridlab/layered-em)");
+    cmd->add_option("--images", o->images, "Also write viewpoint 0's inferred cube maps (one cross per layer) into this folder");
     cmd->add_flag("--force", o->force, "Bake even when the cache has the entry");
     cmd->add_flag("--quiet", o->quiet, "No progress bar");
     auto& s = o->settings;

@@ -67,4 +67,17 @@ glm::vec3 cubeMapTexelDirection(std::uint32_t texel, int size) {
     return glm::normalize(d);
 }
 
+Image cubeMapCross(const LayerCubeMap& map) {
+    const int n = map.size;
+    Image out(4 * n, 3 * n);
+    // Face origins in face units: +X, -X, +Y, -Y, +Z, -Z.
+    const int cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};
+    for (int f = 0; f < 6; ++f) {
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) out.at(cell[f][0] * n + i, cell[f][1] * n + j) = map.texels[static_cast<std::size_t>((f * n + j) * n + i)];
+        }
+    }
+    return out;
+}
+
 }  // namespace hybridlab

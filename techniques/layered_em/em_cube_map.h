@@ -12,6 +12,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "common/image/image.h"
+
 namespace hybridlab {
 
 struct CubeMapTap {
@@ -52,5 +54,9 @@ struct LayerCubeMap {
     }
     glm::vec4 sample(glm::vec3 direction) const { return sample(cubeMapLookup(direction, size)); }
 };
+
+// The six faces as a 4 x 3 horizontal cross (-X +Z +X -Z in the middle row, +Y above and -Y below
+// +Z), premultiplied RGBA; for looking at inferred EMs.
+Image cubeMapCross(const LayerCubeMap& map);
 
 }  // namespace hybridlab
