@@ -1,0 +1,129 @@
+"""Walewski 2019 Tables 5 and 6 from a result set of experiments/configs/walewski2019.toml.
+
+    /usr/bin/python3 paper_figures/walewski_tables.py RESULT_DIR [--out FILE.md]
+    /usr/bin/python3 paper_figures/walewski_tables.py --target RESULT_DIR   (walewski2019_target.toml)
+
+Table 5 (one static view per scene, the scene camera): the stage times of `heuristic_rt` (RAST,
+HEUR, RAYT, BLEND, FRAME) and the frame time of `rt_only` ("RAYT ONLY FRAME"), with `whitted`'s
+frame time and each one's SSIM and FLIP against the reference beside them. Table 6 (along the
+scene's camera path): mean frame time with and without the heuristic. Times are the medians over a
+run's repeats; means along a path are over its frames. The technique entries are found by label
+(heuristic, no-heuristic, rt_only, whitted), as the config names them."""
+import argparse
+import statistics
+import sys
+
+import results
+
+LABELS = {"heuristic": "heuristic", "no_heuristic": "no-heuristic", "rt_only": "rt_only", "whitted": "whitted"}
+
+
+def stage(r, name):
+    s = r["stages"].get(name)
+    return s["median"] if s else 0.0
+
+
+def by_label(rows, label):
+    return [r for r in rows if r["label"] == label]
+
+
+def fmt(x, digits=3):
+    return "-" if x is None else ("%.*f" % (digits, x))
+
+
+def table5(rows, scenes):
+    out = ["**Table 5** (static view, the scene camera; ms, medians over repeats)", "",
+           "| | " + " | ".join(scenes) + " |", "|---|" + "---|" * len(scenes)]
+
+    def cell(scene, label, fn, params=None):
+        rs = [r for r in by_label(rows, label) if r["scene"] == scene and r["frame"] < 0
+              and (params is None or r["parameters_text"] == params)]
+        return fn(rs[0]) if rs else None
+
+    def line(name, vals):
+        out.append("| %s | %s |" % (name, " | ".join(v if isinstance(v, str) else fmt(v) for v in vals)))
+
+    def quality(r):
+        return "%.4f / %.4f" % (results.metric(r, "whole", "ssim"), results.metric(r, "whole", "flip"))
+
+    frame = lambda r: r["frame_ms"]["median"]
+    variants = sorted({r["parameters_text"] for r in by_label(rows, LABELS["heuristic"])})
+    for v in variants:
+        h = "heuristic_rt" + (" [%s]" % v if v else "")
+        line("FRAME %s" % h, [cell(s, LABELS["heuristic"], frame, v) for s in scenes])
+        for st in ("rast", "heur", "rayt", "blend"):
+            line("&nbsp;&nbsp;%s" % st.upper(), [cell(s, LABELS["heuristic"], lambda r: stage(r, st), v) for s in scenes])
+        line("&nbsp;&nbsp;objects selected / visible", [cell(s, LABELS["heuristic"], lambda r: "%d / %d" % (
+            r["counters"].get("objects_selected", 0), r["counters"].get("objects_visible", 0)), v) for s in scenes])
+        line("&nbsp;&nbsp;SSIM / FLIP", [cell(s, LABELS["heuristic"], quality, v) or "-" for s in scenes])
+        for name, label in (("rt_only", "rt_only"), ("whitted", "whitted")):
+            ratios = []
+            for s in scenes:
+                a, b = cell(s, LABELS["heuristic"], frame, v), cell(s, LABELS[label], frame)
+                ratios.append("%.2fx" % (b / a) if a and b else "-")
+            line("&nbsp;&nbsp;speed-up over %s" % name, ratios)
+    for name, label in (("FRAME no heuristic", "no_heuristic"), ("RAYT ONLY FRAME (rt_only)", "rt_only"), ("WHITTED FRAME", "whitted")):
+        line(name, [cell(s, LABELS[label], frame) for s in scenes])
+        line("&nbsp;&nbsp;SSIM / FLIP", [cell(s, LABELS[label], quality) or "-" for s in scenes])
+    return out
+
+
+def table6(rows, scenes):
+    out = ["", "**Table 6** (along the camera path; mean over its frames of the median frame time, ms; mean SSIM)", "",
+           "| | " + " | ".join(scenes) + " |", "|---|" + "---|" * len(scenes)]
+    entries = [("with heuristic [%s]" % v, "heuristic", v) for v in sorted({r["parameters_text"] for r in by_label(rows, LABELS["heuristic"])})]
+    entries += [("no heuristic", "no_heuristic", None), ("rt_only", "rt_only", None), ("whitted", "whitted", None)]
+    for name, label, params in entries:
+        vals = []
+        for s in scenes:
+            rs = [r for r in by_label(rows, LABELS[label]) if r["scene"] == s and r["frame"] >= 0
+                  and (params is None or r["parameters_text"] == params)]
+            if not rs:
+                vals.append("-")
+                continue
+            t = statistics.mean(r["frame_ms"]["median"] for r in rs)
+            q = statistics.mean(results.metric(r, "whole", "ssim") for r in rs)
+            vals.append("%.1f (SSIM %.4f, %d frames)" % (t, q, len(rs)))
+        out.append("| %s | %s |" % (name, " | ".join(vals)))
+    return out
+
+
+def target_report(rows, settle=10, tolerance=0.15):
+    """The frame-time target along a path: per frame target, predicted and actual frame time, and
+    the share of frames within `tolerance` of the target after the first `settle`."""
+    rs = sorted((r for r in rows if "target_ms" in r["counters"]), key=lambda r: r["frame"])
+    if not rs:
+        sys.exit("walewski_tables: no run has a target_ms counter")
+    out = ["| frame | target ms | predicted ms | actual ms | budget T | objects selected | SSIM |", "|---|---|---|---|---|---|---|"]
+    for r in rs:
+        c = r["counters"]
+        out.append("| %d | %.0f | %.0f | %.0f | %.3g | %d / %d | %.4f |" % (
+            r["frame"], c["target_ms"], c["predicted_ms"], r["frame_ms"]["median"], c.get("budget", 0.0),
+            c.get("objects_selected", 0), c.get("objects_visible", 0), results.metric(r, "whole", "ssim")))
+    settled = rs[settle:]
+    within = sum(abs(r["frame_ms"]["median"] - r["counters"]["target_ms"]) <= tolerance * r["counters"]["target_ms"] for r in settled)
+    out += ["", "%d of %d frames after the first %d (%.0f%%) within %.0f%% of the target" % (
+        within, len(settled), settle, 100.0 * within / max(len(settled), 1), 100 * tolerance)]
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--target", action="store_true", help="report the frame-time target run (walewski2019_target.toml)")
+    ap.add_argument("--out", help="write the tables (Markdown) here as well as to standard output")
+    a = ap.parse_args()
+    rows = results.load(a.result_dir)
+    scenes = sorted({r["scene"] for r in rows})
+    if not scenes:
+        sys.exit("walewski_tables: %s has no runs" % a.result_dir)
+    lines = target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes)
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    main()
