@@ -32,6 +32,8 @@ PACKAGES=(
   # the viewer's browser test only (tests/browser: headless Chromium driven by playwright-core
   # from npm); the hybridlab program needs neither
   chromium nodejs
+  # layered-EM inference (sparse least squares by conjugate gradient)
+  libeigen3-dev
 )
 
 missing=()

@@ -23,12 +23,6 @@ constexpr std::size_t kArmadilloTriangles = 345944;
 
 constexpr std::size_t sphereTriangles(std::size_t slices, std::size_t stacks) { return 2 * slices * (stacks - 1); }
 
-#define REQUIRE_ASSETS()                                                                                      \
-    if (!test::assetsFromEnvironment()) {                                                                     \
-        GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: set it to the test-scene assets folder (CI sets it to " \
-                        "../shared/assets) to run the paper-scene tests";                                     \
-    }
-
 std::size_t objectIndex(const Scene& s, const std::string& name) {
     for (std::size_t i = 0; i < s.objects.size(); ++i)
         if (s.objects[i].name == name) return i;

@@ -429,3 +429,34 @@ gltf_camera = "view"
 
 }  // namespace
 }  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+TEST(SceneFile, LensObjectsAndLensGroups) {
+    TempDir dir;
+    const std::string head =
+        "[materials.glass]\nopacity = 0.0\nfresnel = true\n"
+        "[camera]\nposition = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+    writeTextFile(dir / "lens.toml", head +
+        "[[objects]]\nname = \"pot\"\nprimitive = \"sphere\"\nmaterial = \"glass\"\nlens = true\nlens_group = \"pot-and-cup\"\n"
+        "[[objects]]\nname = \"cup\"\nprimitive = \"cube\"\nmaterial = \"glass\"\nlens = true\nlens_group = \"pot-and-cup\"\n"
+        "[[objects]]\nname = \"lone\"\nprimitive = \"cube\"\nmaterial = \"glass\"\nlens = true\n"
+        "[[objects]]\nname = \"wall\"\nprimitive = \"cube\"\nmaterial = \"glass\"\n");
+    Scene s = loadSceneFile(dir / "lens.toml", {.loadTextures = false});
+    EXPECT_EQ(s.objects[objectIndex(s, "pot")].lensGroup, "pot-and-cup");
+    EXPECT_EQ(s.objects[objectIndex(s, "cup")].lensGroup, "pot-and-cup");
+    EXPECT_TRUE(s.objects[objectIndex(s, "lone")].lens);
+    EXPECT_EQ(s.objects[objectIndex(s, "lone")].lensGroup, "");
+    EXPECT_FALSE(s.objects[objectIndex(s, "wall")].lens);
+
+    writeTextFile(dir / "nolens.toml", head + "[[objects]]\nname = \"pot\"\nprimitive = \"sphere\"\nmaterial = \"glass\"\nlens_group = \"g\"\n");
+    EXPECT_CONTAINS(loadError(dir / "nolens.toml"), "nolens.toml:11:14: objects[0].lens_group: a lens group needs 'lens = true' on the object");
+    writeTextFile(dir / "empty.toml", head + "[[objects]]\nname = \"pot\"\nprimitive = \"sphere\"\nmaterial = \"glass\"\nlens = true\nlens_group = \"\"\n");
+    EXPECT_CONTAINS(loadError(dir / "empty.toml"), "empty.toml:12:14: objects[0].lens_group: expected a non-empty group name");
+    writeTextFile(dir / "type.toml", head + "[[objects]]\nname = \"pot\"\nprimitive = \"sphere\"\nmaterial = \"glass\"\nlens = true\nlens_group = 3\n");
+    EXPECT_CONTAINS(loadError(dir / "type.toml"), "type.toml:12:14: objects[0].lens_group: expected a string");
+}
+
+}  // namespace
+}  // namespace hybridlab

@@ -51,3 +51,10 @@ std::optional<std::filesystem::path> assetsFromEnvironment();
 #define EXPECT_VEC_NEAR(actual, expected, tolerance) EXPECT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
 #define ASSERT_VEC_NEAR(actual, expected, tolerance) ASSERT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
 #define EXPECT_CONTAINS(text, fragment) EXPECT_TRUE(::hybridlab::test::contains((text), (fragment)))
+
+// Skips a test that needs the paper-scene assets when HYBRIDLAB_ASSETS is not set.
+#define REQUIRE_ASSETS()                                                                                      \
+    if (!::hybridlab::test::assetsFromEnvironment()) {                                                        \
+        GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: set it to the test-scene assets folder (CI sets it to " \
+                        "../shared/assets) to run the paper-scene tests";                                     \
+    }

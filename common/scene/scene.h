@@ -26,6 +26,10 @@ struct SceneObject {
     float relevance = 1.0f;             // Walewski's static relevance K
     float cost = 1.0f;                  // Walewski's estimated cost E
     bool lens = false;                  // a lens object of the layered-EM technique (Hakura & Snyder)
+    // Lens objects with the same non-empty group form one local lens system (Hakura & Snyder §1:
+    // "multiple objects can be combined if they are close or one contains or surrounds another");
+    // an empty group makes the object a system of its own.
+    std::string lensGroup;
 
     bool isAnimated() const { return !animation.empty(); }
     glm::mat4 worldMatrix(double time) const;

@@ -205,6 +205,9 @@ private:
             o.relevance = static_cast<float>(t.number("relevance", 1.0, {0.0, 1e6}));
             o.cost = static_cast<float>(t.number("cost", 1.0, {1e-6, 1e6}));
             o.lens = t.boolean("lens", false);
+            o.lensGroup = t.string("lens_group", "");
+            if (t.has("lens_group") && !o.lens) t.fail("lens_group", "a lens group needs 'lens = true' on the object");
+            if (t.has("lens_group") && o.lensGroup.empty()) t.fail("lens_group", "expected a non-empty group name");
             if (auto a = t.table("animation")) o.animation = readAnimation(*a, o.transform);
             t.rejectUnknownKeys();
             for (auto& m : meshes) {

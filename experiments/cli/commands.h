@@ -15,5 +15,6 @@ void addRunCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 void addExportPovCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
+void addBakeEmCommand(CLI::App& app);
 
 }  // namespace hybridlab::cli

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addReportCommand(app);
     hybridlab::cli::addExportPovCommand(app);
     hybridlab::cli::addCompareCommand(app);
+    hybridlab::cli::addBakeEmCommand(app);
     // CLI11 would only say "a subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
         std::string known;

@@ -8,7 +8,7 @@
 #include "common/core/toml_reader.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "experiments/runner/content_hash.h"
+#include "common/core/content_hash.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {

@@ -12,7 +12,7 @@
 #include "common/image/image_io.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
-#include "experiments/runner/content_hash.h"
+#include "common/core/content_hash.h"
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"

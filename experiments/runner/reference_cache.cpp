@@ -7,17 +7,13 @@
 
 #include "common/core/atomic_file.h"
 #include "common/image/image_io.h"
-#include "experiments/runner/content_hash.h"
+#include "common/core/cache_dir.h"
+#include "common/core/content_hash.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
 
-fs::path defaultReferenceCacheDir() {
-    if (const char* c = std::getenv("HYBRIDLAB_CACHE"); c && *c) return fs::path(c) / "references";
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "hybridlab" / "references";
-    if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "hybridlab" / "references";
-    return fs::temp_directory_path() / "hybridlab-cache" / "references";
-}
+fs::path defaultReferenceCacheDir() { return cacheDir("references"); }
 
 std::string ReferenceCache::key(const Scene& scene, const View& view, int width, int height, const ParameterList& referenceParameters) {
     ContentHash h;

@@ -1,4 +1,4 @@
-#include "experiments/runner/content_hash.h"
+#include "common/core/content_hash.h"
 
 #include <cstdio>
 #include <cstring>

@@ -1,0 +1,264 @@
+#include "techniques/layered_em/em_bake.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <unordered_set>
+
+#include "common/raytrace/whitted_tracer.h"
+#include "techniques/layered_em/layer_clustering.h"
+#include "techniques/layered_em/lens_raster.h"
+
+namespace hybridlab {
+namespace {
+
+class Stopwatch {
+public:
+    explicit Stopwatch(EmBakeStats& stats) : stats_(stats), start_(std::chrono::steady_clock::now()) {}
+    void lap(const std::string& name) {
+        auto now = std::chrono::steady_clock::now();
+        stats_.stageMs.emplace_back(name, std::chrono::duration<double, std::milli>(now - start_).count());
+        start_ = now;
+    }
+
+private:
+    EmBakeStats& stats_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// Cells of side `cell` holding at least one point: "is there a lens record near this point".
+class OccupancyGrid {
+public:
+    explicit OccupancyGrid(float cell) : cell_(cell) {}
+    void add(glm::vec3 p) { cells_.insert(key(glm::floor(p / cell_))); }
+    bool near(glm::vec3 p) const {
+        const glm::vec3 c = glm::floor(p / cell_);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if (cells_.count(key(c + glm::vec3(dx, dy, dz)))) return true;
+        return false;
+    }
+
+private:
+    static std::uint64_t key(glm::vec3 c) {
+        auto q = [](float v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + (1 << 20)) & 0x1fffff; };
+        return q(c.x) | (q(c.y) << 21) | (q(c.z) << 42);
+    }
+    float cell_;
+    std::unordered_set<std::uint64_t> cells_;
+};
+
+// Per layer, the first record of each outgoing ray in that layer (records of one ray are
+// contiguous and in order along it).
+template <typename Visit>
+void forFirstRecordPerLayer(const ViewpointRecords& recs, const std::vector<int>& objectLayer, Visit&& visit) {
+    std::uint32_t currentRay = 0xffffffffu;
+    std::uint64_t seen = 0;
+    for (const OutgoingRecord& r : recs.records) {
+        if (r.ray != currentRay) {
+            currentRay = r.ray;
+            seen = 0;
+        }
+        const int layer = objectLayer[r.object];
+        if (layer < 0 || (seen >> layer) & 1u) continue;
+        seen |= 1ull << layer;
+        visit(r, layer);
+    }
+}
+
+struct LayerSample {
+    ClusterSample sample;
+    glm::vec3 position;
+    OutgoingRay ray;
+};
+
+Shell makeShell(glm::vec3 center, const std::vector<glm::vec3>& points, const std::vector<OutgoingRay>& rays, double meanDistance) {
+    Shell s;
+    s.center = center;
+    s.kind = chooseShellKind(center, points);
+    s.farDistance = static_cast<float>(1e3 * std::max(1.0, meanDistance));
+    if (s.kind == ShellKind::Quad) return fitQuadShell(center, points, rays);
+    if (s.kind == ShellKind::Cylinder) {
+        double sum = 0.0;
+        for (const glm::vec3& p : points) sum += std::hypot(p.x - center.x, p.z - center.z);
+        s.radius = static_cast<float>(sum / static_cast<double>(points.size()));
+        return s;
+    }
+    s.radius = static_cast<float>(meanDistance);
+    return s;
+}
+
+}  // namespace
+
+LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const EmBakeSettings& settings, EmBakeStats& stats,
+                        const BakeProgress& progress) {
+    auto report = [&](const std::string& stage, int done, int total) {
+        if (progress) progress(stage, done, total);
+    };
+    Stopwatch clock(stats);
+    LensSystem system(scene, info);
+    RayScene fullRays(scene);
+    WhittedTracer shading(fullRays, WhittedSettings{});
+    const std::vector<Camera> cameras = viewpointSamples(scene, system.center(), settings.viewpoints);
+    const int views = static_cast<int>(cameras.size());
+    const int w = settings.width, h = settings.height, n = settings.records.supersampling;
+    clock.lap("setup");
+
+    // §4.1 and §4.2: records at every viewpoint sample, clustered all at once. Rays are thinned by
+    // a fixed stride so that the sample count stays bounded.
+    const std::uint64_t expected = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
+                                   static_cast<std::uint64_t>(n * n) * kPathTerms * static_cast<std::uint64_t>(views) * 2u;
+    const std::uint32_t stride = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, expected / std::max<std::size_t>(1, settings.clusterSampleLimit)));
+    std::vector<LayerSample> samples;
+    for (int v = 0; v < views; ++v) {
+        ViewpointRecords recs = compileOutgoingRecords(system, shading, cameras[v], w, h, settings.records);
+        stats.records += recs.records.size();
+        stats.lensQueries += recs.lensQueries;
+        stats.environmentQueries += recs.environmentQueries;
+        for (const OutgoingRecord& r : recs.records) {
+            if ((r.ray / kPathTerms) % stride) continue;
+            samples.push_back({{r.distance, r.object, (static_cast<std::uint64_t>(v) << 32) | r.ray, r.order}, r.position, recs.rays[r.ray]});
+        }
+        report("records", v + 1, views);
+    }
+    clock.lap("records");
+
+    std::vector<ClusterSample> clusterInput(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) clusterInput[i] = samples[i].sample;
+    const LayerPartition partition = clusterLayers(clusterInput, scene.objects.size(), settings.layers, settings.maxLayers, settings.maxRelativeRms);
+    LayeredEm em;
+    em.system = info.name;
+    em.center = system.center();
+    for (std::size_t l = 0; l < partition.shellRadius.size(); ++l) {
+        std::vector<glm::vec3> points;
+        std::vector<OutgoingRay> rays;
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            if (partition.sampleLayer[i] != static_cast<int>(l) || !partition.frontmost[i]) continue;
+            points.push_back(samples[i].position);
+            rays.push_back(samples[i].ray);
+        }
+        EmLayer layer;
+        layer.meanDistance = partition.shellRadius[l];
+        layer.shell = makeShell(em.center, points, rays, layer.meanDistance);
+        for (std::size_t o = 0; o < partition.objectLayer.size(); ++o) {
+            if (partition.objectLayer[o] == static_cast<int>(l)) layer.objects.push_back(static_cast<std::uint32_t>(o));
+        }
+        em.layers.push_back(std::move(layer));
+    }
+    samples.clear();
+    samples.shrink_to_fit();
+    clock.lap("clustering");
+
+    // §4.3 and §5: per viewpoint sample the tessellated lens, its raster and the layer images, as
+    // observations of every layer's cube map.
+    const LensMesh mesh = buildLensMesh(system);
+    const int size = settings.inference.size;
+    const std::size_t layerCount = em.layers.size();
+    double tessellationMs = 0.0, imagesMs = 0.0, inferenceMs = 0.0;
+    auto since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    };
+    std::map<int, std::vector<std::vector<EmObservation>>> observations;  // viewpoint -> layer -> images
+    auto observe = [&](int v) -> const std::vector<std::vector<EmObservation>>& {
+        auto it = observations.find(v);
+        if (it != observations.end()) return it->second;
+        const Camera& camera = cameras[v];
+        auto t0 = std::chrono::steady_clock::now();
+        TessellatedLens lens = tessellateLens(system, mesh, camera, w, h, settings.tessellation);
+        std::vector<glm::vec3> positions(lens.vertices.size());
+        for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = lens.vertices[i].position;
+        LensRaster raster = rasterizeLens(positions, lens.triangles, camera, w, h);
+        stats.tessellatedVertices += lens.vertices.size();
+        stats.tessellatedTriangles += lens.triangles.size();
+        tessellationMs += since(t0);
+
+        t0 = std::chrono::steady_clock::now();
+        ViewpointRecords recs = compileOutgoingRecords(system, shading, camera, w, h, settings.records);
+        std::vector<std::vector<EmObservation>> perLayer(layerCount);
+        std::vector<LayerImageAccumulator> acc;
+        for (std::size_t k = 0; k < layerCount * kPathTerms; ++k) acc.emplace_back(w, h, settings.records.confidenceAngleDegrees);
+        const std::size_t raysPerPixel = static_cast<std::size_t>(n * n) * kPathTerms;
+        for (std::size_t id = 0; id < recs.rayExists.size(); ++id) {
+            if (!recs.rayExists[id]) continue;
+            const int pixel = static_cast<int>(id / raysPerPixel), term = static_cast<int>(id % kPathTerms);
+            for (std::size_t l = 0; l < layerCount; ++l) acc[l * kPathTerms + term].addRay(pixel % w, pixel / w, recs.rayDirection[id]);
+        }
+        std::vector<OccupancyGrid> lensPoints;
+        for (std::size_t l = 0; l < layerCount; ++l) lensPoints.emplace_back(settings.directMissingDistance * static_cast<float>(em.layers[l].meanDistance));
+        forFirstRecordPerLayer(recs, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
+            acc[static_cast<std::size_t>(layer) * kPathTerms + r.term].addColor(static_cast<int>(r.pixel) % w, static_cast<int>(r.pixel) / w, glm::vec4(r.radiance, 1.0f));
+            lensPoints[static_cast<std::size_t>(layer)].add(r.position);
+        });
+        for (std::size_t l = 0; l < layerCount; ++l) {
+            for (int term = 0; term < kPathTerms; ++term) {
+                std::vector<glm::vec4> b;
+                std::vector<float> confidence;
+                acc[l * kPathTerms + static_cast<std::size_t>(term)].finish(b, confidence);
+                auto dirs = vertexTextureDirections(lens, static_cast<PathTerm>(term), em.layers[l].shell);
+                perLayer[l].push_back(lensObservation(raster, lens.triangles, dirs, b, confidence, size));
+            }
+        }
+        if (settings.directImages) {
+            // Direct images (§4.3): confidence 1 where the direct ray meets a part of the layer no
+            // lens record came near, 0 elsewhere.
+            ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
+            stats.environmentQueries += direct.environmentQueries;
+            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(w * h), glm::vec4(0.0f)));
+            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(w * h), 0.0f));
+            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
+                if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
+                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
+                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
+            });
+            for (std::size_t l = 0; l < layerCount; ++l) {
+                perLayer[l].push_back(directObservation(camera, w, h, em.layers[l].shell, b[l], confidence[l], size));
+            }
+        }
+        imagesMs += since(t0);
+        return observations.emplace(v, std::move(perLayer)).first->second;
+    };
+
+    for (int v = 0; v < views; ++v) {
+        EmViewpoint out;
+        out.camera = cameras[v];
+        std::vector<int> window;
+        for (int d = -settings.neighbourViewpoints; d <= settings.neighbourViewpoints; ++d) {
+            int u = v + d;
+            if (settings.viewpoints.closed()) u = ((u % views) + views) % views;
+            if (u < 0 || u >= views || std::find(window.begin(), window.end(), u) != window.end()) continue;
+            window.push_back(u);
+        }
+        for (int u : window) observe(u);
+        auto t0 = std::chrono::steady_clock::now();
+        for (std::size_t l = 0; l < layerCount; ++l) {
+            std::vector<EmObservation> rows;
+            for (int u : window) {
+                const auto& obs = observations.at(u)[l];
+                rows.insert(rows.end(), obs.begin(), obs.end());
+            }
+            EmInferenceResult r = inferLayerEm(rows, settings.inference);
+            stats.inferenceRows += r.rows;
+            stats.maxIterations = std::max(stats.maxIterations, r.iterations);
+            stats.maxRelativeResidual = std::max(stats.maxRelativeResidual, r.relativeResidual);
+            out.unobservedTexels.push_back(cubeMapTexelCount(size) - r.observedTexels);
+            out.maps.push_back(std::move(r.em));
+        }
+        inferenceMs += since(t0);
+        em.viewpoints.push_back(std::move(out));
+        // Observations no later window needs are dropped (a closed circle keeps the first ones).
+        for (auto it = observations.begin(); it != observations.end();) {
+            const bool wrapNeeded = settings.viewpoints.closed() && it->first < settings.neighbourViewpoints;
+            if (it->first < v - settings.neighbourViewpoints && !wrapNeeded) it = observations.erase(it);
+            else ++it;
+        }
+        report("inference", v + 1, views);
+    }
+    stats.stageMs.emplace_back("tessellation", tessellationMs);
+    stats.stageMs.emplace_back("layer images", imagesMs);
+    stats.stageMs.emplace_back("inference", inferenceMs);
+    return em;
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,66 @@
+#pragma once
+// EM inference (Hakura & Snyder 2001 §4.3): the layer cube map x that, applied by the renderer,
+// best matches the ray tracer's layer images in the confidence-weighted least-squares sense,
+// A x = b over every observation at once (both terms, several nearby viewpoints, direct images of
+// the environment), solved by conjugate gradient (Eigen's least-squares CG) with a small smoothness
+// term for texels no image observes and a stopping rule on the relative residual.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/SparseCore>
+#include <glm/vec4.hpp>
+
+#include "common/scene/camera.h"
+#include "techniques/layered_em/em_cube_map.h"
+#include "techniques/layered_em/layer_shells.h"
+#include "techniques/layered_em/lens_raster.h"
+
+namespace hybridlab {
+
+// Rows of the rendering matrix and their targets: one row per pixel an image holds.
+struct EmObservation {
+    std::vector<CubeMapLookup> lookups;  // what the renderer reads at the pixel
+    std::vector<glm::vec4> targets;      // b: premultiplied colour and alpha of the layer at the pixel
+    std::vector<float> confidence;       // row weight
+    std::vector<std::uint32_t> pixels;   // the pixel of each row (for images and tests)
+};
+
+// A lens image of one term: a row for every covered pixel whose confidence is positive.
+// `targets` and `confidence` are per pixel of the raster.
+EmObservation lensObservation(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
+                              const std::vector<glm::vec3>& vertexDirections, const std::vector<glm::vec4>& targets,
+                              const std::vector<float>& confidence, int size);
+
+// A direct image of the environment without the lens (§4.3): the pixel's own camera ray indexes
+// the shell.
+EmObservation directObservation(const Camera& camera, int width, int height, const Shell& shell,
+                                const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size);
+
+// The (unweighted) rendering matrix of an observation: row r holds the lookup weights of its pixel.
+Eigen::SparseMatrix<double, Eigen::RowMajor> renderingMatrix(const EmObservation& observation, int size);
+
+// What the renderer draws for one term and layer with `em` (per pixel; zero where uncovered).
+std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
+                                 const std::vector<glm::vec3>& vertexDirections, const LayerCubeMap& em);
+
+struct EmInferenceSettings {
+    int size = 32;                    // texels a cube face side
+    double smoothness = 1e-3;         // weight of (x_i - x_j)^2 between neighbouring texels of a face
+    double tolerance = 1e-6;          // stop at this relative residual (of the normal equations)
+    int maxIterations = 1000;
+    double observedWeight = 0.25;     // a texel is observed when its confidence-weighted lookup weights
+                                      // over all rows sum to at least this (a quarter of a pixel)
+};
+
+struct EmInferenceResult {
+    LayerCubeMap em;
+    std::vector<bool> observed;       // per texel: read with at least observedWeight in all
+    std::size_t observedTexels = 0;
+    int iterations = 0;               // the largest over the four channels
+    double relativeResidual = 0.0;    // the largest over the four channels
+    std::size_t rows = 0;
+};
+
+EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings);
+
+}  // namespace hybridlab

@@ -1,0 +1,207 @@
+// Baking layered EMs end to end (Hakura & Snyder 2001 §4, §6): on the paper's teapot-lens scene
+// the clustering finds the cup, the columns and the walls as the teapot's three layers (Figure 7),
+// and disocclusion prevention leaves fewer texels unobserved than single-viewpoint inference; the
+// cache round-trips an entry exactly; viewpoint samples and the bake-em command.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "common/core/input_error.h"
+#include "common/scene/scene_file.h"
+#include "techniques/layered_em/em_cache.h"
+#include "tests/cli_runner.h"
+#include "tests/scene_fixtures.h"
+#include "tests/test_support.h"
+
+namespace hybridlab {
+namespace {
+
+EmBakeSettings smallBake() {
+    EmBakeSettings s;
+    s.width = 48;
+    s.height = 36;
+    s.records.supersampling = 2;
+    s.records.maxHitsPerRay = 4;
+    s.viewpoints.stepDegrees = 45.0f;
+    s.inference.size = 8;
+    s.layers = 3;
+    return s;
+}
+
+std::size_t objectIndex(const Scene& s, const std::string& name) {
+    for (std::size_t i = 0; i < s.objects.size(); ++i)
+        if (s.objects[i].name == name) return i;
+    ADD_FAILURE() << name;
+    return 0;
+}
+
+TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
+    REQUIRE_ASSETS();
+    Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
+    auto systems = findLensSystems(scene);
+    ASSERT_EQ(systems.size(), 2u) << "the teapot and the cup are two lens systems";
+    ASSERT_EQ(systems[0].name, "teapot");
+    EmBakeSettings settings = smallBake();
+    EmBakeStats stats;
+    LayeredEm em = bakeLayeredEm(scene, systems[0], settings, stats);
+    ASSERT_EQ(em.layers.size(), 3u);
+    ASSERT_EQ(em.viewpoints.size(), 8u);
+    auto layerOf = [&](const std::string& name) {
+        const std::uint32_t o = static_cast<std::uint32_t>(objectIndex(scene, name));
+        for (std::size_t l = 0; l < em.layers.size(); ++l)
+            for (std::uint32_t x : em.layers[l].objects)
+                if (x == o) return static_cast<int>(l);
+        return -1;
+    };
+    EXPECT_EQ(layerOf("cup"), 0);
+    for (int c = 0; c < 8; ++c) EXPECT_EQ(layerOf("column-" + std::to_string(c)), 1) << c;
+    for (const char* w : {"wall-north", "wall-south", "wall-east", "wall-west"}) EXPECT_EQ(layerOf(w), 2) << w;
+    EXPECT_LT(em.layers[0].meanDistance, em.layers[1].meanDistance);
+    EXPECT_LT(em.layers[1].meanDistance, em.layers[2].meanDistance);
+    std::string kinds;
+    for (const EmLayer& l : em.layers) kinds += l.shell.kind == ShellKind::Sphere ? "S" : l.shell.kind == ShellKind::Quad ? "Q" : "C";
+    RecordProperty("shell_kinds", kinds);
+    EXPECT_LT(stats.maxRelativeResidual, 1e-3);
+
+    EmBakeSettings single = settings;
+    single.disablePrevention();
+    EmBakeStats singleStats;
+    LayeredEm without = bakeLayeredEm(scene, systems[0], single, singleStats);
+    ASSERT_EQ(without.layers.size(), em.layers.size());
+    std::size_t unobservedWith = 0, unobservedWithout = 0;
+    for (const EmViewpoint& v : em.viewpoints)
+        for (std::size_t u : v.unobservedTexels) unobservedWith += u;
+    for (const EmViewpoint& v : without.viewpoints)
+        for (std::size_t u : v.unobservedTexels) unobservedWithout += u;
+    RecordProperty("unobserved_with_prevention", std::to_string(unobservedWith));
+    RecordProperty("unobserved_without_prevention", std::to_string(unobservedWithout));
+    EXPECT_LT(unobservedWith, unobservedWithout);
+}
+
+TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
+    REQUIRE_ASSETS();
+    Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
+    auto systems = findLensSystems(scene);
+    EmBakeSettings settings = smallBake();
+    settings.viewpoints.maxSamples = 2;
+    settings.width = 24;
+    settings.height = 18;
+    settings.layers = 2;
+    EmBakeStats stats;
+    LayeredEm em = bakeLayeredEm(scene, systems[1], settings, stats);
+    ASSERT_EQ(em.viewpoints.size(), 2u);
+    test::TempDir dir;
+    const std::string key = layeredEmCacheKey(scene, systems[1], settings);
+    EmBakeSettings other = settings;
+    other.inference.size = 16;
+    EXPECT_NE(key, layeredEmCacheKey(scene, systems[1], other));
+    EXPECT_NE(key, layeredEmCacheKey(scene, systems[0], settings));
+    EXPECT_EQ(key, layeredEmCacheKey(scene, systems[1], settings));
+    const auto file = dir / (key + ".hlem");
+    EXPECT_FALSE(readLayeredEm(file).has_value());
+    writeLayeredEm(file, em);
+    auto back = readLayeredEm(file);
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(back->system, "cup");
+    ASSERT_EQ(back->layers.size(), em.layers.size());
+    EXPECT_EQ(back->layers[1].objects, em.layers[1].objects);
+    EXPECT_EQ(back->layers[0].shell.radius, em.layers[0].shell.radius);
+    ASSERT_EQ(back->viewpoints.size(), 2u);
+    EXPECT_EQ(back->viewpoints[1].maps[1].texels, em.viewpoints[1].maps[1].texels);
+    EXPECT_EQ(back->viewpoints[1].camera.position, em.viewpoints[1].camera.position);
+    // A truncated file is not an entry.
+    std::filesystem::resize_file(file, std::filesystem::file_size(file) - 3);
+    EXPECT_FALSE(readLayeredEm(file).has_value());
+}
+
+}  // namespace
+}  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
+    REQUIRE_ASSETS();
+    test::TempDir dir;
+    const std::string cache = (dir / "cache").string();
+    const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache, "--quiet",
+                                            "--width", "24", "--height", "18", "--supersampling", "1", "--em-size", "4",
+                                            "--max-viewpoints", "2", "--layers", "2"};
+    auto results = test::runHybridlabAll({{quick, {}},
+                                          {{"bake-em", "--scene", "teapot-lens", "--system", "vase", "--cache", cache}, {}},
+                                          {{"bake-em", "--scene", "whitted-classic", "--cache", cache}, {}},
+                                          {{"bake-em", "--scene", "teapot-lens", "--em-size", "1", "--cache", cache}, {}}});
+    EXPECT_EQ(results[0].exitStatus, 0) << results[0].err;
+    EXPECT_CONTAINS(results[0].out, "lens system cup (1 objects)");
+    EXPECT_CONTAINS(results[0].out, "stage inference");
+    EXPECT_CONTAINS(results[0].out, "full ray tree");
+    EXPECT_EQ(results[1].exitStatus, 2);
+    EXPECT_CONTAINS(results[1].err, "has no lens system 'vase'");
+    EXPECT_EQ(results[2].exitStatus, 2);
+    EXPECT_CONTAINS(results[2].err, "the scene has no lens objects");
+    EXPECT_EQ(results[3].exitStatus, 2);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache), std::filesystem::directory_iterator()), 1)
+        << "one entry; bad input writes nothing";
+    // The second run finds the entry.
+    test::CliResult again = test::runHybridlab(quick);
+    EXPECT_EQ(again.exitStatus, 0) << again.err;
+    EXPECT_CONTAINS(again.out, "in the cache: 2 layers, 2 viewpoints");
+}
+
+}  // namespace
+}  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+TEST(EmBake, ViewpointSamplesCircleTheLensOrFollowACameraPath) {
+    test::SceneBuilder b;
+    b.object("ball", makeSphere(8, 4), b.material(test::matte(glm::vec3(0.5f))));
+    Scene& s = b.scene();
+    s.camera.position = {1.0f, 2.0f, 5.0f};
+    s.camera.fovYDegrees = 33.0f;
+    const glm::vec3 center(1.0f, 0.5f, 1.0f);
+    auto circle = viewpointSamples(s, center, {});
+    ASSERT_EQ(circle.size(), 45u) << "every 8 degrees";
+    EXPECT_VEC_NEAR(circle[0].position, s.camera.position, 1e-5f) << "starts at the scene camera's bearing";
+    for (const Camera& c : circle) {
+        EXPECT_NEAR(std::hypot(c.position.x - center.x, c.position.z - center.z), 4.0f, 1e-4f);
+        EXPECT_NEAR(c.position.y, 2.0f, 1e-6f);
+        EXPECT_VEC_NEAR(c.forward(), glm::normalize(center - c.position), 1e-5f);
+        EXPECT_EQ(c.fovYDegrees, 33.0f);
+    }
+    const glm::vec3 a = circle[1].position - center, c0 = circle[0].position - center;
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(glm::normalize(glm::vec2(a.x, a.z)), glm::normalize(glm::vec2(c0.x, c0.z))))), 8.0f, 1e-3f);
+
+    ViewpointSettings v;
+    v.stepDegrees = 90.0f;
+    v.radius = 2.0f;
+    v.height = -1.0f;
+    v.heightSet = true;
+    v.maxSamples = 3;
+    auto few = viewpointSamples(s, center, v);
+    ASSERT_EQ(few.size(), 3u);
+    EXPECT_FALSE(v.closed()) << "a cut circle does not wrap around";
+    EXPECT_VEC_NEAR(few[1].position, glm::vec3(3.0f, -1.0f, 1.0f), 1e-5f);
+
+    CameraPath path;
+    path.name = "line";
+    path.interpolation = Interpolation::Linear;
+    path.times = {0.0, 1.0};
+    path.positions = {{0, 1, 5}, {4, 1, 5}};
+    path.targets = {{0, 0, 0}, {0, 0, 0}};
+    path.framesPerSecond = 4.0;
+    s.cameraPaths.push_back(path);
+    ViewpointSettings onPath;
+    onPath.cameraPath = "line";
+    onPath.frameStride = 2;
+    auto frames = viewpointSamples(s, center, onPath);
+    ASSERT_EQ(frames.size(), 3u) << "frames 0, 2, 4 of 5";
+    EXPECT_VEC_NEAR(frames[1].position, glm::vec3(2, 1, 5), 1e-5f);
+    onPath.cameraPath = "circle";
+    EXPECT_THROW(viewpointSamples(s, center, onPath), InputError);
+}
+
+}  // namespace
+}  // namespace hybridlab
