@@ -76,10 +76,21 @@ float displayDifference(glm::vec3 a, glm::vec3 b) {
     return std::max({std::abs(da.r - db.r), std::abs(da.g - db.g), std::abs(da.b - db.b)});
 }
 
-TEST(SsrPass, MirrorFloorResolvesTheReflectionsOfOnScreenSurfaces) {
+// Both traversals must pass the same tests.
+class SsrTraversal : public ::testing::TestWithParam<SsrSettings::Traversal> {
+protected:
+    SsrSettings settings() const {
+        SsrSettings s;
+        s.traversal = GetParam();
+        return s;
+    }
+    const char* name() const { return GetParam() == SsrSettings::Traversal::HiZ ? "hiz" : "linear"; }
+};
+
+TEST_P(SsrTraversal, MirrorFloorResolvesTheReflectionsOfOnScreenSurfaces) {
     const Scene scene = test::mirrorFloorScene();
     RASTERIZER_OR_SKIP(rasterizer, scene);
-    const SsrFrame f = renderSsr(*rasterizer, scene, {});
+    const SsrFrame f = renderSsr(*rasterizer, scene, settings());
     const RayScene rays(scene);
     const GBuffer& g = f.raster.gbuffer;
     std::size_t mirror = 0, onScreen = 0, resolved = 0, close = 0, falseHits = 0;
@@ -98,18 +109,18 @@ TEST(SsrPass, MirrorFloorResolvesTheReflectionsOfOnScreenSurfaces) {
         ++resolved;
         if (displayDifference(s.color, ref.radiance) <= 0.05f) ++close;
     }
-    std::printf("[ ssr      ] mirror floor: %zu mirror pixels, %zu reflect on-screen surfaces, SSR resolved %zu (%.1f%%), %zu of them "
+    std::printf("[ ssr      ] %s, mirror floor: %zu mirror pixels, %zu reflect on-screen surfaces, SSR resolved %zu (%.1f%%), %zu of them "
                 "within 0.05 (%.1f%%); %zu SSR hits where the reference reflection is off screen\n",
-                mirror, onScreen, resolved, 100.0 * resolved / onScreen, close, 100.0 * close / resolved, falseHits);
+                name(), mirror, onScreen, resolved, 100.0 * resolved / onScreen, close, 100.0 * close / resolved, falseHits);
     ASSERT_GT(onScreen, 2000u);  // the objects' reflections cover a good part of the floor
     EXPECT_GE(static_cast<double>(resolved), 0.90 * onScreen);
     EXPECT_GE(static_cast<double>(close), 0.95 * resolved);
 }
 
-TEST(SsrPass, ReflectionsOfAnObjectBehindTheCameraFailAndAreMasked) {
+TEST_P(SsrTraversal, ReflectionsOfAnObjectBehindTheCameraFailAndAreMasked) {
     const Scene scene = test::mirrorWallScene();
     RASTERIZER_OR_SKIP(rasterizer, scene);
-    const SsrFrame f = renderSsr(*rasterizer, scene, {});
+    const SsrFrame f = renderSsr(*rasterizer, scene, settings());
     const RayScene rays(scene);
     const GBuffer& g = f.raster.gbuffer;
     std::size_t behind = 0, failed = 0, offScreen = 0, floorResolved = 0, floorOnScreen = 0;
@@ -126,19 +137,19 @@ TEST(SsrPass, ReflectionsOfAnObjectBehindTheCameraFailAndAreMasked) {
             if (s.resolved()) ++floorResolved;
         }
     }
-    std::printf("[ ssr      ] mirror wall: %zu pixels reflect the slab behind the camera, SSR failed on %zu, off-screen flag on %zu; "
+    std::printf("[ ssr      ] %s, mirror wall: %zu pixels reflect the slab behind the camera, SSR failed on %zu, off-screen flag on %zu; "
                 "%zu reflect the visible floor, SSR resolved %zu\n",
-                behind, failed, offScreen, floorOnScreen, floorResolved);
+                name(), behind, failed, offScreen, floorOnScreen, floorResolved);
     ASSERT_GT(behind, 2000u);
     EXPECT_EQ(failed, behind);
     EXPECT_EQ(offScreen, behind);
     EXPECT_GE(static_cast<double>(floorResolved), 0.9 * floorOnScreen);
 }
 
-TEST(SsrPass, OnlyOpaqueReflectiveTexelsAreTraced) {
+TEST_P(SsrTraversal, OnlyOpaqueReflectiveTexelsAreTraced) {
     const Scene scene = test::mirrorFloorScene();
     RASTERIZER_OR_SKIP(rasterizer, scene);
-    const SsrFrame f = renderSsr(*rasterizer, scene, {});
+    const SsrFrame f = renderSsr(*rasterizer, scene, settings());
     const GBuffer& g = f.raster.gbuffer;
     for (std::size_t i = 0; i < g.pixelCount(); ++i) {
         const SsrPixel& s = f.ssr.pixels[i];
@@ -204,6 +215,38 @@ TEST(SsrPass, ParametersLimitAndCoarsenTheMarch) {
     EXPECT_GE(static_cast<double>(agree), 0.95 * bothHit);
     EXPECT_GE(static_cast<double>(fewerSteps), 0.8 * bothHit);
     EXPECT_GT(fadedHits, fineHits / 2);
+}
+
+INSTANTIATE_TEST_SUITE_P(SsrPass, SsrTraversal, ::testing::Values(SsrSettings::Traversal::Linear, SsrSettings::Traversal::HiZ),
+                         [](const auto& info) { return info.param == SsrSettings::Traversal::HiZ ? std::string("hiz") : std::string("linear"); });
+
+TEST(SsrPass, HiZFindsTheLinearMarchHitsInFewerSteps) {
+    const Scene scene = test::mirrorFloorScene();
+    RASTERIZER_OR_SKIP(rasterizer, scene);
+    const SsrFrame linear = renderSsr(*rasterizer, scene, {});
+    SsrSettings hizSettings;
+    hizSettings.traversal = SsrSettings::Traversal::HiZ;
+    const SsrFrame hiz = renderSsr(*rasterizer, scene, hizSettings);
+    std::size_t traced = 0, sameOutcome = 0, bothHit = 0, samePixel = 0;
+    double linearSteps = 0.0, hizSteps = 0.0;
+    for (std::size_t i = 0; i < linear.ssr.pixels.size(); ++i) {
+        const SsrPixel &a = linear.ssr.pixels[i], &b = hiz.ssr.pixels[i];
+        if (!a.traced()) continue;
+        ++traced;
+        sameOutcome += a.resolved() == b.resolved();
+        linearSteps += a.steps;
+        hizSteps += b.steps;
+        if (a.resolved() && b.resolved()) {
+            ++bothHit;
+            if (std::abs(a.hit.x - b.hit.x) <= 1 && std::abs(a.hit.y - b.hit.y) <= 1) ++samePixel;
+        }
+    }
+    std::printf("[ ssr      ] hiz against linear: same outcome on %zu of %zu rays, same hit pixel (within 1) on %zu of %zu; mean steps %.1f "
+                "linear, %.1f hiz\n",
+                sameOutcome, traced, samePixel, bothHit, linearSteps / traced, hizSteps / traced);
+    EXPECT_GE(static_cast<double>(sameOutcome), 0.98 * traced);
+    EXPECT_GE(static_cast<double>(samePixel), 0.98 * bothHit);
+    EXPECT_LT(hizSteps, 0.5 * linearSteps);
 }
 
 }  // namespace

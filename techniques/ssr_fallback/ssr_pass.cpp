@@ -10,7 +10,16 @@ namespace hybridlab {
 namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr std::uint32_t kGroupSize = 8;  // local_size of ssr_trace.comp
+constexpr VkFormat kPyramidFormat = VK_FORMAT_R32_SFLOAT;
+constexpr std::uint32_t kGroupSize = 8;  // local_size of ssr_trace.comp and ssr_depth_pyramid.comp
+
+std::uint32_t groups(std::uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
+
+// Compute-shader writes visible to the compute shaders that follow.
+void computeToComputeBarrier(VkCommandBuffer cb) {
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
 
 // std140 twin of SsrUniforms in ssr_trace.comp.
 struct SsrUniforms {
@@ -18,6 +27,7 @@ struct SsrUniforms {
     glm::vec4 cameraPosition, cameraForward;
     glm::vec4 march;
     glm::vec4 screen;
+    glm::vec4 hiz;
 };
 
 }  // namespace
@@ -33,9 +43,12 @@ SsrPass::SsrPass() : device_(VulkanDevice::shared()) {
                                           {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                           {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                           {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                          {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+                                          {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                          {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr}});
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
-    pipeline_ = createComputePipeline(device, "ssr_trace.comp", layout_);
+    for (std::uint32_t hiz = 0; hiz < 2; ++hiz) pipelines_[hiz] = createComputePipeline(device, "ssr_trace.comp", layout_, {hiz});
+    device.requireFormat(kPyramidFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT, "the SSR depth pyramid");
+    pyramidUniforms_ = GpuBuffer(device, sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     nearest_ = createNearestSampler(device, "the SSR sampler");
     uniforms_ = GpuBuffer(device, sizeof(SsrUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
 }
@@ -48,7 +61,45 @@ void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
     hit_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, usage});
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4);
     colorReadback_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+    // The pyramid: levels down to 1 x 1, each half the one below (rounded down).
+    std::uint32_t levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    pyramid_ = GpuImage(device, {kPyramidFormat, width, height, levels, 1, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    pyramidLevels_.clear();
+    for (std::uint32_t l = 0; l < levels; ++l) pyramidLevels_.push_back(pyramid_.layerView(0, l));
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    pyramidDescriptors_ = DescriptorSet(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                                 {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                                 {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                                 {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}},
+                                        levels);
+    if (!pyramidLayout_) {
+        pyramidLayout_ = createPipelineLayout(device, {pyramidDescriptors_.layout()}, 0);
+        for (std::uint32_t fromGBuffer = 0; fromGBuffer < 2; ++fromGBuffer)
+            pyramidPipelines_[fromGBuffer] = createComputePipeline(device, "ssr_depth_pyramid.comp", pyramidLayout_, {fromGBuffer});
+    }
     hitReadback_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+}
+
+void SsrPass::recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& t) {
+    pyramidUniforms_.write(&t.view, sizeof t.view);
+    const auto levels = static_cast<std::uint32_t>(pyramidLevels_.size());
+    for (std::uint32_t l = 0; l < levels; ++l) {
+        pyramidDescriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, pyramidUniforms_.buffer(), l);
+        pyramidDescriptors_.writeImage(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[0], nearest_, VK_IMAGE_LAYOUT_GENERAL, l);
+        pyramidDescriptors_.writeImage(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[7], nearest_, VK_IMAGE_LAYOUT_GENERAL, l);
+        pyramidDescriptors_.writeImage(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pyramidLevels_[l > 0 ? l - 1 : 0], VK_NULL_HANDLE,
+                                       VK_IMAGE_LAYOUT_GENERAL, l);
+        pyramidDescriptors_.writeImage(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pyramidLevels_[l], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL, l);
+    }
+    for (std::uint32_t l = 0; l < levels; ++l) {
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pyramidPipelines_[l == 0 ? 1 : 0]);
+        VkDescriptorSet set = pyramidDescriptors_.set(l);
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pyramidLayout_, 0, 1, &set, 0, nullptr);
+        vkCmdDispatch(cb, groups(std::max(1u, t.width >> l)), groups(std::max(1u, t.height >> l)), 1);
+        computeToComputeBarrier(cb);
+    }
 }
 
 void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
@@ -63,6 +114,7 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     u.march = glm::vec4(static_cast<float>(settings_.maxSteps), static_cast<float>(settings_.stride), settings_.thickness,
                         settings_.maxDistance);
     u.screen = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), settings_.edgeFade, camera.nearPlane);
+    u.hiz = glm::vec4(static_cast<float>(pyramidLevels_.size() - 1), 0.0f, 0.0f, 0.0f);
     uniforms_.write(&u, sizeof u);
 
     // Rewritten every frame: the targets are recreated when the frame size changes.
@@ -73,14 +125,17 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     descriptors_.writeImage(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     descriptors_.writeImage(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, color_.view(), VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     descriptors_.writeImage(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hit_.view(), VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    descriptors_.writeImage(8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pyramid_.view(), nearest_, VK_IMAGE_LAYOUT_GENERAL);
 
-    for (const GpuImage* image : {&color_, &hit_})
+    for (const GpuImage* image : {&color_, &hit_, &pyramid_})
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    const bool hiz = settings_.traversal == SsrSettings::Traversal::HiZ;
+    if (hiz) recordDepthPyramid(cb, t);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[hiz ? 1 : 0]);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-    vkCmdDispatch(cb, (t.width + kGroupSize - 1) / kGroupSize, (t.height + kGroupSize - 1) / kGroupSize, 1);
+    vkCmdDispatch(cb, groups(t.width), groups(t.height), 1);
 
     for (const GpuImage* image : {&color_, &hit_})
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,

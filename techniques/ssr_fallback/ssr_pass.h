@@ -5,6 +5,7 @@
 // G-buffer's depth with McGuire & Mara's perspective-correct DDA and a thickness test. It reads
 // back, per texel, the lit image at the hit, a confidence, and the reasons the ray failed: the mask
 // of the texels the ray tracer completes.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,8 +20,10 @@
 namespace hybridlab {
 
 struct SsrSettings {
-    int maxSteps = 512;          // DDA steps per ray (the refinement's unit steps count too)
-    int stride = 1;              // pixels per coarse step; a coarse hit is refined with unit steps
+    enum class Traversal { Linear, HiZ };
+    Traversal traversal = Traversal::Linear;  // the DDA pixel by pixel, or the min-depth pyramid (FidelityFX SSSR)
+    int maxSteps = 512;          // steps per ray (DDA steps, refinement steps, or pyramid cells visited)
+    int stride = 1;              // linear: pixels per coarse step; a coarse hit is refined with unit steps
     float thickness = 0.25f;     // depth of every visible surface's slab behind it, in view-depth units
     float maxDistance = 100.0f;  // world length of the ray
     float edgeFade = 0.05f;      // confidence ramps from 0 at the screen border over this fraction of the smaller side (0: none)
@@ -70,15 +73,23 @@ public:
 
 private:
     void resize(std::uint32_t width, std::uint32_t height);
+    void recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& targets);
 
     std::shared_ptr<VulkanDevice> device_;
     SsrSettings settings_;
     DescriptorSet descriptors_;
     UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    std::array<UniquePipeline, 2> pipelines_;  // by traversal
     UniqueSampler nearest_;
     GpuBuffer uniforms_;
     GpuImage color_, hit_;
+    // The hiz traversal's min-depth pyramid: one descriptor set and storage view per level.
+    GpuImage pyramid_;
+    std::vector<UniqueImageView> pyramidLevels_;
+    DescriptorSet pyramidDescriptors_;
+    UniquePipelineLayout pyramidLayout_;
+    std::array<UniquePipeline, 2> pyramidPipelines_;  // level 0 from the G-buffer, further levels
+    GpuBuffer pyramidUniforms_;
     GpuBuffer colorReadback_, hitReadback_;
     SsrResult result_;
 };

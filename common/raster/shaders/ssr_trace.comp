@@ -5,8 +5,13 @@
 // homogeneous camera-space point Q = p / w and k = 1 / w are affine in screen space, so they are
 // stepped with the pixel; a step hits where the ray's depth interval over the step meets the
 // surface's depth slab [d, d + thickness]. Outputs the lit image at the hit with a confidence, and
-// why the ray failed (the mask the ray-traced fallback reads, the paper's second step).
+// why the ray failed (the mask the ray-traced fallback reads, the paper's second step). With
+// kHiZ, the ray instead walks the min-depth pyramid (ssr_depth_pyramid.comp) as FidelityFX SSSR
+// does: up a level after a cell the ray crosses wholly in front of its nearest surface, down a
+// level where it may meet it, the thickness test at level 0.
 layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const bool kHiZ = false;
 
 // Bits of ssrHit.z; the failure bits mirror SsrFailure in techniques/ssr_fallback/ssr_pass.h.
 const uint kTraced = 1u;       // an opaque reflective texel: a ray was marched
@@ -23,6 +28,7 @@ layout(std140, set = 0, binding = 0) uniform SsrUniforms {
     vec4 cameraForward;   // xyz
     vec4 march;           // x max steps, y stride (pixels), z thickness (view depth), w max distance (world)
     vec4 screen;          // x width, y height, z edge fade (fraction of the smaller side), w near plane distance
+    vec4 hiz;             // x the pyramid's top level
 } u;
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
@@ -31,6 +37,7 @@ layout(set = 0, binding = 4) uniform usampler2D gObjectId;
 layout(set = 0, binding = 5) uniform sampler2D litImage;
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D ssrColor;  // rgb the lit image at the hit, a confidence
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D ssrHit;    // xy hit pixel (-1 without), z flag bits, w steps
+layout(set = 0, binding = 8) uniform sampler2D depthPyramid;               // kHiZ: min view depth per cell, by level
 
 const float kSkyDepth = 1e30;
 
@@ -96,63 +103,103 @@ void main() {
     if (dot(P1 - P0, P1 - P0) < 1e-4) P1 += vec2(0.01);  // at least one pixel
     delta = P1 - P0;
 
-    bool permute = abs(delta.x) < abs(delta.y);
-    if (permute) {
-        delta = delta.yx;
-        P0 = P0.yx;
-        P1 = P1.yx;
-    }
-    float stepDir = sign(delta.x);
-    float invdx = stepDir / delta.x;
-    float stride = u.march.y;
-    vec2 dP = vec2(stepDir, delta.y * invdx);
-    float dQz = (Q1.z - Q0.z) * invdx, dk = (k1 - k0) * invdx;
-    float thickness = u.march.z;
-    float end = P1.x * stepDir;
-    int maxSteps = int(u.march.x);
-
-    // Start one pixel out, so that the ray does not find its own surface.
-    March m = March(P0 + dP, Q0.z + dQz, k0 + dk);
     bool hit = false, behind = false;
     int steps = 0;
     vec2 hitPixel = vec2(-1.0);
-    // Coarse march with the stride; after a coarse hit (stride > 1), back up one stride and refine
-    // with unit steps over it (the coarse hit stands when the refinement skips over the slab).
-    float s = stride;
-    int refineSteps = -1;  // unit steps left in the refinement; -1 while coarse
-    while (m.P.x * stepDir <= end && steps < maxSteps && refineSteps != 0) {
-        // The ray's depth across the pixel: from half a pixel back to half a pixel ahead (with a
-        // stride, the pixels in between are skipped, not smeared into the test).
-        float dMin = -(m.Qz - dQz * 0.5) / (m.k - dk * 0.5);
-        float dMax = -(m.Qz + dQz * 0.5) / (m.k + dk * 0.5);
-        if (dMin > dMax) {
-            float t = dMin;
-            dMin = dMax;
-            dMax = t;
-        }
-        vec2 texel = permute ? m.P.yx : m.P;
-        float sceneD = sceneDepth(ivec2(texel));
-        ++steps;
-        if (refineSteps > 0) --refineSteps;
-        if (dMax >= sceneD && dMin <= sceneD + thickness) {
-            hitPixel = texel;
-            if (refineSteps < 0 && stride > 1.0) {
-                m.P -= dP * (stride - 1.0);
-                m.Qz -= dQz * (stride - 1.0);
-                m.k -= dk * (stride - 1.0);
-                s = 1.0;
-                refineSteps = int(stride);
+    float thickness = u.march.z;
+    int maxSteps = int(u.march.x);
+    if (kHiZ) {
+        // t runs along the clipped segment; Q.z and k are affine in t, so the ray's depth at t is
+        // exact, and monotonic: its extremes over a cell are at the cell's entry and exit.
+        float len = max(abs(delta.x), abs(delta.y));
+        float nudge = 1e-3 / len;  // into the next cell
+        float t = 1.0 / len;       // one pixel out, so that the ray does not find its own surface
+        int level = 0, topLevel = int(u.hiz.x);
+        while (t <= 1.0 && steps < maxSteps) {
+            vec2 p = P0 + delta * t;
+            float cellSize = float(1 << level);
+            vec2 cellMin = floor(p / cellSize) * cellSize, cellMax = cellMin + cellSize;
+            float tExit = 1.0;
+            for (int axis = 0; axis < 2; ++axis) {
+                if (delta[axis] > 0.0) tExit = min(tExit, (cellMax[axis] - P0[axis]) / delta[axis]);
+                else if (delta[axis] < 0.0) tExit = min(tExit, (cellMin[axis] - P0[axis]) / delta[axis]);
+            }
+            float dEntry = -mix(Q0.z, Q1.z, t) / mix(k0, k1, t), dExit = -mix(Q0.z, Q1.z, tExit) / mix(k0, k1, tExit);
+            float dMin = min(dEntry, dExit), dMax = max(dEntry, dExit);
+            float nearest = texelFetch(depthPyramid, ivec2(cellMin / cellSize), level).r;
+            ++steps;
+            if (dMax < nearest) {  // wholly in front of the cell's nearest surface: skip the cell, coarser
+                t = tExit + nudge;
+                level = min(level + 1, topLevel);
                 continue;
             }
-            hit = true;
-            break;
+            if (level > 0) {
+                --level;
+                continue;
+            }
+            if (dMin <= nearest + thickness) {
+                hit = true;
+                hitPixel = p;
+                break;
+            }
+            if (nearest < kSkyDepth) behind = true;
+            t = tExit + nudge;
+            level = min(level + 1, topLevel);
         }
-        if (dMin > sceneD + thickness && sceneD < kSkyDepth) behind = true;
-        m.P += dP * s;
-        m.Qz += dQz * s;
-        m.k += dk * s;
+    } else {
+        bool permute = abs(delta.x) < abs(delta.y);
+        if (permute) {
+            delta = delta.yx;
+            P0 = P0.yx;
+            P1 = P1.yx;
+        }
+        float stepDir = sign(delta.x);
+        float invdx = stepDir / delta.x;
+        float stride = u.march.y;
+        vec2 dP = vec2(stepDir, delta.y * invdx);
+        float dQz = (Q1.z - Q0.z) * invdx, dk = (k1 - k0) * invdx;
+        float end = P1.x * stepDir;
+
+        // Start one pixel out, so that the ray does not find its own surface.
+        March m = March(P0 + dP, Q0.z + dQz, k0 + dk);
+        // Coarse march with the stride; after a coarse hit (stride > 1), back up one stride and refine
+        // with unit steps over it (the coarse hit stands when the refinement skips over the slab).
+        float s = stride;
+        int refineSteps = -1;  // unit steps left in the refinement; -1 while coarse
+        while (m.P.x * stepDir <= end && steps < maxSteps && refineSteps != 0) {
+            // The ray's depth across the pixel: from half a pixel back to half a pixel ahead (with a
+            // stride, the pixels in between are skipped, not smeared into the test).
+            float dMin = -(m.Qz - dQz * 0.5) / (m.k - dk * 0.5);
+            float dMax = -(m.Qz + dQz * 0.5) / (m.k + dk * 0.5);
+            if (dMin > dMax) {
+                float t = dMin;
+                dMin = dMax;
+                dMax = t;
+            }
+            vec2 texel = permute ? m.P.yx : m.P;
+            float sceneD = sceneDepth(ivec2(texel));
+            ++steps;
+            if (refineSteps > 0) --refineSteps;
+            if (dMax >= sceneD && dMin <= sceneD + thickness) {
+                hitPixel = texel;
+                if (refineSteps < 0 && stride > 1.0) {
+                    m.P -= dP * (stride - 1.0);
+                    m.Qz -= dQz * (stride - 1.0);
+                    m.k -= dk * (stride - 1.0);
+                    s = 1.0;
+                    refineSteps = int(stride);
+                    continue;
+                }
+                hit = true;
+                break;
+            }
+            if (dMin > sceneD + thickness && sceneD < kSkyDepth) behind = true;
+            m.P += dP * s;
+            m.Qz += dQz * s;
+            m.k += dk * s;
+        }
+        if (refineSteps >= 0) hit = true;  // a coarse hit whose refinement did not land: keep the coarse pixel
     }
-    if (refineSteps >= 0) hit = true;  // a coarse hit whose refinement did not land: keep the coarse pixel
 
     uint flags = kTraced;
     if (hit) {
