@@ -29,6 +29,9 @@ PACKAGES=(
   python3-skimage python3-numpy
   # reports and paper figures (Debian's /usr/bin/python3)
   python3-matplotlib
+  # the viewer's browser test only (tests/browser: headless Chromium driven by playwright-core
+  # from npm); the hybridlab program needs neither
+  chromium nodejs
 )
 
 missing=()
@@ -37,6 +40,9 @@ for p in "${PACKAGES[@]}"; do
     missing+=("$p")
   fi
 done
+
+# Debian's npm is a package of its own; a nodejs that bundles npm (NodeSource's) conflicts with it.
+command -v npm >/dev/null || missing+=(npm)
 
 if ((${#missing[@]})); then
   echo "setup: installing ${#missing[@]} missing package(s): ${missing[*]}"
@@ -48,6 +54,9 @@ if ((${#missing[@]})); then
 else
   echo "setup: all ${#PACKAGES[@]} packages present"
 fi
+
+# The browser test's npm packages, as locked in tests/browser/package-lock.json.
+npm ci --prefix tests/browser --prefer-offline --no-audit --no-fund --loglevel=error
 
 BUILD_DIR=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release

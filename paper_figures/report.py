@@ -7,7 +7,8 @@ the figures as SVG and PDF.
 Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
 the Pareto front drawn and labelled and the reference's frame time marked; per scene the stage-time
 breakdown of every technique (Walewski 2019 Table 5 as a chart); along each camera path the frame
-time, the error and the temporal error per frame."""
+time, the error and the temporal error per frame. Every run in the tables and every point in the
+charts links to viewer.html (paper_figures/viewer.py) opened on that run."""
 import argparse
 import collections
 import html
@@ -21,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import results as rs  # noqa: E402
+import viewer  # noqa: E402
 
 
 def save(fig, out_dir, name):
@@ -30,7 +32,18 @@ def save(fig, out_dir, name):
         fig.savefig(p, bbox_inches="tight")
         paths.append(p)
     plt.close(fig)
+    # The points' links (set_urls) open the viewer in the whole window, not inside the <object>
+    # that shows the figure in index.html.
+    with open(paths[0]) as f:
+        svg = f.read()
+    with open(paths[0], "w") as f:
+        f.write(svg.replace("<a xlink:href=", '<a target="_top" xlink:href='))
     return paths[0]
+
+
+def point_links(records):
+    """The viewer on each run, from a figure in figures/."""
+    return [viewer.link(r["id"], "figures") for r in records]
 
 
 def colours(variants):
@@ -49,7 +62,7 @@ def speed_accuracy(records, out_dir, key, title):
             rows = [r for r in records if rs.variant(r) == v]
             xs = [r["frame_ms"]["median"] for r in rows]
             ys = [rs.metric(r, "whole", name) for r in rows]
-            ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85)
+            ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85).set_urls(point_links(rows))
             points += [(x, y, v) for x, y in zip(xs, ys)]
         front = rs.pareto_front(points, better_high)
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1, label="Pareto front")
@@ -98,6 +111,8 @@ def along_path(records, out_dir, key, title):
         frames = [r["frame"] for r in rows]
         axes[0].plot(frames, [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
         axes[1].plot(frames, [rs.metric(r, "whole", "flip") for r in rows], marker="o", ms=3, color=col[v])
+        for ax, ys in ((axes[0], [r["frame_ms"]["median"] for r in rows]), (axes[1], [rs.metric(r, "whole", "flip") for r in rows])):
+            ax.scatter(frames, ys, s=12, color=col[v]).set_urls(point_links(rows))
         temporal = [(r["frame"], r["temporal_error"]) for r in rows if "temporal_error" in r]
         if temporal:
             axes[2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
@@ -141,7 +156,7 @@ def runs_table(records, out_dir, result_dir):
             maps = " ".join('<a href="%s">%s</a>' % (html.escape(rel(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
                             for m in ("diff", "ssim", "flip"))
         cells = [
-            '<td data-v="%d">%d</td>' % (r["index"], r["index"]),
+            '<td data-v="%d"><a href="%s" title="open in the viewer">%d</a></td>' % (r["index"], html.escape(viewer.link(r["id"])), r["index"]),
             '<td><a href="%s"><img src="%s" width="96" loading="lazy" alt="%s"></a> <a href="%s">exr</a> <a href="%s">ref</a></td>'
             % (html.escape(img), html.escape(img), html.escape(r["id"]), html.escape(rel(out_dir, result_dir, r["images"]["exr"])),
                html.escape(rel(out_dir, result_dir, r["reference"]["png"]))),
@@ -215,19 +230,22 @@ def main():
         figure_html.append("<h2>%s at %s</h2>" % (html.escape(scene), res))
         for f in figs:
             r = os.path.relpath(f, a.out)
-            figure_html.append('<p><a href="%s"><img src="%s" style="max-width:100%%"></a> <a href="%s">pdf</a></p>'
+            # An <object>, not an <img>: the points link to the viewer.
+            figure_html.append('<p><object data="%s" type="image/svg+xml" style="max-width:100%%"></object><br><a href="%s">svg</a> <a href="%s">pdf</a></p>'
                                % (html.escape(r), html.escape(r), html.escape(r[:-4] + ".pdf")))
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
     page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
             "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
             "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
             "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
-            "Click a column header to sort.</p>%s<h2>Every run</h2>%s%s</body></html>"
+            "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
+            "opens it there. Click a column header to sort.</p>%s<h2>Every run</h2>%s%s</body></html>"
             % (html.escape(title), html.escape(title), len(records), html.escape(rel(a.out, a.result_dir, "results.csv")),
                html.escape(rel(a.out, a.result_dir, "results.json")), "\n".join(figure_html), runs_table(records, a.out, a.result_dir),
                TABLE_SCRIPT))
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
+    viewer.write_viewer(records, a.out, a.result_dir, title)
     md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]

@@ -1,4 +1,5 @@
 // The one place that lists the techniques. Adding a technique: one folder, one line here.
+#include "techniques/heuristic_rt/heuristic_rt_technique.h"
 #include "techniques/raster/raster_technique.h"
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/technique.h"
@@ -11,6 +12,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         WhittedTechnique::info(),
         RasterTechnique::info(),
         rtOnlyTechniqueInfo(),
+        HeuristicRtTechnique::info(),
     };
     return registry;
 }

@@ -168,8 +168,9 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     for (const std::string attr : {"href=\"", "src=\""}) {
         for (std::size_t at = page.find(attr); at != std::string::npos; at = page.find(attr, at + 1)) {
             const std::size_t start = at + attr.size(), end = page.find('"', start);
-            const std::string target = page.substr(start, end - start);
-            EXPECT_TRUE(fs::exists(report / target)) << target;
+            // The viewer's links name a run after '#': the file is what must exist.
+            const std::string link = page.substr(start, end - start), target = link.substr(0, link.find('#'));
+            EXPECT_TRUE(fs::exists(report / target)) << link;
             ++links;
         }
     }
@@ -181,6 +182,10 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     }
     EXPECT_GE(figures, 2u * (2 * 2 + 1));  // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path
     EXPECT_TRUE(fs::exists(report / "report.md"));
+    // Every run opens in the viewer from the table (the viewer itself: tests/browser).
+    for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
+    EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
+    EXPECT_TRUE(fs::exists(report / "viewer" / "manifest.js"));
 }
 
 std::size_t recordCount(const fs::path& out) {

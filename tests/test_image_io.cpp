@@ -15,6 +15,7 @@
 #include "common/image/color.h"
 #include "common/image/image.h"
 #include "common/image/image_io.h"
+#include "common/image/mip_chain.h"
 #include "tests/test_support.h"
 
 namespace hybridlab {
@@ -69,6 +70,31 @@ TEST(Image, StorageAndBilinearSampling) {
     EXPECT_VEC_NEAR(ramp.sampleBilinearWrap(1.0f, 0.5f), glm::vec4(0.5f), 1e-6f);
     EXPECT_VEC_NEAR(ramp.sampleBilinearWrap(1.25f, 0.5f), glm::vec4(0.0f), 1e-6f);
     EXPECT_VEC_NEAR(ramp.sampleBilinearWrap(-0.25f, 0.5f), glm::vec4(1.0f), 1e-6f);
+}
+
+// The mip chain mirrors the rasterizer's blits: halved and floored sizes down to 1 x 1, each level
+// the 2 x 2 box average of the one above (for even sizes); trilinear lookups blend two levels.
+TEST(MipChain, LevelsAndTrilinearLookups) {
+    Image board(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) board.at(x, y) = glm::vec4(static_cast<float>((x + y) % 2));
+    const MipChain chain(board);
+    ASSERT_EQ(chain.levels(), 3);
+    EXPECT_EQ(chain.level(1).width(), 2);
+    EXPECT_EQ(chain.level(2).width(), 1);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) EXPECT_VEC_NEAR(chain.level(1).at(x, y), glm::vec4(0.5f), 1e-6f);
+    // Magnified or at level 0: the bilinear lookup of the base image (texel (0, 0) is 0).
+    EXPECT_VEC_NEAR(chain.sampleTrilinearWrap(0.125f, 0.125f, -3.0f), glm::vec4(0.0f), 1e-6f);
+    EXPECT_VEC_NEAR(chain.sampleTrilinearWrap(0.125f, 0.125f, 0.25f), glm::vec4(0.125f), 1e-6f);  // 0.75 * 0 + 0.25 * 0.5
+    EXPECT_VEC_NEAR(chain.sampleTrilinearWrap(0.3f, 0.7f, 9.0f), glm::vec4(0.5f), 1e-6f);
+
+    const Image oddBase(5, 3, glm::vec4(0.25f));
+    const MipChain odd(oddBase);
+    EXPECT_EQ(odd.levels(), 3);
+    EXPECT_EQ(odd.level(1).width(), 2);
+    EXPECT_EQ(odd.level(1).height(), 1);
+    EXPECT_EQ(odd.level(2).width(), 1);
 }
 
 TEST(Image, AMovedFromImageIsEmptyAndZeroSized) {

@@ -139,6 +139,21 @@ TEST(Shading, CompositionRule) {
     EXPECT_NEAR(w.b, 0.5f * (c.b + cr.b), 1e-7f);
 }
 
+// Recovering C from a composed colour inverts compose() under both rules; where C has (almost) no
+// weight the fallback stands.
+TEST(Shading, UncomposeLocalInvertsTheComposition) {
+    const glm::vec3 M(0.9f, 0.2f, 0.1f), R(0.1f, 0.7f, 0.3f), C(0.3f, 0.4f, 0.8f), fallback(7.0f);
+    for (BlendRule rule : {BlendRule::Design, BlendRule::Walewski2019}) {
+        for (float om : {0.0f, 0.3f, 0.9f}) {
+            for (float orr : {0.0f, 0.5f, 0.95f}) {
+                const glm::vec3 c = uncomposeLocal(om, orr, M, R, compose(om, orr, M, R, C, rule), fallback, rule);
+                for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], C[k], 2e-4f) << "om " << om << " orr " << orr;
+            }
+        }
+        EXPECT_EQ(uncomposeLocal(1.0f, 0.5f, M, R, compose(1.0f, 0.5f, M, R, C, rule), fallback, rule), fallback);
+    }
+}
+
 TEST(Shading, OccluderTransmittance) {
     Material m;
     m.opacity = 0.25f;

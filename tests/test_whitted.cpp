@@ -12,6 +12,7 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "scene_fixtures.h"
+#include "technique_test_support.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -187,6 +188,40 @@ FrameResult renderWithThreads(const Scene& scene, int threads) {
     auto technique = createTechnique("whitted", {});
     technique->prepare(context);
     return technique->render(context, {scene.camera, 0.0, 160, 90});
+}
+
+// Ray cones (Akenine-Möller et al. 2019): a checkerboard so far away that every pixel covers many
+// squares is filtered to their mean, as the rasterizer's mip-mapping does, instead of aliasing to
+// light or dark; seen close up (magnified), a square's centre keeps its own colour.
+TEST(Whitted, TexturesAreFilteredOverTheRayConesFootprint) {
+    SceneBuilder b;
+    b.scene().textures.push_back(makeBuiltinTexture("builtin:checker"));
+    Material board = matte(glm::vec3(0.0f));
+    board.ambient = glm::vec3(1.0f);  // no lights, scene ambient 1: the pixel is the texture value
+    board.diffuseTexture = 0;
+    board.textureTiling = glm::vec2(64.0f);  // 512 x 512 squares over the plane
+    b.object("board", makePlane(), b.material(board), placed({0, 0, 0}, {100, 1, 100}));
+    b.scene().ambient = glm::vec3(1.0f);
+    Camera& camera = b.scene().camera;
+    camera.fovYDegrees = 90.0f;
+    camera.position = {0, 50, 0};  // sees the 100-wide plane edge to edge: 16 squares a pixel at 32 x 32
+    camera.orientation = Camera::lookAtOrientation(camera.position, {0, 0, 0}, {0, 0, -1});
+    const Texture& checker = b.scene().textures[0];
+    const float light = checker.image.at(0, 0).r, dark = checker.image.at(64, 0).r;
+    const Image far = test::renderImage(b.scene(), "whitted", {}, 32, 32);
+    float lo = 1e9f, hi = -1e9f;
+    for (std::size_t i = 0; i < far.pixelCount(); ++i) lo = std::min(lo, far.data()[i].r), hi = std::max(hi, far.data()[i].r);
+    EXPECT_NEAR(lo, 0.5f * (light + dark), 0.01f);
+    EXPECT_NEAR(hi, 0.5f * (light + dark), 0.01f);
+
+    // Close up: one square (100 / 512 wide) fills the view; the pixel at the centre of the view
+    // looks at a square's centre (the world origin is a corner: offset by half a square).
+    const float halfSquare = 100.0f / 512.0f * 0.5f;
+    camera.position = {halfSquare, 0.01f, halfSquare};
+    camera.orientation = Camera::lookAtOrientation(camera.position, camera.position - glm::vec3(0, 1, 0), {0, 0, -1});
+    const Image close = test::renderImage(b.scene(), "whitted", {}, 33, 33);
+    const float centre = close.at(16, 16).r;
+    EXPECT_TRUE(std::abs(centre - light) < 1e-3f || std::abs(centre - dark) < 1e-3f) << centre;
 }
 
 TEST(Whitted, RendersAreByteIdenticalWhateverTheThreadCount) {

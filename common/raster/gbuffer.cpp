@@ -1,6 +1,28 @@
 #include "common/raster/gbuffer.h"
 
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
 namespace hybridlab {
+
+namespace {
+
+// The inverse of octahedralEncode in shaders/gbuffer.frag (Cigolle et al., JCGT 2014).
+glm::vec3 octahedralDecode(float u, float v) {
+    glm::vec3 n(u, v, 1.0f - std::abs(u) - std::abs(v));
+    if (n.z < 0.0f) {
+        const float x = (1.0f - std::abs(n.y)) * (n.x >= 0.0f ? 1.0f : -1.0f);
+        const float y = (1.0f - std::abs(n.x)) * (n.y >= 0.0f ? 1.0f : -1.0f);
+        n.x = x;
+        n.y = y;
+    }
+    return glm::normalize(n);
+}
+
+}  // namespace
+
+glm::vec3 GBuffer::geometricNormal(std::size_t i) const { return octahedralDecode(emission[i].w, ambient[i].w); }
 
 Material GBuffer::materialAt(std::size_t i) const {
     Material m;

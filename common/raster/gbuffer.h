@@ -17,8 +17,8 @@ enum GBufferTarget : std::uint32_t {
     kGBufferPosition = 1u << 0,  // RGBA32F: world position; w 1
     kGBufferNormal = 1u << 1,    // RGBA16F: world shading normal after normal mapping (as SurfaceHit::shadingNormal,
                                  //          not turned to the viewer); w +1 where the viewer sees the front face, -1 the back
-    kGBufferEmission = 1u << 2,  // RGBA16F: emission
-    kGBufferAmbient = 1u << 3,   // RGBA16F: material ambient times the diffuse texture
+    kGBufferEmission = 1u << 2,  // RGBA16F: emission; w the geometric normal's first octahedral coordinate
+    kGBufferAmbient = 1u << 3,   // RGBA16F: material ambient times the diffuse texture; w the second one
     kGBufferDiffuse = 1u << 4,   // RGBA16F: material diffuse times the diffuse texture
     kGBufferSpecular = 1u << 5,  // RGBA16F: specular colour; w the Blinn-Phong exponent
     kGBufferOptical = 1u << 6,   // RGBA16F: reflectivity, IOR, opacity, fresnel (1 or 0)
@@ -28,6 +28,9 @@ enum GBufferTarget : std::uint32_t {
 using GBufferTargets = std::uint32_t;
 inline constexpr GBufferTargets kGBufferMaterial =
     kGBufferEmission | kGBufferAmbient | kGBufferDiffuse | kGBufferSpecular | kGBufferOptical;
+// The triangle's geometric normal is packed into the spare w channels of these two (all eight colour
+// attachments are taken).
+inline constexpr GBufferTargets kGBufferGeometricNormal = kGBufferEmission | kGBufferAmbient;
 inline constexpr GBufferTargets kGBufferAll = kGBufferPosition | kGBufferNormal | kGBufferMaterial | kGBufferObjectId | kGBufferDepth;
 
 inline constexpr std::uint32_t kSkyObjectId = 0;
@@ -56,6 +59,9 @@ struct GBuffer {
     // The normal turned to the side the viewer sees (as WhittedTracer::shade works), at texel i.
     glm::vec3 facingNormal(std::size_t i) const { return normal[i].w < 0.0f ? -glm::vec3(normal[i]) : glm::vec3(normal[i]); }
     bool frontFace(std::size_t i) const { return normal[i].w > 0.0f; }
+    // The triangle's unit normal by its winding, as SurfaceHit::geometricNormal (needs
+    // kGBufferGeometricNormal); precise to about 1e-3.
+    glm::vec3 geometricNormal(std::size_t i) const;
 
     // The material at texel i, rebuilt from the material targets (needs kGBufferMaterial), with the
     // texture already applied (ambient and diffuse are the textured values, so pass a texture value

@@ -72,6 +72,8 @@ RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time)
     auto start = std::chrono::steady_clock::now();
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("cannot create an Embree device");
+    textureMips_.reserve(scene.textures.size());
+    for (const Texture& t : scene.textures) textureMips_.emplace_back(t.image);
     const std::size_t n = scene.objects.size();
     toWorld_.resize(n);
     normalToWorld_.resize(n);
@@ -239,7 +241,14 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     }
     hit.position = w * p0 + u * p1 + v * p2;
     hit.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    if (!m.uvs.empty()) hit.uv = w * m.uvs[tri.x] + u * m.uvs[tri.y] + v * m.uvs[tri.z];
+    if (!m.uvs.empty()) {
+        const glm::vec2 uv0 = m.uvs[tri.x], uv1 = m.uvs[tri.y], uv2 = m.uvs[tri.z];
+        hit.uv = w * uv0 + u * uv1 + v * uv2;
+        const glm::vec2 a = uv1 - uv0, b = uv2 - uv0;
+        const float uvArea = std::abs(a.x * b.y - a.y * b.x);
+        const float worldArea = glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (uvArea > 0.0f && worldArea > 0.0f) hit.uvDensityLod = 0.5f * std::log2(uvArea / worldArea);
+    }
     const Material& mat = *hit.material;
     if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {
         glm::vec4 t4 = w * m.tangents[tri.x] + u * m.tangents[tri.y] + v * m.tangents[tri.z];

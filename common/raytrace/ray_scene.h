@@ -2,11 +2,13 @@
 // The Embree 3 scene of a Scene (DESIGN.md "A frame, as data"). Static geometry lives in one BVH
 // in world space; each animated object is an instance of its own object-space BVH, so a new frame
 // re-commits only the top level. Geometry and instance ids map back to objects and meshes.
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
 
+#include "common/image/mip_chain.h"
 #include "common/raytrace/ray_log.h"
 #include "common/scene/camera.h"
 #include "common/scene/scene.h"
@@ -20,6 +22,8 @@ struct SurfaceHit {
     glm::vec3 geometricNormal;  // world space, unit, by the triangle's winding
     glm::vec3 shadingNormal;    // world space, unit: interpolated vertex normal, normal-mapped
     glm::vec2 uv{0.0f};
+    // The triangle's 0.5 log2(uv area / world area) (ray cones' Delta_0, ray_cone.h); -inf without uvs.
+    float uvDensityLod = -std::numeric_limits<float>::infinity();
     std::uint32_t object = 0;
     std::uint32_t mesh = 0;     // index into Scene::meshes
     std::uint32_t primitive = 0;
@@ -66,6 +70,11 @@ public:
     RTCScene embreeScene() const { return top_; }
     void setRayLog(RayLog* log) { log_ = log; }
 
+    // Texture `index`'s mip chain (the reference's filtered lookups), null for kNoTexture.
+    const MipChain* textureMips(std::int32_t index) const {
+        return index == kNoTexture ? nullptr : &textureMips_[static_cast<std::size_t>(index)];
+    }
+
     double buildMilliseconds() const { return buildMs_; }
     double lastUpdateMilliseconds() const { return updateMs_; }
 
@@ -92,6 +101,7 @@ private:
     // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
     std::vector<std::vector<glm::vec3>> worldPositions_;
     std::vector<std::vector<glm::vec3>> worldNormals_;
+    std::vector<MipChain> textureMips_;                // per scene texture
     RayLog* log_ = nullptr;
     double time_ = 0.0;
     double buildMs_ = 0.0;

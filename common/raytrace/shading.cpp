@@ -45,6 +45,12 @@ glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, Bl
     return 0.5f * (cm + cr);
 }
 
+glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 composite, glm::vec3 fallback, BlendRule rule) {
+    const float slope = (1.0f - om) * (1.0f - orr);
+    if (slope < 1e-4f) return fallback;
+    return (composite - compose(om, orr, M, R, glm::vec3(0.0f), rule)) / slope;
+}
+
 glm::vec3 skyRadiance(const Scene& scene, glm::vec3 d) {
     if (!scene.sky.hasCubeMap()) return scene.sky.color;
     glm::vec3 a = glm::abs(d);

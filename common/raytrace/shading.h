@@ -28,6 +28,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "common/image/mip_chain.h"
 #include "common/scene/scene.h"
 
 namespace hybridlab {
@@ -40,9 +41,9 @@ struct SurfacePoint {
     const Material* material;
 };
 
-// Diffuse texture value at a uv, with the material's tiling and offset (bilinear, wrapping);
-// 1 when the material has none.
-inline glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv);
+// The material's diffuse texture (1 without one, `texture` null) at uv, with its tiling and offset,
+// filtered over a footprint of 2^uvLod uv units (ray cones; -inf: a point, level 0's bilinear lookup).
+inline glm::vec3 diffuseTextureValue(const Material& m, const MipChain* texture, glm::vec2 uv, float uvLod);
 
 // Radiance arriving at `p` from light `l` ignoring shadows, and the unit direction towards it.
 struct LightSample {
@@ -86,16 +87,27 @@ enum class BlendRule { Design, Walewski2019 };
 // The composition rule (see top of file).
 glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, BlendRule rule = BlendRule::Design);
 
+// The local colour C for which compose(om, orr, M, R, C, rule) equals `composite` (both rules are
+// affine in C with slope (1 - o_m)(1 - o_r)); `fallback` where that slope is too small for C to
+// matter. Recovers the rasterizer's shadow-mapped C from its composed pixel.
+glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 composite, glm::vec3 fallback,
+                         BlendRule rule = BlendRule::Design);
+
 // Sky radiance in a world direction: the cube map (OpenGL face convention) or the constant colour.
 glm::vec3 skyRadiance(const Scene& scene, glm::vec3 direction);
 
 
 // Per-light and per-hit terms, inline: they run for every light at every hit of every ray.
 
-inline glm::vec3 diffuseTextureValue(const Scene& scene, const Material& m, glm::vec2 uv) {
-    if (m.diffuseTexture == kNoTexture) return glm::vec3(1.0f);
-    glm::vec2 t = uv * m.textureTiling + m.textureOffset;
-    return glm::vec3(scene.textures[m.diffuseTexture].image.sampleBilinearWrap(t.x, t.y));
+inline glm::vec3 diffuseTextureValue(const Material& m, const MipChain* texture, glm::vec2 uv, float uvLod) {
+    if (!texture) return glm::vec3(1.0f);
+    const glm::vec2 t = uv * m.textureTiling + m.textureOffset;
+    // The footprint in level-0 texels: uv units times the texture's size and the tiling (the
+    // rasterizer's gradients are the uv gradients times the tiling).
+    const Image& base = texture->level(0);
+    const float lod = uvLod + 0.5f * std::log2(static_cast<float>(base.width()) * static_cast<float>(base.height()) *
+                                               std::abs(m.textureTiling.x * m.textureTiling.y));
+    return glm::vec3(texture->sampleTrilinearWrap(t.x, t.y, lod));
 }
 
 inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::vec3 p) {

@@ -14,10 +14,10 @@ WhittedTracer::WhittedTracer(const RayScene& rays, WhittedSettings settings) : r
     for (const Light& l : rays.scene().lights) cones_.push_back(spotCone(l));
 }
 
-glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats) const {
+glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone) const {
     SurfaceHit hit;
     if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) return skyRadiance(rays_.scene(), ray.direction);
-    glm::vec3 L = shade(hit, ray.direction, depth, importance, stats);
+    glm::vec3 L = shade(hit, ray.direction, depth, importance, stats, cone.at(hit.t));
     // A ray that meets the back of a surface travelled inside its object: Beer-Lambert absorption
     // of thick glass (Hakura & Snyder's G).
     const glm::vec3& a = hit.material->absorption;
@@ -28,10 +28,10 @@ glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, R
 }
 
 glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm::vec3 geometricNormal, glm::vec3 toViewer,
-                                    RayStats& stats) const {
+                                    RayStats& stats, bool shadowRays, float uvLod) const {
     const Scene& scene = rays_.scene();
     const SurfacePoint sp{hit.position, normal, hit.uv, hit.material};
-    const glm::vec3 tex = diffuseTextureValue(scene, *hit.material, hit.uv);
+    const glm::vec3 tex = diffuseTextureValue(*hit.material, rays_.textureMips(hit.material->diffuseTexture), hit.uv, uvLod);
     glm::vec3 c = unlitTerm(scene, sp, tex);
     const glm::vec3 shadowOrigin = offsetRayOrigin(hit.position, geometricNormal);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -39,7 +39,7 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
         LightSample ls = sampleLight(light, cones_[i], hit.position);
         glm::vec3 direct = blinnPhong(sp, tex, toViewer, ls);
         if (direct == glm::vec3(0.0f)) continue;  // facing away, or outside a spot cone: no ray needed
-        if (light.castsShadows && settings_.shadows) {
+        if (light.castsShadows && settings_.shadows && shadowRays) {
             ++stats.shadow;
             direct *= rays_.transmittance(shadowOrigin, ls.toLight, ls.distance);
         }
@@ -48,7 +48,13 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
     return c;
 }
 
-glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats) const {
+glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                               RayCone footprint) const {
+    return shadeParts(hit, incoming, depth, importance, stats, {}, footprint).composed(settings_.blend);
+}
+
+ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                                       TracedEffects effects, RayCone footprint) const {
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
     // Work on the side the ray arrives from.
@@ -56,13 +62,18 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
     const glm::vec3 ng = entering ? hit.geometricNormal : -hit.geometricNormal;
     glm::vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
 
-    const glm::vec3 C = localColor(hit, n, ng, -incoming, stats);
-    const float orr = 1.0f - m.opacity;
+    ShadingParts parts;
+    parts.local = localColor(hit, n, ng, -incoming, stats, effects.shadows,
+                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal));
+    parts.transparency = 1.0f - m.opacity;
+    const float orr = parts.transparency;
     const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;
     const float cosi = std::max(-glm::dot(incoming, n), 0.0f);
-    float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
-    if (om <= 0.0f && orr <= 0.0f) return C;
-    if (depth >= settings_.maxDepth) return C;  // the depth limit returns the local colour
+    const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
+    parts.reflectivity = om;
+    if (om <= 0.0f && orr <= 0.0f) return parts;
+    if (depth >= settings_.maxDepth) return parts;  // the depth limit returns the local colour
+    parts.composes = true;
 
     glm::vec3 refracted;
     const bool tir = orr > 0.0f && !refractDirection(incoming, n, n1 / n2, refracted);
@@ -71,18 +82,23 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
     const float weightR = tir ? 0.0f : (1.0f - om) * orr;
     auto worthTracing = [&](float w) { return w > 0.0f && importance * w >= settings_.importanceCutoff; };
 
-    glm::vec3 M = C, R = C;
-    if (worthTracing(weightM)) {
+    const glm::vec3 reflected = reflectDirection(incoming, n);
+    parts.reflected = parts.refracted = parts.local;
+    if (weightM > 0.0f && !effects.reflection) {
+        parts.reflected = skyRadiance(scene, reflected);
+    } else if (worthTracing(weightM)) {
         ++stats.reflection;
-        M = radiance({offsetRayOrigin(hit.position, ng), reflectDirection(incoming, n)}, depth + 1, importance * weightM, stats);
+        parts.reflected = radiance({offsetRayOrigin(hit.position, ng), reflected}, depth + 1, importance * weightM, stats, footprint);
     }
     if (tir) {
-        R = M;
+        parts.refracted = parts.reflected;
+    } else if (weightR > 0.0f && !effects.refraction) {
+        parts.refracted = skyRadiance(scene, refracted);
     } else if (worthTracing(weightR)) {
         ++stats.refraction;
-        R = radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats);
+        parts.refracted = radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats, footprint);
     }
-    return compose(om, orr, M, R, C, settings_.blend);
+    return parts;
 }
 
 }  // namespace hybridlab

@@ -5,6 +5,7 @@
 // hybrid techniques call shade() from a G-buffer texel.
 #include <vector>
 
+#include "common/raytrace/ray_cone.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
 #include "common/raytrace/shading.h"
@@ -18,6 +19,33 @@ struct WhittedSettings {
                                    // limit (0: the full ray tree)
     BlendRule blend = BlendRule::Design;
     bool shadows = true;           // shadow rays; off: every light unshadowed (to compare with raster without shadows)
+    bool rayCones = true;          // filter textures over ray cones' footprints (ray_cone.h), as the rasterizer's
+                                   // mip-mapping; off: point lookups (bilinear at level 0), as POV-Ray's image maps
+};
+
+// Which of a surface's effects are ray traced. An effect not traced takes what the rasterizer puts
+// in its place (common/raster/shaders/deferred_lighting.frag): no shadow rays, and the sky in the
+// reflected and refracted directions (environment mapping). Hybrid techniques trace some effects of
+// some objects (Walewski 2019 §3.3; per-effect selection, §6's future work).
+struct TracedEffects {
+    bool shadows = true;
+    bool reflection = true;
+    bool refraction = true;
+};
+
+// The terms DESIGN.md's composition combines at a surface: o_m * M + (1 - o_m) * (o_r * R + (1 - o_r) * C).
+struct ShadingParts {
+    glm::vec3 local{0.0f};      // C: local colour
+    glm::vec3 reflected{0.0f};  // M
+    glm::vec3 refracted{0.0f};  // R
+    float reflectivity = 0.0f;  // o_m (the Fresnel reflectance for dielectrics)
+    float transparency = 0.0f;  // o_r = 1 - opacity
+    bool composes = false;      // false: the surface neither reflects nor refracts, or the depth limit was
+                                // reached; its radiance is C alone
+
+    glm::vec3 composed(BlendRule rule) const {
+        return composes ? compose(reflectivity, transparency, reflected, refracted, local, rule) : local;
+    }
 };
 
 class WhittedTracer {
@@ -27,18 +55,27 @@ public:
     const WhittedSettings& settings() const { return settings_; }
 
     // Radiance arriving along `ray` whose hit would be at recursion depth `depth` (camera rays: 0).
-    // `importance` is the ray's weight in the pixel.
-    glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats) const;
+    // `importance` is the ray's weight in the pixel; `cone` its footprint (pixelCone() for camera
+    // rays), which filters textures (none: level 0's bilinear lookup).
+    glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {}) const;
 
     // Full Whitted shading of a surface hit seen along unit direction `incoming` (towards the
     // surface): local colour with ray-traced shadows, composed with recursive reflection and
     // refraction.
-    glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats) const;
+    // `footprint` is the ray's cone at the hit.
+    glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {}) const;
+
+    // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
+    // everything), so that a hybrid technique can substitute or blend its own.
+    ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                            TracedEffects effects = {}, RayCone footprint = {}) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
-    // the viewer and `geometricNormal` on the viewer's side.
+    // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a
+    // footprint of 2^uvLod uv units (ray_cone.h).
     glm::vec3 localColor(const SurfaceHit& hit, glm::vec3 normal, glm::vec3 geometricNormal, glm::vec3 toViewer,
-                         RayStats& stats) const;
+                         RayStats& stats, bool shadowRays = true,
+                         float uvLod = -std::numeric_limits<float>::infinity()) const;
 
 private:
     const RayScene& rays_;

@@ -27,6 +27,14 @@ struct ObjectScore {
     double R = 0.0;  // relevance, eq. (3)
 };
 
+// The secondary effects the heuristic selects (per object, or per object and effect).
+enum class Effect { Shadows = 0, Reflection = 1, Refraction = 2 };
+inline constexpr int kEffectCount = 3;
+
+// Q's terms (Walewski 2019 §3.2, eq. 2): L shadow rays per pixel; a reflection adds L + 1 (the
+// reflected ray and its hit's shadow rays), a refraction L + 4.
+double raysPerPixel(Effect effect, int lightCount);
+
 // P = max(1 - |bb|, 0) * 0.99 + 0.01; V = A P / D; Q = L (+ L + 1 if reflective) (+ L + 4 if
 // refractive); C = A Q E; R = (S I + V) K, with L lights and I the importance of last frame's
 // selection.

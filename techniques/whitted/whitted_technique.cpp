@@ -1,9 +1,7 @@
 #include "techniques/whitted/whitted_technique.h"
 
-#include <tbb/blocked_range2d.h>
-#include <tbb/combinable.h>
-#include <tbb/parallel_for.h>
-
+#include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/ray_counters.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -17,6 +15,8 @@ std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportance
         ParamSpec::choice("blend", "design", {"design", "walewski2019"},
                           "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
         ParamSpec::boolean("shadows", true, "trace shadow rays (false: every light unshadowed, to compare with raster shadows off)"),
+        ParamSpec::choice("texture_filter", "cones", {"cones", "none"},
+                          "textures filtered over ray cones' footprints (as mip-mapping), or point lookups (as POV-Ray)"),
     };
 }
 
@@ -26,11 +26,17 @@ TechniqueInfo WhittedTechnique::info() {
             parameterSpecs(0.0), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
 }
 
-WhittedTechnique::WhittedTechnique(const ParameterSet& p) {
-    settings_.maxDepth = static_cast<int>(p.getInt("max_depth"));
-    settings_.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
-    settings_.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
-    settings_.shadows = p.getBool("shadows");
+WhittedSettings WhittedTechnique::tracerSettings(const ParameterSet& p) {
+    WhittedSettings s;
+    s.maxDepth = static_cast<int>(p.getInt("max_depth"));
+    s.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
+    s.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+    s.shadows = p.getBool("shadows");
+    s.rayCones = p.getChoice("texture_filter") == "cones";
+    return s;
+}
+
+WhittedTechnique::WhittedTechnique(const ParameterSet& p) : settings_(tracerSettings(p)) {
     supersample_ = static_cast<int>(p.getInt("supersample"));
 }
 
@@ -44,38 +50,24 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
 
     const WhittedTracer tracer(rays, settings_);
     result.image = Image(frame.width, frame.height);
-    tbb::combinable<RayStats> statsPerThread;
     const int n = supersample_;
     const float aspect = frame.aspect();
-    constexpr int kTile = 16;
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, frame.height, kTile, 0, frame.width, kTile), [&](const tbb::blocked_range2d<int>& r) {
-        RayStats& stats = statsPerThread.local();
-        for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
-            for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                glm::vec3 sum(0.0f);
-                for (int sy = 0; sy < n; ++sy) {
-                    for (int sx = 0; sx < n; ++sx) {
-                        // Sub-pixel sample centres; n = 1 is the pixel centre.
-                        glm::vec2 ndc((x + (sx + 0.5f) / n) / frame.width * 2.0f - 1.0f,
-                                      (y + (sy + 0.5f) / n) / frame.height * 2.0f - 1.0f);
-                        ++stats.primary;
-                        sum += tracer.radiance(frame.camera.rayThroughNdc(ndc, aspect), 0, 1.0f, stats);
-                    }
-                }
-                result.image.at(x, y) = glm::vec4(sum / static_cast<float>(n * n), 1.0f);
+    // A sub-pixel's cone when supersampled.
+    const RayCone cone = settings_.rayCones ? pixelCone(frame.camera, frame.height * n) : RayCone{};
+    const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
+        glm::vec3 sum(0.0f);
+        for (int sy = 0; sy < n; ++sy) {
+            for (int sx = 0; sx < n; ++sx) {
+                // Sub-pixel sample centres; n = 1 is the pixel centre.
+                glm::vec2 ndc((x + (sx + 0.5f) / n) / frame.width * 2.0f - 1.0f, (y + (sy + 0.5f) / n) / frame.height * 2.0f - 1.0f);
+                ++stats.primary;
+                sum += tracer.radiance(frame.camera.rayThroughNdc(ndc, aspect), 0, 1.0f, stats, cone);
             }
         }
+        result.image.at(x, y) = glm::vec4(sum / static_cast<float>(n * n), 1.0f);
     });
     clock.lap("trace");
-
-    RayStats total;
-    statsPerThread.combine_each([&](const RayStats& s) { total += s; });
-    result.counters["rays_primary"] = static_cast<double>(total.primary);
-    result.counters["rays_shadow"] = static_cast<double>(total.shadow);
-    result.counters["rays_reflection"] = static_cast<double>(total.reflection);
-    result.counters["rays_refraction"] = static_cast<double>(total.refraction);
-    result.counters["rays_total"] = static_cast<double>(total.total());
-    result.counters["pixels_ray_traced"] = static_cast<double>(frame.width) * frame.height;
+    recordRayCounters(total, static_cast<double>(frame.width) * frame.height, result);
     return result;
 }
 

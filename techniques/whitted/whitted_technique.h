@@ -12,6 +12,10 @@ public:
     static TechniqueInfo info();
     // The declared parameters, with the importance cut-off's default (0: the full ray tree).
     static std::vector<ParamSpec> parameterSpecs(double defaultImportanceCutoff);
+    // The tracer settings from the parameters above that name them (max_depth, importance_cutoff,
+    // blend, shadows); hybrid techniques declare the same ones.
+    static WhittedSettings tracerSettings(const ParameterSet& params);
+
     explicit WhittedTechnique(const ParameterSet& params);
 
     void prepare(SceneContext& context) override;

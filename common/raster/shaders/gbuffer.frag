@@ -21,12 +21,32 @@ layout(location = 3) in vec4 worldTangent;
 
 layout(location = 0) out vec4 outPosition;  // xyz world position, w 1
 layout(location = 1) out vec4 outNormal;    // xyz shading normal (unit, world), w +1 front face seen, -1 back face
-layout(location = 2) out vec4 outEmission;
-layout(location = 3) out vec4 outAmbient;   // material ambient * texture
+layout(location = 2) out vec4 outEmission;  // rgb; w the geometric normal's first octahedral coordinate
+layout(location = 3) out vec4 outAmbient;   // material ambient * texture; w the second octahedral coordinate
 layout(location = 4) out vec4 outDiffuse;   // material diffuse * texture
 layout(location = 5) out vec4 outSpecular;  // rgb, a = exponent
 layout(location = 6) out vec4 outOptical;   // reflectivity, IOR, opacity, fresnel
 layout(location = 7) out uint outObjectId;  // object index + 1; 0 is the sky
+
+// Octahedral encoding of a unit vector into [-1, 1]^2 (Cigolle et al., JCGT 2014); decoded by
+// octahedralDecode in gbuffer.cpp. All eight attachments are taken, so the geometric normal rides in
+// two spare 16-bit channels (about 1e-3 precision: enough to offset ray origins and pick a side).
+vec2 octahedralEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.xy;
+    if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return e;
+}
+
+// The triangle's normal by its winding (as SurfaceHit::geometricNormal). The screen-space
+// derivatives of the world position span the triangle's plane (helper lanes extrapolate the same
+// primitive's plane, so this holds on edges too). With x to the right and y down the screen (Vulkan)
+// in a right-handed world, cross(d/dx, d/dy) points away from the viewer on every visible surface;
+// its negation faces the viewer, and the winding normal is that turned away on a back face.
+vec3 windingNormal(vec3 p) {
+    vec3 towardViewer = -normalize(cross(dFdx(p), dFdy(p)));
+    return gl_FrontFacing ? towardViewer : -towardViewer;
+}
 
 void main() {
     MaterialData m = drawData.material;
@@ -48,8 +68,9 @@ void main() {
 
     outPosition = vec4(worldPosition, 1.0);
     outNormal = vec4(n, gl_FrontFacing ? 1.0 : -1.0);
-    outEmission = vec4(m.emission.rgb, 0.0);
-    outAmbient = vec4(m.ambient.rgb * texel, 0.0);
+    const vec2 ng = octahedralEncode(windingNormal(worldPosition));
+    outEmission = vec4(m.emission.rgb, ng.x);
+    outAmbient = vec4(m.ambient.rgb * texel, ng.y);
     outDiffuse = vec4(m.diffuse.rgb * texel, 0.0);
     outSpecular = m.specular;
     outOptical = m.optical;

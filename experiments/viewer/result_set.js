@@ -1,0 +1,56 @@
+// The result set as the viewer reads it: the manifest that report.py writes (one entry per run,
+// paths relative to viewer.html), grouped into scenes, sizes, views, frames and technique variants.
+
+export const REFERENCE = 'reference';
+
+const keyOf = (scene, size, view, frame, variant) => [scene, size, view, frame, variant].join('\u0001');
+
+function distinct(values) {
+  return [...new Set(values)];
+}
+
+export class ResultSet {
+  constructor(manifest) {
+    this.title = manifest.title;
+    this.runs = manifest.runs;
+    this.colormaps = manifest.colormaps;
+    this.pixelScripts = manifest.pixel_scripts;
+    this.referenceParameters = manifest.reference_parameters;
+    this.byId = new Map(this.runs.map((r) => [r.id, r]));
+    this.byKey = new Map(this.runs.map((r) => [keyOf(r.scene, r.size, r.view, r.frame, r.variant), r]));
+  }
+
+  scenes() {
+    return distinct(this.runs.map((r) => r.scene));
+  }
+
+  sizes(scene) {
+    return distinct(this.runs.filter((r) => r.scene === scene).map((r) => r.size));
+  }
+
+  views(scene, size) {
+    return distinct(this.runs.filter((r) => r.scene === scene && r.size === size).map((r) => r.view));
+  }
+
+  // The runs of one scene, size and view: what the frame slider and the technique choices span.
+  group(sel) {
+    return this.runs.filter((r) => r.scene === sel.scene && r.size === sel.size && r.view === sel.view);
+  }
+
+  frames(sel) {
+    return distinct(this.group(sel).map((r) => r.frame)).sort((a, b) => a - b);
+  }
+
+  variants(sel) {
+    return distinct(this.group(sel).map((r) => r.variant));
+  }
+
+  run(sel, frame, variant) {
+    return this.byKey.get(keyOf(sel.scene, sel.size, sel.view, frame, variant));
+  }
+
+  // Any run of the frame carries the reference it was scored against (one per camera and size).
+  referenceRun(sel, frame) {
+    return this.group(sel).find((r) => r.frame === frame);
+  }
+}

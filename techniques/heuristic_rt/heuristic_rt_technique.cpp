@@ -1,0 +1,230 @@
+#include "techniques/heuristic_rt/heuristic_rt_technique.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "techniques/heuristic_rt/heuristic.h"
+#include "techniques/heuristic_rt/object_observations.h"
+#include "techniques/heuristic_rt/selection_graph.h"
+#include "techniques/rt_only/rt_only_technique.h"
+#include "techniques/shared/gbuffer_surface.h"
+#include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/ray_counters.h"
+#include "techniques/stage_clock.h"
+#include "techniques/whitted/whitted_technique.h"
+
+namespace hybridlab {
+
+namespace {
+
+constexpr std::uint8_t effectBit(Effect e) { return static_cast<std::uint8_t>(1u << static_cast<int>(e)); }
+constexpr std::uint8_t kAllEffects = effectBit(Effect::Shadows) | effectBit(Effect::Reflection) | effectBit(Effect::Refraction);
+
+TracedEffects tracedEffects(std::uint8_t bits) {
+    return {(bits & effectBit(Effect::Shadows)) != 0, (bits & effectBit(Effect::Reflection)) != 0,
+            (bits & effectBit(Effect::Refraction)) != 0};
+}
+
+// The tracer's parameters, declared as `whitted` declares them, with rt_only's cut-off by default.
+std::vector<ParamSpec> tracerParameterSpecs() {
+    std::vector<ParamSpec> specs;
+    for (ParamSpec& s : WhittedTechnique::parameterSpecs(kRtOnlyImportanceCutoff))
+        if (s.name != "supersample") specs.push_back(std::move(s));
+    return specs;
+}
+
+}  // namespace
+
+TechniqueInfo HeuristicRtTechnique::info() {
+    std::vector<ParamSpec> specs = {
+        ParamSpec::real("budget", 0.0, 0.0, 1e18, "T: the cost budget of the selection (eq. 2 units, about rays); 0: unlimited"),
+        ParamSpec::real("target_ms", 0.0, 0.0, 1e6,
+                        "frame-time target: T is set each frame from a learned cost-to-time rate (0: use `budget`)"),
+        ParamSpec::real("importance", 0.0, 0.0, 1e18, "I: relevance added to objects selected last frame (eq. 3)"),
+        ParamSpec::boolean("heuristic", true, "false: every visible object selected (the paper's \"no heuristic\" run)"),
+        ParamSpec::boolean("per_effect", false, "select shadows, reflections and refractions separately per object"),
+        ParamSpec::choice("visible_pixels", "ids", {"ids", "queries"},
+                          "A from the object-id target, or from precise occlusion queries (as the paper)"),
+        ParamSpec::choice("raster_shadows", "map", {"map", "off"},
+                          "shadows of pixels not ray traced: shadow maps, or none (as the paper's P-buffer)"),
+        ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"),
+    };
+    for (ParamSpec& s : tracerParameterSpecs()) specs.push_back(std::move(s));
+    return {"heuristic_rt",
+            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, Embree secondary "
+            "rays for the selected objects' pixels, blending",
+            std::move(specs), [](const ParameterSet& p) { return std::make_unique<HeuristicRtTechnique>(p); }};
+}
+
+HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
+    : tracer_(WhittedTechnique::tracerSettings(p)),
+      budget_(p.getFloat("budget")),
+      previousSelectionImportance_(p.getFloat("importance")),
+      heuristic_(p.getBool("heuristic")),
+      perEffect_(p.getBool("per_effect")),
+      visiblePixelsByQueries_(p.getChoice("visible_pixels") == "queries"),
+      rasterShadows_(p.getChoice("raster_shadows") == "map"),
+      debugImages_(p.getBool("debug_images")) {
+    if (p.getFloat("target_ms") > 0.0) frameTimeBudget_.emplace(p.getFloat("target_ms"));
+}
+
+void HeuristicRtTechnique::prepare(SceneContext& context) {
+    context.rayScene(0.0);
+    // Lavapipe compiles shaders at the first draw.
+    RasterRequest warmUp;
+    warmUp.camera = context.scene().camera;
+    warmUp.width = 64;
+    warmUp.height = 36;
+    warmUp.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
+    context.rasterizer().render(warmUp, raster_);
+}
+
+HeuristicRtTechnique::Selection HeuristicRtTechnique::selectObjects(const Scene& scene, const FrameRequest& frame,
+                                                                    const std::vector<std::uint64_t>& visiblePixels) {
+    const std::vector<ObjectObservation> observations =
+        observeVisibleObjects(scene, frame.time, frame.camera, frame.aspect(), visiblePixels, selectedLastFrame_);
+    const int lights = static_cast<int>(scene.lights.size());
+    Selection s;
+    s.effectsByObject.assign(scene.objects.size(), 0);
+    s.objectsVisible = observations.size();
+
+    // Graph nodes: one per object, or per object and effect (its own cost term, the object's relevance).
+    std::vector<SelectionNode> nodes;
+    for (const ObjectObservation& o : observations) {
+        const ObjectScore score = scoreObject(o, lights, previousSelectionImportance_);
+        s.costVisible += score.C;
+        if (!perEffect_) {
+            nodes.push_back({o.object * kEffectCount, score.C, score.R});
+            continue;
+        }
+        for (Effect e : {Effect::Shadows, Effect::Reflection, Effect::Refraction}) {
+            if ((e == Effect::Reflection && !o.reflective) || (e == Effect::Refraction && !o.refractive)) continue;
+            nodes.push_back({o.object * kEffectCount + static_cast<std::uint32_t>(e),
+                             o.visiblePixels * raysPerPixel(e, lights) * o.estimatedCost, score.R});
+        }
+    }
+    std::vector<std::uint32_t> chosen;
+    if (heuristic_) {
+        s.budget = frameTimeBudget_ ? frameTimeBudget_->budget() : budget_ > 0.0 ? budget_ : std::numeric_limits<double>::infinity();
+        SelectionResult r = SelectionGraph(nodes).select(s.budget);
+        chosen = std::move(r.selected);
+        s.costSelected = r.costUsed;
+    } else {
+        s.budget = std::numeric_limits<double>::infinity();
+        for (const SelectionNode& n : nodes) {
+            chosen.push_back(n.object);
+            s.costSelected += n.cost;
+        }
+    }
+    for (std::uint32_t id : chosen) {
+        const std::uint32_t object = id / kEffectCount;
+        s.effectsByObject[object] |= perEffect_ ? effectBit(static_cast<Effect>(id % kEffectCount)) : kAllEffects;
+    }
+    selectedLastFrame_.assign(scene.objects.size(), false);
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        selectedLastFrame_[o] = s.effectsByObject[o] != 0;
+        s.objectsSelected += selectedLastFrame_[o];
+    }
+    return s;
+}
+
+FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    const Scene& scene = context.scene();
+    FrameResult result;
+    StageClock clock(result);
+
+    // rast: the G-buffer and the P-buffer.
+    RasterRequest request;
+    request.camera = frame.camera;
+    request.time = frame.time;
+    request.width = frame.width;
+    request.height = frame.height;
+    request.readback = kGBufferSurfaceTargets;
+    request.lighting = true;
+    request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
+    request.occlusionQueries = visiblePixelsByQueries_;
+    context.rasterizer().render(request, raster_);
+    const GBuffer& g = raster_.gbuffer;
+    clock.lap("rast");
+
+    // heur: the selection, then the heuristic mask.
+    const Selection selection = selectObjects(
+        scene, frame, visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : visiblePixelsFromIds(g, scene.objects.size()));
+    const std::size_t pixels = g.pixelCount();
+    pixelEffects_.assign(pixels, 0);
+    std::size_t masked = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const std::int64_t o = g.object(i);
+        if (o < 0) continue;
+        pixelEffects_[i] = selection.effectsByObject[static_cast<std::size_t>(o)];
+        masked += pixelEffects_[i] != 0;
+    }
+    clock.lap("heur");
+
+    const RayScene& rays = context.rayScene(frame.time);
+    clock.lap("bvh_update");
+
+    // rayt: Listings 8a-8d from the G-buffer, for masked pixels only.
+    const WhittedTracer tracer(rays, tracer_);
+    parts_.resize(pixels);
+    const Image& lighting = raster_.lighting;
+    const RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+        const std::size_t i = g.index(x, y);
+        if (pixelEffects_[i] == 0) return;
+        const GBufferSurface surface(g, i, frame.camera);
+        const TracedEffects effects = tracedEffects(pixelEffects_[i]);
+        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects,
+                                           tracer_.rayCones ? surface.footprint() : RayCone{});
+        if (!effects.shadows) {
+            // Shadows not selected: the P-buffer's (shadow-mapped) local colour, recovered from its
+            // composition with the sky terms the rasterizer used.
+            const ShadingParts sky = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {false, false, false});
+            p.local = sky.composes ? uncomposeLocal(sky.reflectivity, sky.transparency, sky.reflected, sky.refracted,
+                                                    glm::vec3(lighting.at(x, y)), p.local, tracer_.blend)
+                                   : glm::vec3(lighting.at(x, y));
+        }
+        parts_[i] = p;
+    });
+    clock.lap("rayt");
+
+    // blend: Listing 10 (eqs. 4-6), or DESIGN.md's rule.
+    result.image = lighting;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        if (pixelEffects_[i] != 0) result.image.data()[i] = glm::vec4(parts_[i].composed(tracer_.blend), 1.0f);
+    }
+    clock.lap("blend");
+
+    double rayTracingMs = 0.0, otherMs = 0.0;
+    for (const StageTime& s : result.stages) (s.name == "rayt" ? rayTracingMs : otherMs) += s.milliseconds;
+    if (frameTimeBudget_) {
+        result.counters["target_ms"] = frameTimeBudget_->targetMilliseconds();
+        result.counters["predicted_ms"] = frameTimeBudget_->predictedMilliseconds(selection.costSelected);
+        frameTimeBudget_->observe(selection.costSelected, rayTracingMs, otherMs);
+    }
+    recordRayCounters(stats, static_cast<double>(masked), result);
+    result.counters["objects_visible"] = static_cast<double>(selection.objectsVisible);
+    result.counters["objects_selected"] = static_cast<double>(selection.objectsSelected);
+    result.counters["cost_visible"] = selection.costVisible;
+    result.counters["cost_selected"] = selection.costSelected;
+    if (selection.budget < std::numeric_limits<double>::infinity()) result.counters["budget"] = selection.budget;
+
+    if (debugImages_) {
+        Image mask(frame.width, frame.height), shadows(frame.width, frame.height), reflections(frame.width, frame.height),
+            refractions(frame.width, frame.height);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            const TracedEffects e = tracedEffects(pixelEffects_[i]);
+            mask.data()[i] = glm::vec4(e.shadows, e.reflection, e.refraction, 1.0f);
+            if (pixelEffects_[i] == 0) continue;
+            shadows.data()[i] = glm::vec4(parts_[i].local, 1.0f);
+            reflections.data()[i] = glm::vec4(parts_[i].reflected, 1.0f);
+            refractions.data()[i] = glm::vec4(parts_[i].refracted, 1.0f);
+        }
+        result.debugImages["heuristic_mask"] = std::move(mask);
+        result.debugImages["shadows"] = std::move(shadows);
+        result.debugImages["reflections"] = std::move(reflections);
+        result.debugImages["refractions"] = std::move(refractions);
+    }
+    return result;
+}
+
+}  // namespace hybridlab

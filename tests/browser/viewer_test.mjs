@@ -1,0 +1,297 @@
+// The viewer in a real browser: the runner makes a small result set (whitted-classic at 64x36,
+// three frames of the orbit path, two techniques), `hybridlab report` writes viewer.html, and
+// headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks
+// what issue 9 asks: every pane's image loads, a wheel event zooms all panes alike, flip changes the
+// image and back, the FLIP map layer shows the map's file, the frame slider moves every pane to the
+// new frame, the inspector shows the same pixel in every pane; and no console error on the way.
+//
+//   node viewer_test.mjs HYBRIDLAB_BIN WORK_DIR
+//
+// Leaves WORK_DIR/viewer.png (a screenshot) and the result set and report behind as artifacts.
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const CHROMIUM = '/usr/bin/chromium';
+const [hybridlab, workArg] = process.argv.slice(2);
+const work = workArg && path.resolve(workArg);
+if (!hybridlab || !workArg) {
+  console.error('usage: node viewer_test.mjs HYBRIDLAB_BIN WORK_DIR');
+  process.exit(2);
+}
+if (!fs.existsSync(CHROMIUM)) {
+  console.error(`${CHROMIUM} is missing: ./setup.sh installs Debian's chromium for this test`);
+  process.exit(1);
+}
+let chromium;
+try {
+  ({ chromium } = await import('playwright-core'));
+} catch {
+  const here = path.dirname(fileURLToPath(import.meta.url));
+  console.error(`playwright-core is missing: ./setup.sh runs npm ci in ${here}`);
+  process.exit(1);
+}
+
+const CONFIG = `
+[experiment]
+name = "viewer-test"
+warmup_frames = 0
+repeats = 1
+error_maps = true
+
+[reference]
+params = { max_depth = 4 }
+
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[64, 36]]
+[[scenes.views]]
+path = "orbit"
+frames = [0, 40]
+stride = 20
+
+[[techniques]]
+name = "whitted"
+label = "depth1"
+params = { max_depth = 1 }
+
+[[techniques]]
+name = "rt_only"
+`;
+
+function hybridlabRun(args) {
+  const r = spawnSync(hybridlab, args, { encoding: 'utf8' });
+  assert.equal(r.status, 0, `hybridlab ${args.join(' ')} failed:\n${r.stdout}\n${r.stderr}`);
+}
+
+// Runs write debug images only where a technique makes them (images.debug.NAME in a record).
+// Where none does, every run of the first technique gets one in that format (a copy of its
+// difference map) so that the viewer's generic listing of debug images is exercised.
+function ensureDebugImages(resultDir) {
+  const file = path.join(resultDir, 'results.json');
+  const records = JSON.parse(fs.readFileSync(file, 'utf8'));
+  if (records.some((r) => r.images.debug)) return;
+  for (const r of records.filter((x) => x.label === records[0].label)) {
+    const png = `images/${r.id}.mask.png`;
+    fs.copyFileSync(path.join(resultDir, r.images.maps, 'diff.png'), path.join(resultDir, png));
+    r.images.debug = { mask: png };
+  }
+  fs.writeFileSync(file, JSON.stringify(records, null, 1));
+}
+
+fs.rmSync(work, { recursive: true, force: true });
+fs.mkdirSync(work, { recursive: true });
+fs.writeFileSync(path.join(work, 'viewer-test.toml'), CONFIG);
+const resultDir = path.join(work, 'results');
+const reportDir = path.join(resultDir, 'report');
+hybridlabRun(['run', path.join(work, 'viewer-test.toml'), '--out', resultDir, '--cache', path.join(work, 'cache')]);
+ensureDebugImages(resultDir);
+hybridlabRun(['report', resultDir, '--out', reportDir]);
+const manifest = JSON.parse(fs.readFileSync(path.join(reportDir, 'viewer', 'manifest.json'), 'utf8'));
+const viewerUrl = pathToFileURL(path.join(reportDir, 'viewer.html')).href;
+
+let passed = 0;
+async function check(name, body) {
+  await body();
+  passed += 1;
+  console.log(`ok - ${name}`);
+}
+
+const browser = await chromium.launch({ executablePath: CHROMIUM, args: ['--no-sandbox'] });
+const consoleErrors = [];
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+  page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
+  page.on('pageerror', (e) => consoleErrors.push(e.message));
+  page.on('requestfailed', (r) => consoleErrors.push(`${r.url()}: ${r.failure().errorText}`));
+
+  // Every shown image loaded, with the size of the run (error maps add their legend below).
+  const panesLoaded = () =>
+    page.waitForFunction(() => {
+      const imgs = [...document.querySelectorAll('#panes img.image')];
+      return imgs.length > 0 && imgs.every((i) => i.complete && i.naturalWidth > 0);
+    });
+  const shown = () =>
+    page.$$eval('#panes img.image', (imgs) =>
+      imgs.map((i) => ({ pane: i.dataset.pane, file: i.dataset.file, src: i.src, width: i.naturalWidth, transform: i.style.transform })),
+    );
+  const viewport = (slot) => page.locator(`#panes .pane[data-slot="${slot}"] .viewport`);
+  const runAt = (frame, variant) => manifest.runs.find((r) => r.frame === frame && r.variant === variant);
+  const variants = [...new Set(manifest.runs.map((r) => r.variant))];
+  const frames = [...new Set(manifest.runs.map((r) => r.frame))].sort((a, b) => a - b);
+  assert.deepEqual(frames, [0, 20, 40]);
+  assert.equal(variants.length, 2);
+  // The panes' files at a frame: the reference, then the variants in order.
+  const expectedFiles = (frame) => [runAt(frame, variants[0]).reference, ...variants.map((v) => runAt(frame, v).image)];
+
+  await page.goto(viewerUrl);
+  await panesLoaded();
+
+  await check("every pane's image loads", async () => {
+    const imgs = await shown();
+    assert.equal(imgs.length, 3);
+    assert.deepEqual(imgs.map((i) => i.file), expectedFiles(0));
+    for (const i of imgs) assert.equal(i.width, 64, i.file);
+  });
+
+  await check('the inspector shows the same pixel in every pane', async () => {
+    const box = await viewport(0).boundingBox();
+    await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5);
+    await page.waitForFunction(() => [...document.querySelectorAll('#panes .inspector')].every((e) => e.textContent.includes('RGB')));
+    const read = await page.$$eval('#panes .inspector', (els) => els.map((e) => ({ x: e.dataset.x, y: e.dataset.y, text: e.textContent })));
+    assert.equal(read.length, 3);
+    const where = read[0].text.split(' RGB')[0];
+    assert.match(where, /^\(\d+, \d+\)$/);
+    for (const r of read) {
+      assert.equal(r.text.split(' RGB')[0], where);
+      assert.equal(`(${r.x}, ${r.y})`, where);
+    }
+    assert.equal(await page.textContent('#pixel'), `pixel ${where}`);
+  });
+
+  await check('a wheel event in one pane zooms every pane alike, about the cursor', async () => {
+    const before = await shown();
+    const box = await viewport(1).boundingBox();
+    const cursor = { x: box.x + box.width * 0.4, y: box.y + box.height * 0.55 };
+    await page.mouse.move(cursor.x, cursor.y);
+    const pixelBefore = await page.textContent('#pixel');
+    await page.mouse.wheel(0, -600);
+    await page.waitForFunction((t) => document.querySelector('#panes img.image').style.transform !== t, before[0].transform);
+    const after = await shown();
+    const scale = (t) => Number(/scale\(([^)]+)\)/.exec(t)[1]);
+    assert.ok(scale(after[0].transform) > 2 * scale(before[0].transform), `${before[0].transform} -> ${after[0].transform}`);
+    for (const i of after) assert.equal(i.transform, after[0].transform);
+    // The pixel under the cursor stays under it.
+    await page.mouse.move(cursor.x, cursor.y);
+    assert.equal(await page.textContent('#pixel'), pixelBefore);
+    // At this zoom a pixel covers many screen pixels and is drawn as a square.
+    assert.equal(await page.$eval('#panes img.image', (i) => getComputedStyle(i).imageRendering), 'pixelated');
+  });
+
+  await check('flip shows one image, F changes it and flips back', async () => {
+    await page.keyboard.press('f');
+    await panesLoaded();
+    const first = await shown();
+    assert.equal(first.length, 1);
+    await page.keyboard.press('f');
+    await panesLoaded();
+    const second = await shown();
+    assert.equal(second.length, 1);
+    assert.notEqual(second[0].src, first[0].src);
+    assert.deepEqual([first[0].file, second[0].file], expectedFiles(0).slice(0, 2));
+    await page.keyboard.press('f');
+    await panesLoaded();
+    assert.equal((await shown())[0].src, first[0].src);
+  });
+
+  await check('swipe shows two images cut at the divider, which drags', async () => {
+    await page.keyboard.press('w');
+    await panesLoaded();
+    const clip = () => page.$eval('#panes img.top', (i) => Number(/inset\(0px 0px 0px ([\d.]+)px\)/.exec(i.style.clipPath)[1]));
+    assert.deepEqual((await shown()).map((i) => i.file), expectedFiles(0).slice(0, 2));
+    const before = await clip();
+    const d = await page.locator('#panes .divider').boundingBox();
+    await page.mouse.move(d.x + 1, d.y + d.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(d.x - 100, d.y + d.height / 2, { steps: 4 });
+    await page.mouse.up();
+    assert.ok((await clip()) < before, `${before} -> ${await clip()}`);
+    await page.keyboard.press('s');
+    await panesLoaded();
+    assert.equal((await shown()).length, 3);
+  });
+
+  await check("selecting the FLIP map shows the map's file with its legend", async () => {
+    await page.selectOption('#panes .overlay[data-pane="1"] select.layer', 'flip');
+    await panesLoaded();
+    const img = (await shown())[1];
+    const run = runAt(0, variants[0]);
+    assert.equal(img.file, run.maps.flip.file);
+    assert.match(img.file, /maps\/.*\/flip\.png$/);
+    assert.equal(decodeURIComponent(new URL(img.src).pathname), path.join(reportDir, run.maps.flip.file));
+    assert.ok(fs.existsSync(path.join(reportDir, img.file)));
+    assert.equal(img.width, 64);
+    assert.equal(await page.locator('#panes .overlay[data-pane="1"] .legend').count(), 1);
+    // The inspector reads the FLIP value back from the map's colour.
+    const box = await viewport(1).boundingBox();
+    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.waitForFunction(() => /flip \d/.test(document.querySelector('#panes .overlay[data-pane="1"] .inspector').textContent));
+  });
+
+  await check('the debug images are listed and shown', async () => {
+    const options = await page.$$eval('#panes .overlay[data-pane="1"] select.layer option', (os) => os.map((o) => o.value));
+    assert.deepEqual(options, ['image', 'diff', 'ssim', 'flip', 'debug:mask']);
+    await page.selectOption('#panes .overlay[data-pane="1"] select.layer', 'debug:mask');
+    await panesLoaded();
+    assert.equal((await shown())[1].file, runAt(0, variants[0]).debug.mask);
+    await page.selectOption('#panes .overlay[data-pane="1"] select.layer', 'image');
+  });
+
+  await check('the frame slider changes every pane to the new frame', async () => {
+    await page.$eval('#frame', (s) => {
+      s.value = '1';
+      s.dispatchEvent(new Event('input'));
+    });
+    await panesLoaded();
+    assert.deepEqual((await shown()).map((i) => i.file), expectedFiles(20));
+    assert.notDeepEqual(expectedFiles(20), expectedFiles(0));
+    await page.locator('body').click({ position: { x: 5, y: 790 } });
+    await page.keyboard.press('ArrowRight');
+    await panesLoaded();
+    assert.deepEqual((await shown()).map((i) => i.file), expectedFiles(40));
+  });
+
+  await check('number keys pick the technique of the active pane', async () => {
+    await viewport(0).click();
+    await page.keyboard.press('3');
+    await panesLoaded();
+    assert.equal((await shown())[0].file, runAt(40, variants[1]).image);
+    await page.keyboard.press('1');
+    await panesLoaded();
+    assert.equal((await shown())[0].file, runAt(40, variants[0]).reference);
+  });
+
+  await check('E cycles the error maps of every technique pane; ? shows the shortcuts', async () => {
+    await page.keyboard.press('e');
+    await panesLoaded();
+    const files = (await shown()).map((i) => i.file);
+    assert.deepEqual(files, [runAt(40, variants[0]).reference, ...variants.map((v) => runAt(40, v).maps.diff.file)]);
+    await page.keyboard.press('?');
+    assert.ok(await page.isVisible('#help'));
+    assert.match(await page.textContent('#help'), /flip/);
+    await page.keyboard.press('Escape');
+    assert.ok(!(await page.isVisible('#help')));
+    await page.keyboard.press('e');
+    await page.keyboard.press('e');
+    await panesLoaded();
+  });
+
+  await page.screenshot({ path: path.join(work, 'viewer.png') });
+
+  await check("the report's table and charts open the viewer on a run", async () => {
+    const report = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+    report.on('pageerror', (e) => consoleErrors.push(e.message));
+    await report.goto(pathToFileURL(path.join(reportDir, 'index.html')).href);
+    const hrefs = await report.$$eval('table.runs a[href^="viewer.html#run="]', (as) => as.map((a) => a.getAttribute('href')));
+    assert.deepEqual(hrefs.sort(), manifest.runs.map((r) => `viewer.html#run=${r.id}`).sort());
+    const target = runAt(40, variants[1]);
+    await report.click(`table.runs a[href="viewer.html#run=${target.id}"]`);
+    await report.waitForURL(/viewer\.html/);
+    await report.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.complete && i.naturalWidth > 0));
+    const files = await report.$$eval('#panes img.image', (imgs) => imgs.map((i) => i.dataset.file));
+    assert.deepEqual(files.slice(0, 2), [target.reference, target.image]);
+    for (const svg of fs.readdirSync(path.join(reportDir, 'figures')).filter((f) => /^(speed-accuracy|path)-.*\.svg$/.test(f))) {
+      const text = fs.readFileSync(path.join(reportDir, 'figures', svg), 'utf8');
+      assert.ok(text.includes(`target="_top" xlink:href="../viewer.html#run=${target.id}"`), svg);
+    }
+    await report.close();
+  });
+} finally {
+  await browser.close();
+}
+
+assert.deepEqual(consoleErrors, [], 'console errors');
+console.log(`screenshot: ${path.join(work, 'viewer.png')}`);
+console.log(`${passed} passed, 0 failed`);
