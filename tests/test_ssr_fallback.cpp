@@ -12,19 +12,14 @@
 #include "techniques/technique.h"
 #include "tests/raster_test_support.h"
 #include "tests/ssr_scenes.h"
+#include "tests/technique_test_support.h"
 #include "tests/test_support.h"
 
 namespace hybridlab {
 namespace {
 
-using Params = std::vector<std::pair<std::string, ParamValue>>;
-
-FrameResult render(const Scene& scene, const std::string& technique, const Params& params, int width, int height) {
-    SceneContext context(scene);
-    auto t = createTechnique(technique, params);
-    t->prepare(context);
-    return t->render(context, {scene.camera, 0.0, width, height});
-}
+using Params = test::TechniqueParams;
+using test::renderFrame;
 
 // The pixels where the G-buffer shows `object`.
 PixelMask objectMask(const Scene& scene, std::int64_t object, int width, int height) {
@@ -50,9 +45,9 @@ TEST_P(SsrOffAgainstWhitted, EverythingFallsBackAndMatchesTheReference) {
     const Scene scene = loadSceneFile(findSceneFile(name));
     RASTERIZER_OR_SKIP(probe, scene);
     constexpr int kWidth = 640, kHeight = 360;
-    const FrameResult whitted = render(scene, "whitted", {}, kWidth, kHeight);
-    const FrameResult rt = render(scene, "ssr_fallback", {{"ssr", false}, {"shadows", std::string("rt")}}, kWidth, kHeight);
-    const FrameResult map = render(scene, "ssr_fallback", {{"ssr", false}}, kWidth, kHeight);
+    const FrameResult whitted = renderFrame(scene, "whitted", {}, kWidth, kHeight);
+    const FrameResult rt = renderFrame(scene, "ssr_fallback", {{"ssr", false}, {"shadows", std::string("rt")}}, kWidth, kHeight);
+    const FrameResult map = renderFrame(scene, "ssr_fallback", {{"ssr", false}}, kWidth, kHeight);
     const double ssimRt = computeMetrics(rt.image, whitted.image).whole.ssim;
     const double ssimMap = computeMetrics(map.image, whitted.image).whole.ssim;
     std::printf("[ ssr      ] %s, SSR off: SSIM against whitted %.5f with ray-traced shadows, %.5f with shadow maps; %g fallback rays "
@@ -66,24 +61,19 @@ TEST_P(SsrOffAgainstWhitted, EverythingFallsBackAndMatchesTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SsrFallback, SsrOffAgainstWhitted, ::testing::Values("whitted-classic", "cornell-mirror-glass", "sponza-spheres"),
-                         [](const auto& info) {
-                             std::string n = info.param;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+                         test::SceneTestName());
 
 TEST(SsrFallback, TheFallbackRestoresAReflectionOfAnObjectBehindTheCamera) {
     const Scene scene = test::mirrorWallScene();
     RASTERIZER_OR_SKIP(probe, scene);
     constexpr int kWidth = 320, kHeight = 180;
     const PixelMask mirror = objectMask(scene, 0, kWidth, kHeight);
-    const FrameResult whitted = render(scene, "whitted", {}, kWidth, kHeight);
+    const FrameResult whitted = renderFrame(scene, "whitted", {}, kWidth, kHeight);
     const Params common = {{"shadows", std::string("rt")}};
     auto with = [&](const std::string& fallback) {
         Params p = common;
         p.emplace_back("fallback", fallback);
-        return render(scene, "ssr_fallback", p, kWidth, kHeight);
+        return renderFrame(scene, "ssr_fallback", p, kWidth, kHeight);
     };
     const FrameResult rt = with("rt"), none = with("none"), sky = with("sky");
     const double ssimRt = computeMetrics(rt.image, whitted.image, {}, &mirror).masked->ssim;
@@ -120,11 +110,11 @@ TEST(SsrFallback, OnAMirrorFloorTheHybridIsCloseToTheReferenceAndSsrCarriesMostP
     const Scene scene = test::mirrorFloorScene(0.8f);
     RASTERIZER_OR_SKIP(probe, scene);
     constexpr int kWidth = 320, kHeight = 180;
-    const FrameResult whitted = render(scene, "whitted", {}, kWidth, kHeight);
-    const FrameResult hybrid = render(scene, "ssr_fallback", {{"shadows", std::string("rt")}}, kWidth, kHeight);
-    const FrameResult single = render(scene, "ssr_fallback", {{"shadows", std::string("rt")}, {"recursion", std::string("single")}}, kWidth,
+    const FrameResult whitted = renderFrame(scene, "whitted", {}, kWidth, kHeight);
+    const FrameResult hybrid = renderFrame(scene, "ssr_fallback", {{"shadows", std::string("rt")}}, kWidth, kHeight);
+    const FrameResult single = renderFrame(scene, "ssr_fallback", {{"shadows", std::string("rt")}, {"recursion", std::string("single")}}, kWidth,
                                       kHeight);
-    const FrameResult unblurred = render(scene, "ssr_fallback", {{"shadows", std::string("rt")}, {"blur_radius", 0LL}}, kWidth, kHeight);
+    const FrameResult unblurred = renderFrame(scene, "ssr_fallback", {{"shadows", std::string("rt")}, {"blur_radius", 0LL}}, kWidth, kHeight);
     const double ssim = computeMetrics(hybrid.image, whitted.image).whole.ssim;
     const double ssimUnblurred = computeMetrics(unblurred.image, whitted.image).whole.ssim;
     std::printf("[ ssr      ] mirror floor: SSIM against whitted %.5f (seam blur off: %.5f; %g pixels blurred); SSR hit rate %.3f, "

@@ -71,6 +71,8 @@ TechniqueInfo SsrFallbackTechnique::info() {
                                 "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
                 ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
                 ParamSpec::integer("max_depth", 10, 0, 64, "ray-traced bounces, as the reference"),
+                ParamSpec::real("importance_cutoff", 0.0, 0.0, 1.0,
+                                "ray tracing: do not trace secondary rays whose weight in the pixel is below this (0: the full ray tree, as the reference)"),
                 ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
                 ParamSpec::integer("pcf_radius", 0, 0, 4, "percentage-closer filtering radius of the shadow maps"),
                 ParamSpec::choice("blend", "design", {"design", "walewski2019"},
@@ -95,6 +97,7 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
     shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
     shadowSettings_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
     tracerSettings_.maxDepth = static_cast<int>(p.getInt("max_depth"));
+    tracerSettings_.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
     tracerSettings_.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
 }
 

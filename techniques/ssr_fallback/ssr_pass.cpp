@@ -84,7 +84,8 @@ void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
 
 void SsrPass::recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& t) {
     pyramidUniforms_.write(&t.view, sizeof t.view);
-    const auto levels = static_cast<std::uint32_t>(pyramidLevels_.size());
+    // The linear march reads level 0 only.
+    const auto levels = settings_.traversal == SsrSettings::Traversal::HiZ ? static_cast<std::uint32_t>(pyramidLevels_.size()) : 1u;
     for (std::uint32_t l = 0; l < levels; ++l) {
         pyramidDescriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, pyramidUniforms_.buffer(), l);
         pyramidDescriptors_.writeImage(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[0], nearest_, VK_IMAGE_LAYOUT_GENERAL, l);
@@ -131,7 +132,7 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     const bool hiz = settings_.traversal == SsrSettings::Traversal::HiZ;
-    if (hiz) recordDepthPyramid(cb, t);
+    recordDepthPyramid(cb, t);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[hiz ? 1 : 0]);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);

@@ -83,7 +83,8 @@ private:
     UniqueSampler nearest_;
     GpuBuffer uniforms_;
     GpuImage color_, hit_;
-    // The hiz traversal's min-depth pyramid: one descriptor set and storage view per level.
+    // The min-depth pyramid of view depths (level 0 for the linear march, every level for hiz): one
+    // descriptor set and storage view per level.
     GpuImage pyramid_;
     std::vector<UniqueImageView> pyramidLevels_;
     DescriptorSet pyramidDescriptors_;

@@ -37,15 +37,13 @@ layout(set = 0, binding = 4) uniform usampler2D gObjectId;
 layout(set = 0, binding = 5) uniform sampler2D litImage;
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D ssrColor;  // rgb the lit image at the hit, a confidence
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D ssrHit;    // xy hit pixel (-1 without), z flag bits, w steps
-layout(set = 0, binding = 8) uniform sampler2D depthPyramid;               // kHiZ: min view depth per cell, by level
+layout(set = 0, binding = 8) uniform sampler2D depthPyramid;               // min view depth per cell, by level (linear: level 0 only)
 
 const float kSkyDepth = 1e30;
 
-// The view depth (distance along the viewing direction, positive in front) seen at a texel.
-float sceneDepth(ivec2 pixel) {
-    if (texelFetch(gObjectId, pixel, 0).r == 0u) return kSkyDepth;
-    return -(u.view * vec4(texelFetch(gPosition, pixel, 0).xyz, 1.0)).z;
-}
+// The view depth (distance along the viewing direction, positive in front) seen at a texel: level 0
+// of the depth pyramid (sky: kSkyDepth).
+float sceneDepth(ivec2 pixel) { return texelFetch(depthPyramid, pixel, 0).r; }
 
 // Camera space to pixel coordinates (origin at the top-left corner of the image).
 vec2 toPixel(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * u.screen.xy; }
