@@ -2,6 +2,7 @@
 #include "techniques/heuristic_rt/heuristic_rt_technique.h"
 #include "techniques/raster/raster_technique.h"
 #include "techniques/rt_only/rt_only_technique.h"
+#include "techniques/ssr_fallback/ssr_fallback_technique.h"
 #include "techniques/technique.h"
 #include "techniques/whitted/whitted_technique.h"
 
@@ -13,6 +14,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         RasterTechnique::info(),
         rtOnlyTechniqueInfo(),
         HeuristicRtTechnique::info(),
+        SsrFallbackTechnique::info(),
     };
     return registry;
 }

@@ -136,20 +136,10 @@ TEST_P(VisiblePixelCounts, FromTheIdTargetEqualTheOcclusionQueries) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Raster, VisiblePixelCounts, ::testing::Values("whitted-classic", "cornell-mirror-glass", "sponza-spheres"),
-                         [](const auto& info) {
-                             std::string n = info.param;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+                         test::SceneTestName());
 
 INSTANTIATE_TEST_SUITE_P(Raster, GBufferAgreesWithPrimaryRays, ::testing::Values("whitted-classic", "cornell-mirror-glass", "sponza-spheres"),
-                         [](const auto& info) {
-                             std::string n = info.param;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+                         test::SceneTestName());
 
 }  // namespace
 }  // namespace hybridlab

@@ -69,12 +69,7 @@ TEST_P(RasterAgainstWhitted, WithoutReflectionOrRefractionTheyAgree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Raster, RasterAgainstWhitted, ::testing::Values("cornell-mirror-glass", "whitted-classic", "sponza-spheres"),
-                         [](const auto& info) {
-                             std::string n = info.param;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+                         test::SceneTestName());
 
 // The experiment runner renders a technique many times into fresh FrameResults; every frame must
 // be whole and the same (a moved-out read-back image once left the second frame without pixels).

@@ -39,6 +39,17 @@ std::filesystem::path builtinSceneFile(const std::string& name);
 // The test-scene assets (HYBRIDLAB_ASSETS), if set and non-empty.
 std::optional<std::filesystem::path> assetsFromEnvironment();
 
+// The name of a test instantiated per scene (GoogleTest names allow no '-'): the scene name with '_'.
+struct SceneTestName {
+    template <class ParamInfo>
+    std::string operator()(const ParamInfo& info) const {
+        std::string n = info.param;
+        for (char& c : n)
+            if (c == '-') c = '_';
+        return n;
+    }
+};
+
 ::testing::AssertionResult vecNear(glm::vec2 actual, glm::vec2 expected, float tolerance);
 ::testing::AssertionResult vecNear(glm::vec3 actual, glm::vec3 expected, float tolerance);
 ::testing::AssertionResult vecNear(glm::vec4 actual, glm::vec4 expected, float tolerance);

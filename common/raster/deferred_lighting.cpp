@@ -5,6 +5,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include "common/raster/readback.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/shading.h"
 
@@ -44,12 +45,7 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
     descriptors_ = DescriptorSet(device, bindings);
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
 
-    VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
-    sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    VkSampler s;
-    checkVk(vkCreateSampler(device.device(), &sci, nullptr, &s), "creating the G-buffer sampler");
-    nearest_ = UniqueSampler(device.device(), s);
+    nearest_ = createNearestSampler(device, "the G-buffer sampler");
 
     uniforms_ = GpuBuffer(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     const auto& lights = scene.scene().lights;
@@ -68,7 +64,8 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
 void DeferredLighting::resize(std::uint32_t width, std::uint32_t height) {
     if (output_.valid() && output_.desc().width == width && output_.desc().height == height) return;
     const VulkanDevice& device = scene_.device();
-    output_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+    output_ = GpuImage(device, {kOutputFormat, width, height, 1, 1,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     readback_ = GpuBuffer(device, static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                           GpuBuffer::Memory::HostVisible);
 }
@@ -141,14 +138,8 @@ void DeferredLighting::record(VkCommandBuffer cb, const Camera& camera, const Li
 }
 
 void DeferredLighting::recordReadback(VkCommandBuffer cb) {
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {output_.desc().width, output_.desc().height, 1};
-    vkCmdCopyImageToBuffer(cb, output_.image(), VK_IMAGE_LAYOUT_GENERAL, readback_.buffer(), 1, &copy);
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+    recordCopyToBuffer(cb, output_, VK_IMAGE_ASPECT_COLOR_BIT, readback_);
+    recordHostReadBarrier(cb);
 }
 
 void DeferredLighting::unpack(Image& out) const {

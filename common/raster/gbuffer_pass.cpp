@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/raster/frustum.h"
+#include "common/raster/readback.h"
 #include "common/raster/vulkan_error.h"
 
 namespace hybridlab {
@@ -234,7 +235,7 @@ void GBufferPass::recordFinish(VkCommandBuffer cb) {
     for (const GpuImage& c : color_) {
         transitionImage(cb, c.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
     }
     transitionImage(cb, depth_.image(), depth_.aspect(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
@@ -251,15 +252,9 @@ void GBufferPass::recordReadback(VkCommandBuffer cb, GBufferTargets targets) {
         const std::size_t bytes = static_cast<std::size_t>(width_) * height_ * (isDepth ? 4 : texelBytes(kFormats[i]));
         if (!readback_[i].valid())
             readback_[i] = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {isDepth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT) : image.aspect(), 0, 0, 1};
-        copy.imageExtent = {width_, height_, 1};
-        vkCmdCopyImageToBuffer(cb, image.image(), VK_IMAGE_LAYOUT_GENERAL, readback_[i].buffer(), 1, &copy);
+        recordCopyToBuffer(cb, image, isDepth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT) : image.aspect(), readback_[i]);
     }
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+    recordHostReadBarrier(cb);
 }
 
 void GBufferPass::unpack(GBufferTargets targets, GBuffer& out) const {

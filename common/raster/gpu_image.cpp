@@ -51,12 +51,12 @@ GpuImage::GpuImage(const VulkanDevice& device, const ImageDesc& desc)
     view_ = UniqueImageView(device_, view);
 }
 
-UniqueImageView GpuImage::layerView(std::uint32_t layer) const {
+UniqueImageView GpuImage::layerView(std::uint32_t layer, std::uint32_t mip) const {
     VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vci.image = image_;
     vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
     vci.format = desc_.format;
-    vci.subresourceRange = {aspect_, 0, 1, layer, 1};
+    vci.subresourceRange = {aspect_, mip, 1, layer, 1};
     VkImageView view;
     checkVk(vkCreateImageView(device_, &vci, nullptr, &view), "creating an image layer view");
     return UniqueImageView(device_, view);

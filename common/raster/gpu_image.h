@@ -28,8 +28,8 @@ public:
     VkImageAspectFlags aspect() const { return aspect_; }  // every aspect (depth and stencil for a combined format)
     bool valid() const { return static_cast<bool>(image_); }
 
-    // A 2D view of one layer (render targets of layered images).
-    UniqueImageView layerView(std::uint32_t layer) const;
+    // A 2D view of one layer and mip level (render targets of layered images, storage levels of a pyramid).
+    UniqueImageView layerView(std::uint32_t layer, std::uint32_t mip = 0) const;
 
 private:
     VkDevice device_ = VK_NULL_HANDLE;

@@ -82,6 +82,34 @@ UniquePipelineLayout createPipelineLayout(const VulkanDevice& device, const std:
     return UniquePipelineLayout(device.device(), layout);
 }
 
+UniqueSampler createNearestSampler(const VulkanDevice& device, const char* purpose) {
+    VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+    sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler s;
+    checkVk(vkCreateSampler(device.device(), &sci, nullptr, &s), (std::string("creating ") + purpose).c_str());
+    return UniqueSampler(device.device(), s);
+}
+
+UniquePipeline createComputePipeline(const VulkanDevice& device, const std::string& computeShader, VkPipelineLayout layout,
+                                     const std::vector<std::uint32_t>& constants) {
+    UniqueShaderModule cs = createShaderModule(device, computeShader);
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::uint32_t i = 0; i < constants.size(); ++i) entries.push_back({i, 4 * i, 4});
+    const VkSpecializationInfo spec{static_cast<std::uint32_t>(entries.size()), entries.data(), 4 * entries.size(), constants.data()};
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = cs;
+    ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &spec;
+    ci.layout = layout;
+    VkPipeline pipeline;
+    checkVk(vkCreateComputePipelines(device.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
+            ("creating compute pipeline " + computeShader).c_str());
+    return UniquePipeline(device.device(), pipeline);
+}
+
 UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const GraphicsPipelineDesc& desc) {
     UniqueShaderModule vs = createShaderModule(device, desc.vertexShader);
     UniqueShaderModule fs;

@@ -61,6 +61,14 @@ struct GraphicsPipelineDesc {
 // sides, as by the ray tracer); counter-clockwise triangles are front faces.
 UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const GraphicsPipelineDesc& desc);
 
+// A sampler with nearest filtering and clamp-to-edge addressing (texelFetch-like reads of targets).
+UniqueSampler createNearestSampler(const VulkanDevice& device, const char* purpose);
+
+// A compute pipeline of shaders/<computeShader> with push constants (if any) for the compute stage
+// only; `constants` are its specialization constants (constant_id i gets value i).
+UniquePipeline createComputePipeline(const VulkanDevice& device, const std::string& computeShader, VkPipelineLayout layout,
+                                     const std::vector<std::uint32_t>& constants = {});
+
 // Sets the viewport and scissor to the whole of a width x height target.
 void setViewport(VkCommandBuffer cb, std::uint32_t width, std::uint32_t height);
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "common/raster/deferred_lighting.h"
+#include "common/raster/frame_pass.h"
 #include "common/raster/gbuffer_pass.h"
 #include "common/raster/gpu_scene.h"
 #include "common/raster/gpu_timer.h"
@@ -26,6 +27,7 @@ double RasterFrame::gpuMilliseconds(const std::string& stage) const {
 }
 
 struct Rasterizer::Impl {
+    static constexpr std::uint32_t kMaxGpuStages = 16;  // the fixed passes and a technique's own
     std::shared_ptr<VulkanDevice> device;
     GpuScene scene;
     GBufferPass gbuffer;
@@ -38,7 +40,7 @@ struct Rasterizer::Impl {
     double uploadMs = 0.0;
 
     Impl(std::shared_ptr<VulkanDevice> d, const Scene& s)
-        : device(std::move(d)), scene(device, s), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, 8) {
+        : device(std::move(d)), scene(device, s), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, kMaxGpuStages) {
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         VkCommandPool p;
@@ -110,6 +112,21 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         r.lighting.record(cb, request.camera, request.lightingOptions, request.shadowSettings);
         r.timer.end(cb);
     }
+    if (!request.passes.empty()) {
+        FrameTargets targets;
+        targets.width = r.gbuffer.width();
+        targets.height = r.gbuffer.height();
+        targets.camera = request.camera;
+        targets.view = request.camera.view();
+        targets.projection = request.camera.projectionMatrix(aspect);
+        for (int i = 0; i < GBufferPass::kColorTargets; ++i) targets.gbuffer[i] = r.gbuffer.targetView(i);
+        targets.lighting = request.lighting ? r.lighting.output() : VK_NULL_HANDLE;
+        for (RasterFramePass* pass : request.passes) {
+            r.timer.begin(cb, pass->name());
+            pass->record(cb, targets);
+            r.timer.end(cb);
+        }
+    }
     r.timer.begin(cb, "readback");
     if (request.readback) r.gbuffer.recordReadback(cb, request.readback);
     if (request.lighting) r.lighting.recordReadback(cb);
@@ -136,6 +153,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
                     "reading the occlusion queries");
         }
     }
+    for (RasterFramePass* pass : request.passes) pass->finish();
     frame.gpuStages.clear();
     for (const GpuStageTime& s : r.timer.read()) frame.gpuStages.push_back({s.name, s.milliseconds});
     frame.unpackMilliseconds = millisecondsSince(start);

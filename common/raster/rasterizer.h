@@ -15,6 +15,8 @@
 
 namespace hybridlab {
 
+class RasterFramePass;  // common/raster/frame_pass.h
+
 struct RasterRequest {
     Camera camera;
     double time = 0.0;
@@ -26,6 +28,9 @@ struct RasterRequest {
     ShadowSettings shadowSettings;      // when lightingOptions.shadows
     bool redrawShadowMaps = false;      // else shadow maps are redrawn only when something moved or the settings changed
     bool occlusionQueries = false;      // visible pixels per object by precise occlusion queries in a depth-equal pass
+    // A technique's own passes (SSR, ...), recorded in order after the lighting pass and before the
+    // read-back, each timed under its name; finish() is called on each after the frame completed.
+    std::vector<RasterFramePass*> passes;
 };
 
 struct RasterStageTime {
@@ -39,7 +44,7 @@ struct RasterFrame {
     std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
     // GPU timestamps per pass, in order: shadow_maps (when shadows are on; near 0 when the maps were
     // kept), gbuffer (depth pre-pass included), visible_pixels (when asked), lighting (when asked),
-    // readback (the copies).
+    // the request's own passes by name, readback (the copies).
     std::vector<RasterStageTime> gpuStages;
     // Wall clock: recording the commands, submission until completion, unpacking the read-back.
     double recordMilliseconds = 0.0, submitMilliseconds = 0.0, unpackMilliseconds = 0.0;

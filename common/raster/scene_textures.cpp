@@ -7,6 +7,7 @@
 
 #include "common/image/color.h"
 #include "common/raster/gpu_buffer.h"
+#include "common/raster/pipelines.h"
 #include "common/raster/vulkan_error.h"
 
 namespace hybridlab {
@@ -104,11 +105,7 @@ SceneTextures::SceneTextures(const VulkanDevice& device, const Scene& scene) {
     VkSampler s;
     checkVk(vkCreateSampler(device.device(), &sci, nullptr, &s), "creating the texture sampler");
     anisotropic_ = UniqueSampler(device.device(), s);
-    VkSamplerCreateInfo nci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    nci.magFilter = nci.minFilter = VK_FILTER_NEAREST;
-    nci.addressModeU = nci.addressModeV = nci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    checkVk(vkCreateSampler(device.device(), &nci, nullptr, &s), "creating a nearest sampler");
-    nearest_ = UniqueSampler(device.device(), s);
+    nearest_ = createNearestSampler(device, "a nearest sampler");
 
     std::vector<bool> used(scene.textures.size(), false);
     for (const Material& m : scene.materials) {

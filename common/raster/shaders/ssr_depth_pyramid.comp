@@ -1,0 +1,36 @@
+#version 460
+// The hierarchical depth of the SSR pass's "hiz" traversal (FidelityFX SSSR; Uludag, GPU Pro 5):
+// level 0 holds the view depth of every G-buffer texel (sky: far), each further level the nearest
+// (minimum) depth of the 2 x 2 texels below it, and of the extra row or column when the level
+// below has an odd size, so that a cell never hides a nearer texel.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const bool kFromGBuffer = false;  // level 0
+
+layout(std140, set = 0, binding = 0) uniform PyramidUniforms {
+    mat4 view;
+} u;
+layout(set = 0, binding = 1) uniform sampler2D gPosition;
+layout(set = 0, binding = 2) uniform usampler2D gObjectId;
+layout(set = 0, binding = 3, r32f) uniform readonly image2D finer;  // the level below (unused for level 0)
+layout(set = 0, binding = 4, r32f) uniform writeonly image2D level;
+
+const float kSkyDepth = 1e30;
+
+void main() {
+    ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(level);
+    if (cell.x >= size.x || cell.y >= size.y) return;
+    if (kFromGBuffer) {
+        float d = texelFetch(gObjectId, cell, 0).r == 0u ? kSkyDepth : -(u.view * vec4(texelFetch(gPosition, cell, 0).xyz, 1.0)).z;
+        imageStore(level, cell, vec4(d));
+        return;
+    }
+    ivec2 below = imageSize(finer);
+    // Texels 2c and 2c + 1 of the finer level, and 2c + 2 where this is its last cell and the finer size is odd.
+    ivec2 last = min(2 * cell + 1 + ivec2(cell.x == size.x - 1 ? below.x & 1 : 0, cell.y == size.y - 1 ? below.y & 1 : 0), below - 1);
+    float d = kSkyDepth;
+    for (int y = 2 * cell.y; y <= last.y; ++y)
+        for (int x = 2 * cell.x; x <= last.x; ++x) d = min(d, imageLoad(finer, ivec2(x, y)).r);
+    imageStore(level, cell, vec4(d));
+}

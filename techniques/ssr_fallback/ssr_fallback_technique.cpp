@@ -1,0 +1,268 @@
+#include "techniques/ssr_fallback/ssr_fallback_technique.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include "techniques/shared/gbuffer_surface.h"
+#include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/ray_counters.h"
+#include "techniques/stage_clock.h"
+
+namespace hybridlab {
+
+namespace {
+
+// Per texel, what the reflection composer needs after the ray-traced stage.
+struct ReflectiveTexel {
+    ShadingParts parts;
+    bool composed = false;  // the texel takes part in the reflection composer
+};
+
+// The paper's Figure 2 colours the texels by the path of their reflection: blue SSR, pink ray traced.
+glm::vec4 sourceColor(ReflectionSource s, bool refractive) {
+    if (refractive) return {0.6f, 0.2f, 0.5f, 1.0f};  // ray traced whole (SSR does not refract)
+    switch (s) {
+        case ReflectionSource::Ssr: return {0.2f, 0.4f, 1.0f, 1.0f};
+        case ReflectionSource::RayTraced: return {1.0f, 0.4f, 0.8f, 1.0f};
+        case ReflectionSource::Sky: return {0.4f, 1.0f, 1.0f, 1.0f};
+        case ReflectionSource::Missing: return {0.15f, 0.15f, 0.15f, 1.0f};
+        case ReflectionSource::None: break;
+    }
+    return {0.0f, 0.0f, 0.0f, 1.0f};
+}
+
+// The failure mask as colours: red off screen, green behind a surface, blue out of steps, yellow
+// back face, magenta maximum distance (reasons add); white where SSR hit; black where it did not run.
+glm::vec4 failureColor(std::uint32_t flags) {
+    if (!(flags & kSsrTraced)) return {0.0f, 0.0f, 0.0f, 1.0f};
+    if (!(flags & kSsrFailures)) return {1.0f, 1.0f, 1.0f, 1.0f};
+    glm::vec3 c(0.0f);
+    if (flags & kSsrOffScreen) c += glm::vec3(1, 0, 0);
+    if (flags & kSsrBehind) c += glm::vec3(0, 1, 0);
+    if (flags & kSsrOutOfSteps) c += glm::vec3(0, 0, 1);
+    if (flags & kSsrBackFace) c += glm::vec3(1, 1, 0);
+    if (flags & kSsrMaxDistance) c += glm::vec3(1, 0, 1);
+    return glm::vec4(glm::min(c, glm::vec3(1.0f)), 1.0f);
+}
+
+bool reflectsOrRefracts(const glm::vec4& optical) { return optical.x > 0.0f || optical.w > 0.5f || optical.z < 1.0f; }
+
+}  // namespace
+
+TechniqueInfo SsrFallbackTechnique::info() {
+    const SsrSettings d;
+    return {"ssr_fallback",
+            "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
+            "texels SSR fails on, seam blur",
+            {
+                ParamSpec::boolean("ssr", true, "run SSR (false: every reflective texel takes the fallback)"),
+                ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"),
+                ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
+                                  "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
+                ParamSpec::choice("recursion", "rt", {"rt", "single"},
+                                  "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
+                ParamSpec::choice("traversal", "linear", {"linear", "hiz"},
+                                  "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
+                ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"),
+                ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"),
+                ParamSpec::real("thickness", d.thickness, 0.0, 1e6, "SSR: depth of the slab behind every visible surface (view depth, world units)"),
+                ParamSpec::real("max_distance", d.maxDistance, 0.0, 1e9, "SSR: world length of a reflection ray"),
+                ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
+                                "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
+                ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
+                ParamSpec::integer("max_depth", 10, 0, 64, "ray-traced bounces, as the reference"),
+                ParamSpec::real("importance_cutoff", 0.0, 0.0, 1.0,
+                                "ray tracing: do not trace secondary rays whose weight in the pixel is below this (0: the full ray tree, as the reference)"),
+                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
+                ParamSpec::integer("pcf_radius", 0, 0, 4, "percentage-closer filtering radius of the shadow maps"),
+                ParamSpec::choice("blend", "design", {"design", "walewski2019"},
+                                  "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+            },
+            [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
+}
+
+SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
+    ssrOn_ = p.getBool("ssr");
+    rayTracedShadows_ = p.getChoice("shadows") == "rt";
+    const std::string& f = p.getChoice("fallback");
+    fallback_ = f == "rt" ? Fallback::RayTraced : f == "sky" ? Fallback::Sky : Fallback::None;
+    recursion_ = p.getChoice("recursion") == "rt" ? Recursion::RayTraced : Recursion::Single;
+    blurRadius_ = static_cast<int>(p.getInt("blur_radius"));
+    ssrSettings_.traversal = p.getChoice("traversal") == "hiz" ? SsrSettings::Traversal::HiZ : SsrSettings::Traversal::Linear;
+    ssrSettings_.maxSteps = static_cast<int>(p.getInt("max_steps"));
+    ssrSettings_.stride = static_cast<int>(p.getInt("stride"));
+    ssrSettings_.thickness = static_cast<float>(p.getFloat("thickness"));
+    ssrSettings_.maxDistance = static_cast<float>(p.getFloat("max_distance"));
+    ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
+    shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
+    shadowSettings_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
+    tracerSettings_.maxDepth = static_cast<int>(p.getInt("max_depth"));
+    tracerSettings_.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
+    tracerSettings_.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+}
+
+RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
+    RasterRequest r = frame.rasterRequest();
+    r.readback = kGBufferSurfaceTargets;
+    r.lighting = true;
+    // The lit image is what SSR reads at its hits, so it is shadowed by the maps even when the
+    // visible surfaces' own shadows are ray traced.
+    r.lightingOptions.shadows = true;
+    r.lightingOptions.walewskiBlend = tracerSettings_.blend == BlendRule::Walewski2019;
+    r.shadowSettings = shadowSettings_;
+    if (ssrOn_) {
+        ssr_->setSettings(ssrSettings_);
+        r.passes = {ssr_.get()};
+    }
+    return r;
+}
+
+void SsrFallbackTechnique::prepare(SceneContext& context) {
+    context.rayScene(0.0);
+    if (!ssr_) ssr_ = std::make_unique<SsrPass>();
+    context.rasterizer().render(rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_);
+}
+
+FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    if (!ssr_) ssr_ = std::make_unique<SsrPass>();
+    Rasterizer& rasterizer = context.rasterizer();
+    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
+        // New targets cost page faults and allocations the steady state does not pay.
+        rasterizer.render(rasterRequest(frame), raster_);
+        warmWidth_ = frame.width;
+        warmHeight_ = frame.height;
+    }
+    FrameResult result;
+    StageClock clock(result);
+    rasterizer.render(rasterRequest(frame), raster_);
+    clock.lap("raster");
+    // The SSR pass ran inside the rasterizer's command buffer: its GPU time is its own stage.
+    const double ssrMs = raster_.gpuMilliseconds("ssr");
+    result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
+    result.stages.push_back({"ssr", ssrMs});
+
+    const RayScene& rays = context.rayScene(frame.time);
+    clock.lap("bvh_update");
+
+    // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
+    const GBuffer& g = raster_.gbuffer;
+    const Image& lit = raster_.lighting;
+    const std::size_t n = g.pixelCount();
+    const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
+    const WhittedTracer tracer(rays, tracerSettings_);
+    const Camera& camera = frame.camera;
+    auto footprint = [&](const GBufferSurface& s) { return tracerSettings_.rayCones ? s.footprint() : RayCone{}; };
+    result.image = Image(frame.width, frame.height);
+    std::vector<ReflectiveTexel> texels(n);
+    std::vector<glm::vec3> reflection(n, glm::vec3(0.0f));
+    std::vector<ReflectionSource> source(n, ReflectionSource::None);
+    std::vector<std::uint8_t> refractive(n, 0);
+    std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
+    const RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+        const std::size_t i = g.index(x, y);
+        if (g.object(i) < 0) {
+            result.image.at(x, y) = lit.at(x, y);  // the sky
+            return;
+        }
+        const glm::vec4& optical = g.optical[i];
+        const bool opaqueMatte = !reflectsOrRefracts(optical);
+        if (opaqueMatte && !rayTracedShadows_) {
+            result.image.at(x, y) = lit.at(x, y);
+            return;
+        }
+        const GBufferSurface surface(g, i, camera);
+        const glm::vec3 litLocal(lit.at(x, y));
+        if (optical.z < 1.0f) {
+            // Refractive: ray traced whole, as SSR does not refract.
+            refractive[i] = 1;
+            ++pixelsTraced;
+            ShadingParts parts =
+                tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, true, true}, footprint(surface));
+            if (!rayTracedShadows_) parts.local = litLocal;
+            result.image.at(x, y) = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
+            return;
+        }
+        const SsrPixel* sp = ssr ? &ssr->pixels[i] : nullptr;
+        const float confidence = sp && sp->resolved() ? sp->confidence : 0.0f;
+        const bool traceFallback = !opaqueMatte && confidence < 1.0f && fallback_ == Fallback::RayTraced;
+        if (traceFallback || rayTracedShadows_) ++pixelsTraced;
+        if (traceFallback) ++fallbackRays;
+        ShadingParts parts =
+            tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, traceFallback, false}, footprint(surface));
+        if (!rayTracedShadows_) parts.local = litLocal;
+        if (!parts.composes) {
+            result.image.at(x, y) = glm::vec4(parts.local, 1.0f);
+            return;
+        }
+        // The fallback's M: the traced ray, or (not traced) the sky in the reflected direction.
+        const glm::vec3 fallbackM = fallback_ == Fallback::None ? glm::vec3(0.0f) : parts.reflected;
+        glm::vec3 ssrM(0.0f);
+        if (confidence > 0.0f) {
+            ssrM = sp->color;
+            const std::size_t j = g.index(sp->hit.x, sp->hit.y);
+            if (recursion_ == Recursion::RayTraced && reflectsOrRefracts(g.optical[j])) {
+                // The SSR hit reflects or refracts: its next bounce is ray traced, seen along the mirror ray.
+                ++recursionRays;
+                const GBufferSurface hitSurface(g, j, camera);
+                const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
+                // The camera ray's cone continued along the mirror ray to the hit.
+                const RayCone cone = footprint(surface).at(glm::distance(surface.hit().position, hitSurface.hit().position));
+                ssrM = tracer.shadeParts(hitSurface.hit(), mirror, 1, parts.reflectivity, st, {}, cone).composed(tracerSettings_.blend);
+            }
+        }
+        reflection[i] = confidence * ssrM + (1.0f - confidence) * fallbackM;
+        source[i] = confidence >= 0.5f                    ? ReflectionSource::Ssr
+                    : fallback_ == Fallback::RayTraced ? ReflectionSource::RayTraced
+                    : fallback_ == Fallback::Sky       ? ReflectionSource::Sky
+                                                        : ReflectionSource::Missing;
+        texels[i] = {parts, true};
+    });
+    clock.lap("ray_trace");
+
+    const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_);
+    clock.lap("seam_blur");
+
+    std::size_t reflective = 0, ssrHits = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!texels[i].composed) continue;
+        ++reflective;
+        ssrHits += source[i] == ReflectionSource::Ssr;
+        ShadingParts& parts = texels[i].parts;
+        parts.reflected = reflection[i];
+        result.image.data()[i] = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
+    }
+    clock.lap("composite");
+
+    Image sourceImage(frame.width, frame.height), failures(frame.width, frame.height), confidence(frame.width, frame.height);
+    std::map<std::uint32_t, std::size_t> failuresByReason;
+    for (std::size_t i = 0; i < n; ++i) {
+        sourceImage.data()[i] = sourceColor(source[i], refractive[i] != 0);
+        if (!ssr) continue;
+        const SsrPixel& sp = ssr->pixels[i];
+        failures.data()[i] = failureColor(sp.flags);
+        confidence.data()[i] = glm::vec4(glm::vec3(sp.confidence), 1.0f);
+        for (std::uint32_t bit = kSsrOffScreen; bit <= kSsrMaxDistance; bit <<= 1)
+            if (sp.flags & bit) ++failuresByReason[bit];
+    }
+    result.debugImages["reflection_source"] = std::move(sourceImage);
+    if (ssr) {
+        result.debugImages["ssr_failures"] = std::move(failures);
+        result.debugImages["ssr_confidence"] = std::move(confidence);
+    }
+
+    recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
+    result.counters["reflective_pixels"] = static_cast<double>(reflective);
+    result.counters["ssr_hits"] = static_cast<double>(ssrHits);
+    result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
+    result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
+    result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
+    result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
+    result.counters["ssr_fail_off_screen"] = static_cast<double>(failuresByReason[kSsrOffScreen]);
+    result.counters["ssr_fail_behind"] = static_cast<double>(failuresByReason[kSsrBehind]);
+    result.counters["ssr_fail_out_of_steps"] = static_cast<double>(failuresByReason[kSsrOutOfSteps]);
+    result.counters["ssr_fail_back_face"] = static_cast<double>(failuresByReason[kSsrBackFace]);
+    result.counters["ssr_fail_max_distance"] = static_cast<double>(failuresByReason[kSsrMaxDistance]);
+    return result;
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,98 @@
+#pragma once
+// The screen-space reflection pass (de Macedo & Rodrigues §III, the reflection composer's first
+// step): a Vulkan compute shader (common/raster/shaders/ssr_trace.comp) recorded by the shared
+// Rasterizer after lighting, marching every opaque reflective texel's mirror ray through the
+// G-buffer's depth with McGuire & Mara's perspective-correct DDA and a thickness test. It reads
+// back, per texel, the lit image at the hit, a confidence, and the reasons the ray failed: the mask
+// of the texels the ray tracer completes.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "common/raster/frame_pass.h"
+#include "common/raster/gpu_buffer.h"
+#include "common/raster/gpu_image.h"
+#include "common/raster/pipelines.h"
+
+namespace hybridlab {
+
+struct SsrSettings {
+    enum class Traversal { Linear, HiZ };
+    Traversal traversal = Traversal::Linear;  // the DDA pixel by pixel, or the min-depth pyramid (FidelityFX SSSR)
+    int maxSteps = 512;          // steps per ray (DDA steps, refinement steps, or pyramid cells visited)
+    int stride = 1;              // linear: pixels per coarse step; a coarse hit is refined with unit steps
+    float thickness = 0.25f;     // depth of every visible surface's slab behind it, in view-depth units
+    float maxDistance = 100.0f;  // world length of the ray
+    float edgeFade = 0.05f;      // confidence ramps from 0 at the screen border over this fraction of the smaller side (0: none)
+};
+
+// Bits of SsrPixel::flags (the twins of the constants in ssr_trace.comp).
+enum SsrFlag : std::uint32_t {
+    kSsrTraced = 1u << 0,       // an opaque reflective texel: a ray was marched
+    kSsrOffScreen = 1u << 1,    // the ray left the screen, or the view frustum through the near plane
+    kSsrBehind = 1u << 2,       // it passed behind a surface by more than the thickness and found no hit
+    kSsrOutOfSteps = 1u << 3,   // it ran out of steps
+    kSsrBackFace = 1u << 4,     // it hit the back of the surface seen at the hit pixel
+    kSsrMaxDistance = 1u << 5,  // it reached the maximum distance without a hit
+};
+inline constexpr std::uint32_t kSsrFailures = kSsrOffScreen | kSsrBehind | kSsrOutOfSteps | kSsrBackFace | kSsrMaxDistance;
+
+struct SsrPixel {
+    glm::vec3 color{0.0f};   // the lit image at the hit
+    float confidence = 0.0f; // 0 where the ray failed; the screen-edge fade where it hit
+    glm::ivec2 hit{-1, -1};  // the hit pixel, (-1, -1) without one
+    std::uint32_t flags = 0;
+    int steps = 0;
+
+    bool traced() const { return (flags & kSsrTraced) != 0; }
+    bool resolved() const { return traced() && (flags & kSsrFailures) == 0; }
+};
+
+// The pass's read-back, row-major like Image.
+struct SsrResult {
+    int width = 0, height = 0;
+    std::vector<SsrPixel> pixels;
+};
+
+class SsrPass : public RasterFramePass {
+public:
+    SsrPass();
+
+    void setSettings(const SsrSettings& settings) { settings_ = settings; }
+    const SsrSettings& settings() const { return settings_; }
+
+    std::string name() const override { return "ssr"; }
+    void record(VkCommandBuffer cb, const FrameTargets& targets) override;
+    void finish() override;
+
+    // After the frame: the result of the last recorded frame.
+    const SsrResult& result() const { return result_; }
+
+private:
+    void resize(std::uint32_t width, std::uint32_t height);
+    void recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& targets);
+
+    std::shared_ptr<VulkanDevice> device_;
+    SsrSettings settings_;
+    DescriptorSet descriptors_;
+    UniquePipelineLayout layout_;
+    std::array<UniquePipeline, 2> pipelines_;  // by traversal
+    UniqueSampler nearest_;
+    GpuBuffer uniforms_;
+    GpuImage color_, hit_;
+    // The min-depth pyramid of view depths (level 0 for the linear march, every level for hiz): one
+    // descriptor set and storage view per level.
+    GpuImage pyramid_;
+    std::vector<UniqueImageView> pyramidLevels_;
+    DescriptorSet pyramidDescriptors_;
+    UniquePipelineLayout pyramidLayout_;
+    std::array<UniquePipeline, 2> pyramidPipelines_;  // level 0 from the G-buffer, further levels
+    GpuBuffer pyramidUniforms_;
+    GpuBuffer colorReadback_, hitReadback_;
+    SsrResult result_;
+};
+
+}  // namespace hybridlab
