@@ -14,6 +14,7 @@
 #include "cli_runner.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
+#include "techniques/technique.h"
 #include "test_support.h"
 
 namespace hybridlab {
@@ -251,10 +252,30 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
 }
 
 TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
-    // quick.toml needs no assets; paper.toml needs the paper scenes' models.
+    // quick.toml and stability.toml need no assets; paper.toml needs the paper scenes' models.
     const fs::path configs = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "experiments" / "configs";
     const ExperimentConfig quick = loadExperimentConfig(configs / "quick.toml");
     EXPECT_GT(planRuns(quick).size(), 10u);
+    // stability.toml (issue 12): every registered technique at its defaults and at least two other
+    // settings, along a camera path of every scene, at 640x360; its scenes are procedural.
+    const ExperimentConfig stability = loadExperimentConfig(configs / "stability.toml");
+    for (const auto& info : registeredTechniques()) {
+        int entries = 0, defaults = 0;
+        for (const auto& t : stability.techniques) {
+            if (t.name != info.name) continue;
+            entries += static_cast<int>(t.parameterSets.size());
+            for (const auto& set : t.parameterSets) defaults += set.empty();
+        }
+        EXPECT_GE(entries, 3) << info.name;
+        EXPECT_EQ(defaults, 1) << info.name;
+    }
+    EXPECT_GE(stability.scenes.size(), 11u);
+    for (const auto& s : stability.scenes)
+        for (const auto& v : s.views) EXPECT_FALSE(v.cameraPath.empty()) << s.name;
+    for (const auto& r : planRuns(stability)) {
+        EXPECT_EQ(std::make_pair(r.width, r.height), std::make_pair(640, 360));
+        ASSERT_GE(r.frame, 0) << r.id;
+    }
     if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: paper.toml not checked";
     const ExperimentConfig paper = loadExperimentConfig(configs / "paper.toml");
     for (const auto& r : planRuns(paper)) EXPECT_EQ(std::make_pair(r.width, r.height), std::make_pair(1280, 720));

@@ -150,5 +150,20 @@ TEST(PaperScenes, SponzaArmadilloCounts) {
     EXPECT_GT(b.extent().y, 2.0f);
 }
 
+TEST(PaperScenes, DiningRoomCounts) {
+    REQUIRE_ASSETS();
+    Scene s = loadSceneFile(test::builtinSceneFile("dining-room"), {.loadTextures = false});
+    ASSERT_EQ(s.objects.size(), 2u);
+    EXPECT_EQ(s.objectTriangleCount(objectIndex(s, "room")), 269538u);  // the asset README's count
+    EXPECT_EQ(s.objectTriangleCount(objectIndex(s, "glass-ball")), sphereTriangles(48, 24));
+    SceneStats st = s.stats();
+    // Walewski 2019 Table 4, "Dining Room": two light sources, one refractive object.
+    EXPECT_EQ(st.lights, 2u);
+    EXPECT_EQ(st.refractiveObjects, 1u);
+    const CameraPath* path = s.findCameraPath("walk");
+    ASSERT_NE(path, nullptr);
+    EXPECT_EQ(path->frameCount(), 601);  // 20 s at 30 fps, as the paper's traversals
+}
+
 }  // namespace
 }  // namespace hybridlab
