@@ -276,9 +276,15 @@ TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
         EXPECT_EQ(std::make_pair(r.width, r.height), std::make_pair(640, 360));
         ASSERT_GE(r.frame, 0) << r.id;
     }
-    if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: paper.toml not checked";
+    if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: the paper-scene configs not checked";
     const ExperimentConfig paper = loadExperimentConfig(configs / "paper.toml");
     for (const auto& r : planRuns(paper)) EXPECT_EQ(std::make_pair(r.width, r.height), std::make_pair(1280, 720));
+    // And every other config shipped beside them (the paper reproductions) loads and plans runs.
+    for (const auto& entry : fs::directory_iterator(configs)) {
+        if (entry.path().extension() != ".toml") continue;
+        SCOPED_TRACE(entry.path().filename().string());
+        EXPECT_FALSE(planRuns(loadExperimentConfig(entry.path())).empty());
+    }
 }
 
 TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
