@@ -113,8 +113,8 @@ SceneTextures::SceneTextures(const VulkanDevice& device, const Scene& scene) {
         if (m.normalTexture != kNoTexture) used[m.normalTexture] = true;
     }
     const std::uint8_t white[4] = {255, 255, 255, 255};
-    placeholder_ = GpuImage(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, 1, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-    upload(device, placeholder_, white, sizeof white);
+    whiteTexture_ = GpuImage(device, {VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, 1, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    upload(device, whiteTexture_, white, sizeof white);
     images_.resize(scene.textures.size());
     for (std::size_t i = 0; i < scene.textures.size(); ++i)
         if (used[i]) images_[i] = mipmappedTexture(device, scene.textures[i]);
@@ -144,7 +144,7 @@ SceneTextures::SceneTextures(const VulkanDevice& device, const Scene& scene) {
 
 VkDescriptorImageInfo SceneTextures::texture(std::int32_t index) const {
     const bool real = index != kNoTexture && images_[static_cast<std::size_t>(index)].valid();
-    return {anisotropic_, real ? images_[static_cast<std::size_t>(index)].view() : placeholder_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    return {anisotropic_, real ? images_[static_cast<std::size_t>(index)].view() : whiteTexture_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
 }
 
 }  // namespace hybridlab

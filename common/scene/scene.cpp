@@ -45,10 +45,14 @@ std::size_t Scene::objectTriangleCount(std::size_t object) const {
     return n;
 }
 
-Aabb Scene::objectBounds(std::size_t object, double time) const {
+Aabb Scene::objectLocalBounds(std::size_t object) const {
     Aabb local;
     for (auto m : objects[object].meshes) local.extend(meshes[m].bounds());
-    return local.transformed(objects[object].worldMatrix(time));
+    return local;
+}
+
+Aabb Scene::objectBounds(std::size_t object, double time) const {
+    return objectLocalBounds(object).transformed(objects[object].worldMatrix(time));
 }
 
 Aabb Scene::bounds(double time) const {

@@ -77,6 +77,7 @@ struct Scene {
     bool objectIsReflective(std::size_t object) const;
     bool objectIsRefractive(std::size_t object) const;
     std::size_t objectTriangleCount(std::size_t object) const;
+    Aabb objectLocalBounds(std::size_t object) const;          // object space (scans every vertex)
     Aabb objectBounds(std::size_t object, double time) const;  // world space
     Aabb bounds(double time = 0.0) const;                      // world space
     SceneStats stats() const;

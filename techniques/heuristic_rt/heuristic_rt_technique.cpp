@@ -82,7 +82,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
 HeuristicRtTechnique::Selection HeuristicRtTechnique::selectObjects(const Scene& scene, const FrameRequest& frame,
                                                                     const std::vector<std::uint64_t>& visiblePixels) {
     const std::vector<ObjectObservation> observations =
-        observeVisibleObjects(scene, frame.time, frame.camera, frame.aspect(), visiblePixels, selectedLastFrame_);
+        observeVisibleObjects(scene, localBounds_, frame.time, frame.camera, frame.aspect(), visiblePixels, selectedLastFrame_);
     const int lights = static_cast<int>(scene.lights.size());
     Selection s;
     s.effectsByObject.assign(scene.objects.size(), 0);
@@ -143,7 +143,12 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     const GBuffer& g = raster_.gbuffer;
     clock.lap("rast");
 
-    // heur: the selection, then the heuristic mask.
+    // heur: the selection, then the heuristic mask. Object-space bounds once per scene: finding
+    // them scans every vertex.
+    if (localBounds_.size() != scene.objects.size()) {
+        localBounds_.clear();
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
+    }
     const Selection selection = selectObjects(
         scene, frame, visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : visiblePixelsFromIds(g, scene.objects.size()));
     const std::size_t pixels = g.pixelCount();
@@ -183,8 +188,9 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     });
     clock.lap("rayt");
 
-    // blend: Listing 10 (eqs. 4-6), or DESIGN.md's rule.
-    result.image = lighting;
+    // blend: Listing 10 (eqs. 4-6), or DESIGN.md's rule, over the P-buffer (moved: the next frame's
+    // read-back reallocates it).
+    result.image = std::move(raster_.lighting);
     for (std::size_t i = 0; i < pixels; ++i) {
         if (pixelEffects_[i] != 0) result.image.data()[i] = glm::vec4(parts_[i].composed(tracer_.blend), 1.0f);
     }

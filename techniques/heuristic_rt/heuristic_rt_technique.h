@@ -51,6 +51,7 @@ private:
     bool debugImages_ = true;
     std::optional<FrameTimeBudget> frameTimeBudget_;  // when target_ms > 0
 
+    std::vector<Aabb> localBounds_;          // per object, object space (for P and D)
     RasterFrame raster_;
     std::vector<ShadingParts> parts_;        // per pixel, for masked pixels
     std::vector<std::uint8_t> pixelEffects_; // per pixel: the heuristic mask (effect bits)

@@ -7,7 +7,8 @@
 
 namespace hybridlab {
 
-std::vector<ObjectObservation> observeVisibleObjects(const Scene& scene, double time, const Camera& camera, float aspect,
+std::vector<ObjectObservation> observeVisibleObjects(const Scene& scene, const std::vector<Aabb>& localBounds, double time,
+                                                     const Camera& camera, float aspect,
                                                      const std::vector<std::uint64_t>& visiblePixels,
                                                      const std::vector<bool>& selectedLastFrame) {
     const glm::mat4 viewProj = camera.projectionMatrix(aspect) * camera.view();
@@ -15,7 +16,7 @@ std::vector<ObjectObservation> observeVisibleObjects(const Scene& scene, double 
     for (std::size_t o = 0; o < scene.objects.size() && o < visiblePixels.size(); ++o) {
         if (visiblePixels[o] == 0) continue;
         const SceneObject& object = scene.objects[o];
-        const Aabb bounds = scene.objectBounds(o, time);
+        const Aabb bounds = localBounds[o].transformed(object.worldMatrix(time));
         const glm::vec3 centre = 0.5f * (bounds.lo + bounds.hi);
         ObjectObservation obs;
         obs.object = static_cast<std::uint32_t>(o);

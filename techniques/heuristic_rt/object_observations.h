@@ -13,8 +13,10 @@
 namespace hybridlab {
 
 // One observation per object with A > 0 (objects that show no pixel are rejected, §3.2), in object
-// order. `selectedLastFrame[o]` may be empty (no previous frame).
-std::vector<ObjectObservation> observeVisibleObjects(const Scene& scene, double time, const Camera& camera, float aspect,
+// order. `localBounds[o]` is Scene::objectLocalBounds(o), computed once per scene (it scans every
+// vertex); `selectedLastFrame[o]` may be empty (no previous frame).
+std::vector<ObjectObservation> observeVisibleObjects(const Scene& scene, const std::vector<Aabb>& localBounds, double time,
+                                                     const Camera& camera, float aspect,
                                                      const std::vector<std::uint64_t>& visiblePixels,
                                                      const std::vector<bool>& selectedLastFrame);
 

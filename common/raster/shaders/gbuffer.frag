@@ -11,7 +11,7 @@
 layout(constant_id = 0) const bool kDiffuseTexture = true;  // the material has a diffuse texture
 layout(constant_id = 1) const bool kNormalMap = true;       // it has a normal map and the mesh uvs and tangents
 
-layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;  // the draw's material's (a white placeholder without one)
+layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;  // the draw's material's (a white 1 x 1 texture without one)
 layout(set = 1, binding = 1) uniform sampler2D normalTexture;
 
 layout(location = 0) in vec3 worldPosition;
