@@ -14,6 +14,15 @@ namespace hybridlab {
 
 namespace {
 
+// A later pass reads (EQUAL tests) and writes the depth and stencil an earlier pass wrote.
+void recordDepthWritesBeforeTests(VkCommandBuffer cb) {
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
+                         nullptr);
+}
+
 // Formats of the colour targets, in attachment order (Walewski 2019 Table 2 uses RGBA8 for the
 // material colours; half floats keep HDR emission and fine material values).
 constexpr std::array<VkFormat, GBufferPass::kColorTargets> kFormats = {
@@ -159,11 +168,7 @@ std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
     for (std::size_t d = 0; d < scene_.draws().size(); ++d)
         if (frustum.intersects(scene_.worldBounds(d))) scene_.recordDraw(cb, layout_, viewProj, d, false);
     vkCmdEndRendering(cb);
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
-                         nullptr);
+    recordDepthWritesBeforeTests(cb);
 
     std::array<VkRenderingAttachmentInfo, kColorTargets> colors{};
     for (int i = 0; i < kColorTargets; ++i) {
@@ -198,11 +203,7 @@ std::size_t GBufferPass::record(VkCommandBuffer cb, const glm::mat4& viewProj) {
 void GBufferPass::recordVisiblePixelQueries(VkCommandBuffer cb, const glm::mat4& viewProj, VkQueryPool queries) {
     const auto objects = static_cast<std::uint32_t>(scene_.scene().objects.size());
     vkCmdResetQueryPool(cb, queries, 0, objects);
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT, 0, 1, &b, 0, nullptr, 0,
-                         nullptr);
+    recordDepthWritesBeforeTests(cb);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_.view();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;

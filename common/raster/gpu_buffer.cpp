@@ -17,24 +17,9 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     buffer_ = UniqueBuffer(d, b);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(d, b, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    if (memory == Memory::DeviceLocal) {
-        ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    } else {
-        // Cached host memory reads back fast; every device has coherent host-visible memory.
-        const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        try {
-            ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-        } catch (const VulkanError&) {
-            ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, coherent);
-        }
-    }
-    VkDeviceMemory m;
-    checkVk(vkAllocateMemory(d, &ai, nullptr, &m), "allocating buffer memory");
-    memory_ = UniqueDeviceMemory(d, m);
-    checkVk(vkBindBufferMemory(d, b, m, 0), "binding buffer memory");
-    if (memory == Memory::HostVisible) checkVk(vkMapMemory(d, m, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
+    memory_ = device.allocate(req, memory, "buffer");
+    checkVk(vkBindBufferMemory(d, b, memory_, 0), "binding buffer memory");
+    if (memory == Memory::HostVisible) checkVk(vkMapMemory(d, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
 }
 
 GpuBuffer GpuBuffer::withData(const VulkanDevice& device, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {

@@ -10,7 +10,7 @@ namespace hybridlab {
 
 class GpuBuffer {
 public:
-    enum class Memory { DeviceLocal, HostVisible };
+    using Memory = VulkanDevice::MemoryUse;
 
     GpuBuffer() = default;
     GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory);

@@ -33,13 +33,8 @@ GpuImage::GpuImage(const VulkanDevice& device, const ImageDesc& desc)
     image_ = UniqueImage(device_, img);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, img, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory mem;
-    checkVk(vkAllocateMemory(device_, &ai, nullptr, &mem), "allocating image memory");
-    memory_ = UniqueDeviceMemory(device_, mem);
-    checkVk(vkBindImageMemory(device_, img, mem, 0), "binding image memory");
+    memory_ = device.allocate(req, VulkanDevice::MemoryUse::DeviceLocal, "image");
+    checkVk(vkBindImageMemory(device_, img, memory_, 0), "binding image memory");
 
     VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vci.image = img;

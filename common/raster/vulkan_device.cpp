@@ -209,6 +209,25 @@ std::uint32_t VulkanDevice::memoryType(std::uint32_t typeBits, VkMemoryPropertyF
                       std::to_string(flags) + ")");
 }
 
+UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what) const {
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    if (use == MemoryUse::DeviceLocal) {
+        ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    } else {
+        // Every device has coherent host-visible memory; cached is preferred where there is one.
+        const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        try {
+            ai.memoryTypeIndex = memoryType(req.memoryTypeBits, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        } catch (const VulkanError&) {
+            ai.memoryTypeIndex = memoryType(req.memoryTypeBits, coherent);
+        }
+    }
+    VkDeviceMemory m;
+    checkVk(vkAllocateMemory(device_, &ai, nullptr, &m), (std::string("allocating ") + what + " memory").c_str());
+    return UniqueDeviceMemory(device_, m);
+}
+
 void VulkanDevice::requireFormat(VkFormat format, VkFormatFeatureFlags features, const char* purpose) const {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, format, &p);

@@ -37,6 +37,10 @@ public:
 
     // A memory type among `typeBits` with `flags`; throws VulkanError when there is none.
     std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+    // Memory for a resource with requirements `req`: device-local, or host-visible and coherent
+    // (cached where the device has it: read-back is then fast). `what` names it in errors.
+    enum class MemoryUse { DeviceLocal, HostVisible };
+    UniqueDeviceMemory allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what) const;
 
     // Throws VulkanError naming the format and what it is needed for unless the format supports
     // `features` with optimal tiling.
