@@ -27,9 +27,9 @@ inline Image renderImage(const Scene& scene, const std::string& technique, const
     return renderFrame(scene, technique, params, width, height).image;
 }
 
-// The scene with its diffuse textures removed: the raster samples textures mip-mapped, the
-// reference at the hit point without a filter footprint, so on minified textures the two differ by
-// filtering alone.
+// The scene with its diffuse textures removed: the raster filters textures over the pixel's
+// screen-space derivatives, the reference over its ray cone, so on minified textures the two still
+// differ a little by filtering alone.
 inline Scene withoutTextures(Scene scene) {
     for (Material& m : scene.materials) m.diffuseTexture = kNoTexture;
     return scene;
