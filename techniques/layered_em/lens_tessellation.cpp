@@ -1,6 +1,7 @@
 #include "techniques/layered_em/lens_tessellation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -64,6 +65,7 @@ private:
     void trace(std::uint32_t i) {
         LensVertex& v = out_.vertices[i];
         if (v.traced) return;
+        const auto start = std::chrono::steady_clock::now();
         v.traced = true;
         ++out_.stats.tracedVertices;
         const glm::vec3 toVertex = v.position - camera_.position;
@@ -83,6 +85,7 @@ private:
         LensRayCounter counter;
         v.paths = traceTwoTermPaths(system_.lensRays(), first, incoming, settings_.paths, counter);
         out_.stats.pathQueries += counter.queries;
+        out_.stats.traceMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
 
     std::uint32_t midpoint(std::uint32_t a, std::uint32_t b) {

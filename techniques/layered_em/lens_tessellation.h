@@ -50,6 +50,7 @@ struct TessellationStats {
     std::uint64_t pathQueries = 0;
     std::uint64_t splits = 0;
     std::uint64_t tJunctionTriangles = 0;   // leaves re-triangulated to remove t-junctions
+    double traceMilliseconds = 0.0;         // of the whole tessellation, the time spent tracing vertices
 };
 
 struct TessellatedLens {
