@@ -25,7 +25,8 @@ TechniqueInfo LayeredEmTechnique::info() {
             {
                 ParamSpec::integer("layers", d.layers, 0, kMaxDrawnLayers, "EM layers per lens system (0: automatic, the smallest under the distortion threshold)"),
                 ParamSpec::boolean("single_layer", false, "one EM layer per lens system (the classic single environment map; overrides layers)"),
-                ParamSpec::real("tau", d.tessellation.tauPixels, 0.5, 1000.0, "adaptive tessellation stops when projected edges are shorter (pixels, §5)"),
+                ParamSpec::real("tau", d.tessellation.tauPixels, 0.5, 1000.0,
+                                "per-frame adaptive tessellation stops when projected edges are shorter (pixels, §5; the bake keeps its own)"),
                 ParamSpec::integer("em_size", d.inference.size, 2, 1024, "cube-map texels a face side"),
                 ParamSpec::real("viewpoint_step", d.viewpoints.stepDegrees, 0.5, 360.0, "degrees between viewpoint samples on the circle"),
                 ParamSpec::integer("viewpoints", 0, 0, 100000, "keep only the first n viewpoint samples (0: the whole circle)"),
@@ -44,7 +45,6 @@ EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
     EmBakeSettings s;
     s.layers = p.getBool("single_layer") ? 1 : static_cast<int>(p.getInt("layers"));
     s.maxLayers = std::min(s.maxLayers, kMaxDrawnLayers);
-    s.tessellation.tauPixels = static_cast<float>(p.getFloat("tau"));
     s.inference.size = static_cast<int>(p.getInt("em_size"));
     s.viewpoints.stepDegrees = static_cast<float>(p.getFloat("viewpoint_step"));
     s.viewpoints.maxSamples = static_cast<int>(p.getInt("viewpoints"));
@@ -56,6 +56,8 @@ EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
 }
 
 LayeredEmTechnique::LayeredEmTechnique(const ParameterSet& p) : bake_(bakeSettings(p)) {
+    frameTessellation_ = bake_.tessellation;
+    frameTessellation_.tauPixels = static_cast<float>(p.getFloat("tau"));
     blendViewpoints_ = p.getBool("viewpoint_blending");
     useCache_ = p.getBool("em_cache");
     shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
@@ -119,7 +121,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     geometry.reserve(systems_.size());
     for (std::size_t s = 0; s < systems_.size(); ++s) {
         auto t0 = Clock::now();
-        const TessellatedLens lens = tessellateLens(systems_[s]->lens, systems_[s]->mesh, frame.camera, frame.width, frame.height, bake_.tessellation);
+        const TessellatedLens lens = tessellateLens(systems_[s]->lens, systems_[s]->mesh, frame.camera, frame.width, frame.height, frameTessellation_);
         const double ms = since(t0);
         traceMs += lens.stats.traceMilliseconds;
         tessellateMs += std::max(0.0, ms - lens.stats.traceMilliseconds);

@@ -19,7 +19,7 @@ namespace hybridlab {
 class LayeredEmTechnique : public Technique {
 public:
     static TechniqueInfo info();
-    // The bake settings the parameters give (also `hybridlab bake-em`'s defaults).
+    // The bake settings the parameters give.
     static EmBakeSettings bakeSettings(const ParameterSet& params);
 
     explicit LayeredEmTechnique(const ParameterSet& params);
@@ -35,7 +35,8 @@ private:
     struct System;
     RasterRequest rasterRequest(const FrameRequest& frame);
 
-    EmBakeSettings bake_;
+    EmBakeSettings bake_;                     // its tessellation is at the bake's lens-image resolution
+    TessellationSettings frameTessellation_;  // per frame, at the frame's resolution
     bool blendViewpoints_ = true;
     bool useCache_ = true;
     ShadowSettings shadowSettings_;
