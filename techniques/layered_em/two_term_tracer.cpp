@@ -27,7 +27,8 @@ glm::vec3 TwoTermTracer::environmentRadiance(const WhittedTracer& tracer, const 
     return skyRadiance(scene_, ray.direction);
 }
 
-glm::vec3 TwoTermTracer::radiance(const WhittedTracer& tracer, const RayScene& rays, const Ray& ray, RayStats& stats, RayCone cone) const {
+glm::vec3 TwoTermTracer::radiance(const WhittedTracer& tracer, const RayScene& rays, const Ray& ray, RayStats& stats, RayCone cone,
+                                  bool* lensPixel) const {
     SurfaceHit first;
     const int system = rays.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), first) ? systemOfObject_[first.object] : -1;
     if (system < 0) return tracer.radiance(ray, 0, 1.0f, stats, cone);
@@ -37,6 +38,7 @@ glm::vec3 TwoTermTracer::radiance(const WhittedTracer& tracer, const RayScene& r
     const bool hit = traceTwoTermPaths(lens.lensRays(), ray, paths_, counter, paths);
     stats.refraction += counter.queries;
     if (!hit) return tracer.radiance(ray, 0, 1.0f, stats, cone);
+    if (lensPixel) *lensPixel = true;
     glm::vec3 sum(0.0f);
     for (const LensPath& p : paths.terms) {
         if (!p.exists || p.fresnel <= 0.0f) continue;

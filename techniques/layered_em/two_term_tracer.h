@@ -20,8 +20,10 @@ public:
     const Scene& scene() const { return scene_; }
 
     // The pixel's radiance for a camera ray; `tracer` traces the whole scene `rays`. Rays counted
-    // in `stats` (lens-system and environment queries as refraction and reflection rays).
-    glm::vec3 radiance(const WhittedTracer& tracer, const RayScene& rays, const Ray& ray, RayStats& stats, RayCone cone = {}) const;
+    // in `stats` (lens-system and environment queries as refraction and reflection rays);
+    // `lensPixel` (if given) tells whether the two-term model shaded it.
+    glm::vec3 radiance(const WhittedTracer& tracer, const RayScene& rays, const Ray& ray, RayStats& stats, RayCone cone = {},
+                       bool* lensPixel = nullptr) const;
 
     // The environment's radiance along an outgoing ray of a lens system.
     glm::vec3 environmentRadiance(const WhittedTracer& tracer, const LensSystem& system, Ray ray, RayStats& stats) const;

@@ -1,5 +1,7 @@
 #include "techniques/whitted/whitted_technique.h"
 
+#include <atomic>
+
 #include "techniques/layered_em/two_term_tracer.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
@@ -65,21 +67,33 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     const float aspect = frame.aspect();
     // A sub-pixel's cone when supersampled.
     const RayCone cone = settings_.rayCones ? pixelCone(frame.camera, frame.height * n) : RayCone{};
+    // Two-term mode: the pixels the model shaded and the rays spent on them (the paper's comparison).
+    std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
     const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
         glm::vec3 sum(0.0f);
+        const std::uint64_t raysBefore = stats.total();
+        bool lens = false;
         for (int sy = 0; sy < n; ++sy) {
             for (int sx = 0; sx < n; ++sx) {
                 // Sub-pixel sample centres; n = 1 is the pixel centre.
                 glm::vec2 ndc((x + (sx + 0.5f) / n) / frame.width * 2.0f - 1.0f, (y + (sy + 0.5f) / n) / frame.height * 2.0f - 1.0f);
                 ++stats.primary;
                 const Ray ray = frame.camera.rayThroughNdc(ndc, aspect);
-                sum += twoTerm_ ? twoTerm_->radiance(tracer, rays, ray, stats, cone) : tracer.radiance(ray, 0, 1.0f, stats, cone);
+                sum += twoTerm_ ? twoTerm_->radiance(tracer, rays, ray, stats, cone, &lens) : tracer.radiance(ray, 0, 1.0f, stats, cone);
             }
+        }
+        if (lens) {
+            ++lensPixels;
+            lensRays += stats.total() - raysBefore;
         }
         result.image.at(x, y) = glm::vec4(sum / static_cast<float>(n * n), 1.0f);
     });
     clock.lap("trace");
     recordRayCounters(total, static_cast<double>(frame.width) * frame.height, result);
+    if (twoTerm_) {
+        result.counters["lens_pixels"] = static_cast<double>(lensPixels);
+        result.counters["rays_lens_pixels"] = static_cast<double>(lensRays);
+    }
     return result;
 }
 
