@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/scene/camera.h"
@@ -68,6 +69,9 @@ bool pathsDiffer(const TwoTermPaths& a, const TwoTermPaths& b, float maxAngleDeg
 
 // Pixel coordinates (x right, y down) of a world point for a width x height image.
 glm::vec2 projectToPixels(const Camera& camera, int width, int height, glm::vec3 p);
+// The same with the camera's projection times view for that image (viewProjection), made once.
+glm::mat4 viewProjection(const Camera& camera, int width, int height);
+glm::vec2 projectToPixels(const glm::mat4& viewProj, int width, int height, glm::vec3 p);
 
 TessellatedLens tessellateLens(const LensSystem& system, const LensMesh& mesh, const Camera& camera, int width, int height,
                                const TessellationSettings& settings);
