@@ -133,20 +133,17 @@ void LayeredEmPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     transitionImage(cb, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo color{};
-    color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-    color.imageView = color_.view();
-    color.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-    VkRenderingAttachmentInfo depth{};
-    depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-    depth.imageView = depth_.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {0.0f, 0};  // reverse-Z: the far plane
+    auto attachment = [](VkImageView view, VkImageLayout layout, VkAttachmentStoreOp store) {
+        VkRenderingAttachmentInfo a{};
+        a.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+        a.imageView = view;
+        a.imageLayout = layout;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // colour 0 (alpha 0: no lens); depth 0, reverse-Z's far plane
+        a.storeOp = store;
+        return a;
+    };
+    const VkRenderingAttachmentInfo color = attachment(color_.view(), VK_IMAGE_LAYOUT_GENERAL, VK_ATTACHMENT_STORE_OP_STORE);
+    const VkRenderingAttachmentInfo depth = attachment(depth_.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_STORE_OP_DONT_CARE);
     VkRenderingInfo ri{};
     ri.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
     ri.renderArea = {{0, 0}, {t.width, t.height}};

@@ -164,7 +164,9 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     result.counters["triangles"] = static_cast<double>(triangles);
     result.counters["lens_pixels"] = static_cast<double>(lensPixels);
     result.counters["pixels_ray_traced"] = 0.0;
-    result.counters["lens_draw_gpu_ms"] = raster_.gpuMilliseconds("lens_draw");
+    // What "other" holds: the rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
+    for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
+    result.counters["raster_wall_ms"] = raster_.wallMilliseconds();
     result.debugImages["lens"] = lens;
     return result;
 }
