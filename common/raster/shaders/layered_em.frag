@@ -38,8 +38,13 @@ void cubeCoordinate(vec3 d, out int face, out vec2 st) {
     st = ma > 0.0 ? vec2(0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0)) : vec2(0.5);
 }
 
-// cubeMapLookup: bilinear over texel centres (i + 0.5) / size, clamped to the face.
-vec4 cubeLookup(int base, vec3 d) {
+// cubeMapLookup: the four texels (from a map's first texel) and bilinear weights around texel
+// centres (i + 0.5) / size, clamped to the face.
+struct Taps {
+    ivec4 texel;
+    vec4 weight;
+};
+Taps cubeLookup(vec3 d) {
     int size = pc.maps.y;
     int face;
     vec2 st;
@@ -49,21 +54,16 @@ vec4 cubeLookup(int base, vec3 d) {
     int i0 = min(int(u), size - 1), j0 = min(int(v), size - 1);
     int i1 = min(i0 + 1, size - 1), j1 = min(j0 + 1, size - 1);
     float fu = u - float(i0), fv = v - float(j0);
-    int b = base + face * size * size;
-    return (1.0 - fu) * (1.0 - fv) * texels[b + j0 * size + i0] + fu * (1.0 - fv) * texels[b + j0 * size + i1] +
-           (1.0 - fu) * fv * texels[b + j1 * size + i0] + fu * fv * texels[b + j1 * size + i1];
+    int b = face * size * size;
+    Taps t;
+    t.texel = ivec4(b + j0 * size + i0, b + j0 * size + i1, b + j1 * size + i0, b + j1 * size + i1);
+    t.weight = vec4((1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv);
+    return t;
 }
 
-// One viewpoint sample's image of the lens at this pixel.
-vec3 viewpointRadiance(int base) {
-    int layerTexels = 6 * pc.maps.y * pc.maps.y;
-    vec3 sum = vec3(0.0);
-    for (int t = 0; t < 2; ++t) {
-        vec4 acc = vec4(0.0);
-        for (int l = 0; l < pc.maps.x; ++l) acc += (1.0 - acc.a) * cubeLookup(base + l * layerTexels, direction[t * kMaxLayers + l]);
-        sum += pathWeight[t] * acc.rgb + (1.0 - acc.a) * skyWeight[t];
-    }
-    return sum;
+vec4 fetch(int base, Taps t) {
+    return t.weight.x * texels[base + t.texel.x] + t.weight.y * texels[base + t.texel.y] + t.weight.z * texels[base + t.texel.z] +
+           t.weight.w * texels[base + t.texel.w];
 }
 
 void main() {
@@ -72,7 +72,20 @@ void main() {
         float seen = distance(g.xyz, pc.cameraPosition.xyz), here = distance(worldPosition, pc.cameraPosition.xyz);
         if (seen < here * (1.0 - pc.cameraPosition.w)) discard;
     }
-    vec3 c = pc.blend.x * viewpointRadiance(pc.maps.z);
-    if (pc.blend.y > 0.0) c += pc.blend.y * viewpointRadiance(pc.maps.w);
+    // Per term, both viewpoint samples' layers over one another; the two samples share the shells,
+    // so each layer's lookup (texels and weights) serves both.
+    int layerTexels = 6 * pc.maps.y * pc.maps.y;
+    bool blend = pc.blend.y > 0.0;
+    vec3 c = vec3(0.0);
+    for (int t = 0; t < 2; ++t) {
+        vec4 a = vec4(0.0), b = vec4(0.0);
+        for (int l = 0; l < pc.maps.x; ++l) {
+            Taps taps = cubeLookup(direction[t * kMaxLayers + l]);
+            a += (1.0 - a.a) * fetch(pc.maps.z + l * layerTexels, taps);
+            if (blend) b += (1.0 - b.a) * fetch(pc.maps.w + l * layerTexels, taps);
+        }
+        c += pc.blend.x * (pathWeight[t] * a.rgb + (1.0 - a.a) * skyWeight[t]);
+        if (blend) c += pc.blend.y * (pathWeight[t] * b.rgb + (1.0 - b.a) * skyWeight[t]);
+    }
     outColor = vec4(c, 1.0);
 }
