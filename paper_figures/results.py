@@ -3,11 +3,21 @@
 Every script in paper_figures/ reads only results.json / results.csv, never the renderer."""
 import json
 import os
+import sys
 
 
 def load(result_dir):
     with open(os.path.join(result_dir, "results.json")) as f:
         return json.load(f)
+
+
+def write_tables(lines, out=None):
+    """Markdown lines to standard output, and to the file `out` when given."""
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if out:
+        with open(out, "w") as f:
+            f.write(text)
 
 
 def variant(r):

@@ -1,5 +1,6 @@
 // The one place that lists the techniques. Adding a technique: one folder, one line here.
 #include "techniques/heuristic_rt/heuristic_rt_technique.h"
+#include "techniques/layered_em/layered_em_technique.h"
 #include "techniques/raster/raster_technique.h"
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/ssr_fallback/ssr_fallback_technique.h"
@@ -15,6 +16,7 @@ const std::vector<TechniqueInfo>& registeredTechniques() {
         rtOnlyTechniqueInfo(),
         HeuristicRtTechnique::info(),
         SsrFallbackTechnique::info(),
+        LayeredEmTechnique::info(),
     };
     return registry;
 }

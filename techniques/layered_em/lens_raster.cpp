@@ -28,7 +28,7 @@ LensRaster rasterizeLens(const std::vector<glm::vec3>& positions, const std::vec
     r.triangle.assign(n, -1);
     r.barycentric.assign(n, glm::vec3(0.0f));
     std::vector<float> nearest(n, 0.0f);  // interpolated 1 / w: larger is nearer
-    const glm::mat4 viewProj = camera.projectionMatrix(static_cast<float>(width) / static_cast<float>(height)) * camera.view();
+    const glm::mat4 viewProj = viewProjection(camera, width, height);
     for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
         const glm::uvec3& t = triangles[ti];
         const glm::vec3 &p0 = positions[t[0]], &p1 = positions[t[1]], &p2 = positions[t[2]];

@@ -1,11 +1,14 @@
 #include "techniques/layered_em/lens_tessellation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <tuple>
 
 #include <glm/geometric.hpp>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
 #include <glm/mat4x4.hpp>
 
 #include "common/scene/transform.h"
@@ -26,7 +29,8 @@ class Tessellator {
 public:
     Tessellator(const LensSystem& system, const LensMesh& mesh, const Camera& camera, int width, int height,
                 const TessellationSettings& settings)
-        : system_(system), camera_(camera), width_(width), height_(height), settings_(settings) {
+        : system_(system), camera_(camera), viewProj_(viewProjection(camera, width, height)), width_(width), height_(height),
+          settings_(settings) {
         out_.viewpoint = camera.position;
         for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
             LensVertex v;
@@ -42,10 +46,22 @@ public:
             if (!frontFacing(t)) continue;
             for (int k = 0; k < 3; ++k) marked[t[k]] = true;
         }
+        // The mesh's own vertices are independent: traced in parallel (midpoints, during refinement,
+        // one at a time).
+        std::vector<std::uint32_t> toTrace;
         for (std::uint32_t i = 0; i < marked.size(); ++i) {
-            if (marked[i]) trace(i);
+            if (marked[i]) toTrace.push_back(i);
             else ++out_.stats.skippedVertices;
         }
+        const auto start = std::chrono::steady_clock::now();
+        tbb::combinable<TessellationStats> perThread;
+        tbb::parallel_for(std::size_t{0}, toTrace.size(), [&](std::size_t k) { traceVertex(out_.vertices[toTrace[k]], perThread.local()); });
+        perThread.combine_each([&](const TessellationStats& t) {
+            out_.stats.tracedVertices += t.tracedVertices;
+            out_.stats.visibilityQueries += t.visibilityQueries;
+            out_.stats.pathQueries += t.pathQueries;
+        });
+        out_.stats.traceMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         for (const glm::uvec3& t : mesh.triangles) refine(t[0], t[1], t[2], 0);
         removeTJunctions();
     }
@@ -62,15 +78,19 @@ private:
     // Visibility from the viewpoint and the two paths through the vertex (its first interface is
     // the vertex itself, with its interpolated normal turned to face the viewer if it does not).
     void trace(std::uint32_t i) {
-        LensVertex& v = out_.vertices[i];
-        if (v.traced) return;
+        if (out_.vertices[i].traced) return;
+        const auto start = std::chrono::steady_clock::now();
+        traceVertex(out_.vertices[i], out_.stats);
+        out_.stats.traceMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    void traceVertex(LensVertex& v, TessellationStats& stats) const {
         v.traced = true;
-        ++out_.stats.tracedVertices;
+        ++stats.tracedVertices;
         const glm::vec3 toVertex = v.position - camera_.position;
         const float dist = glm::length(toVertex);
         const glm::vec3 incoming = toVertex / dist;
         SurfaceHit blocker;
-        ++out_.stats.visibilityQueries;
+        ++stats.visibilityQueries;
         v.visible = !system_.lensRays().intersect(Ray{camera_.position, incoming}, 0.0f, dist * (1.0f - 1e-4f), blocker);
         glm::vec3 n = v.normal;
         const float facing = glm::dot(n, incoming);
@@ -82,7 +102,7 @@ private:
         first.material = &system_.lensRays().scene().materials[v.material];
         LensRayCounter counter;
         v.paths = traceTwoTermPaths(system_.lensRays(), first, incoming, settings_.paths, counter);
-        out_.stats.pathQueries += counter.queries;
+        stats.pathQueries += counter.queries;
     }
 
     std::uint32_t midpoint(std::uint32_t a, std::uint32_t b) {
@@ -101,8 +121,8 @@ private:
     }
 
     bool edgeLong(std::uint32_t a, std::uint32_t b) const {
-        glm::vec2 pa = projectToPixels(camera_, width_, height_, out_.vertices[a].position);
-        glm::vec2 pb = projectToPixels(camera_, width_, height_, out_.vertices[b].position);
+        glm::vec2 pa = projectToPixels(viewProj_, width_, height_, out_.vertices[a].position);
+        glm::vec2 pb = projectToPixels(viewProj_, width_, height_, out_.vertices[b].position);
         return glm::length(pa - pb) >= settings_.tauPixels;
     }
 
@@ -201,6 +221,7 @@ private:
 
     const LensSystem& system_;
     const Camera& camera_;
+    glm::mat4 viewProj_;
     int width_, height_;
     TessellationSettings settings_;
     TessellatedLens out_;
@@ -250,8 +271,15 @@ bool pathsDiffer(const TwoTermPaths& a, const TwoTermPaths& b, float maxAngleDeg
 }
 
 glm::vec2 projectToPixels(const Camera& camera, int width, int height, glm::vec3 p) {
-    const float aspect = static_cast<float>(width) / static_cast<float>(height);
-    glm::vec4 clip = camera.projectionMatrix(aspect) * camera.view() * glm::vec4(p, 1.0f);
+    return projectToPixels(viewProjection(camera, width, height), width, height, p);
+}
+
+glm::mat4 viewProjection(const Camera& camera, int width, int height) {
+    return camera.projectionMatrix(static_cast<float>(width) / static_cast<float>(height)) * camera.view();
+}
+
+glm::vec2 projectToPixels(const glm::mat4& viewProj, int width, int height, glm::vec3 p) {
+    glm::vec4 clip = viewProj * glm::vec4(p, 1.0f);
     glm::vec2 ndc = glm::vec2(clip) / clip.w;
     return {(ndc.x * 0.5f + 0.5f) * static_cast<float>(width), (ndc.y * 0.5f + 0.5f) * static_cast<float>(height)};
 }

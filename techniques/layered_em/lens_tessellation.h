@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/scene/camera.h"
@@ -50,6 +51,7 @@ struct TessellationStats {
     std::uint64_t pathQueries = 0;
     std::uint64_t splits = 0;
     std::uint64_t tJunctionTriangles = 0;   // leaves re-triangulated to remove t-junctions
+    double traceMilliseconds = 0.0;         // of the whole tessellation, the time spent tracing vertices
 };
 
 struct TessellatedLens {
@@ -67,6 +69,9 @@ bool pathsDiffer(const TwoTermPaths& a, const TwoTermPaths& b, float maxAngleDeg
 
 // Pixel coordinates (x right, y down) of a world point for a width x height image.
 glm::vec2 projectToPixels(const Camera& camera, int width, int height, glm::vec3 p);
+// The same with the camera's projection times view for that image (viewProjection), made once.
+glm::mat4 viewProjection(const Camera& camera, int width, int height);
+glm::vec2 projectToPixels(const glm::mat4& viewProj, int width, int height, glm::vec3 p);
 
 TessellatedLens tessellateLens(const LensSystem& system, const LensMesh& mesh, const Camera& camera, int width, int height,
                                const TessellationSettings& settings);

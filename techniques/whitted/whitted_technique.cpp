@@ -1,5 +1,8 @@
 #include "techniques/whitted/whitted_technique.h"
 
+#include <atomic>
+
+#include "techniques/layered_em/two_term_tracer.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/stage_clock.h"
@@ -21,9 +24,13 @@ std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportance
 }
 
 TechniqueInfo WhittedTechnique::info() {
+    std::vector<ParamSpec> specs = parameterSpecs(0.0);
+    specs.push_back(ParamSpec::choice("lens_model", "full", {"full", "two_term"},
+                                      "pixels whose first hit is a lens object: the full ray tree, or the two-term greedy model "
+                                      "(Hakura & Snyder 2001 §3: uniformly sampled ray tracing as layered_em approximates it)"));
     return {"whitted",
             "Reference: full recursive Whitted ray tracing (Embree), hard shadows, reflection and refraction to depth 10",
-            parameterSpecs(0.0), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
+            std::move(specs), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
 }
 
 WhittedSettings WhittedTechnique::tracerSettings(const ParameterSet& p) {
@@ -38,9 +45,14 @@ WhittedSettings WhittedTechnique::tracerSettings(const ParameterSet& p) {
 
 WhittedTechnique::WhittedTechnique(const ParameterSet& p) : settings_(tracerSettings(p)) {
     supersample_ = static_cast<int>(p.getInt("supersample"));
+    // rt_only shares this class without the parameter.
+    twoTermLenses_ = p.values().count("lens_model") && p.getChoice("lens_model") == "two_term";
 }
 
-void WhittedTechnique::prepare(SceneContext& context) { context.rayScene(0.0); }
+void WhittedTechnique::prepare(SceneContext& context) {
+    context.rayScene(0.0);
+    if (twoTermLenses_) twoTerm_ = std::make_unique<TwoTermTracer>(context.scene());
+}
 
 FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& frame) {
     FrameResult result;
@@ -49,25 +61,39 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     clock.lap("bvh_update");
 
     const WhittedTracer tracer(rays, settings_);
+    if (twoTermLenses_ && (!twoTerm_ || &twoTerm_->scene() != &context.scene())) twoTerm_ = std::make_unique<TwoTermTracer>(context.scene());
     result.image = Image(frame.width, frame.height);
     const int n = supersample_;
     const float aspect = frame.aspect();
     // A sub-pixel's cone when supersampled.
     const RayCone cone = settings_.rayCones ? pixelCone(frame.camera, frame.height * n) : RayCone{};
+    // Two-term mode: the pixels the model shaded and the rays spent on them (the paper's comparison).
+    std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
     const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
         glm::vec3 sum(0.0f);
+        const std::uint64_t raysBefore = stats.total();
+        bool lens = false;
         for (int sy = 0; sy < n; ++sy) {
             for (int sx = 0; sx < n; ++sx) {
                 // Sub-pixel sample centres; n = 1 is the pixel centre.
                 glm::vec2 ndc((x + (sx + 0.5f) / n) / frame.width * 2.0f - 1.0f, (y + (sy + 0.5f) / n) / frame.height * 2.0f - 1.0f);
                 ++stats.primary;
-                sum += tracer.radiance(frame.camera.rayThroughNdc(ndc, aspect), 0, 1.0f, stats, cone);
+                const Ray ray = frame.camera.rayThroughNdc(ndc, aspect);
+                sum += twoTerm_ ? twoTerm_->radiance(tracer, rays, ray, stats, cone, &lens) : tracer.radiance(ray, 0, 1.0f, stats, cone);
             }
+        }
+        if (lens) {
+            ++lensPixels;
+            lensRays += stats.total() - raysBefore;
         }
         result.image.at(x, y) = glm::vec4(sum / static_cast<float>(n * n), 1.0f);
     });
     clock.lap("trace");
     recordRayCounters(total, static_cast<double>(frame.width) * frame.height, result);
+    if (twoTerm_) {
+        result.counters["lens_pixels"] = static_cast<double>(lensPixels);
+        result.counters["rays_lens_pixels"] = static_cast<double>(lensRays);
+    }
     return result;
 }
 

@@ -3,6 +3,7 @@
 // (optionally n x n supersampled for display images), reflection and refraction to depth 10, the
 // full ray tree, all lights, hard shadows. Parallel over image tiles; deterministic.
 #include "common/raytrace/whitted_tracer.h"
+#include "techniques/layered_em/two_term_tracer.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -24,6 +25,8 @@ public:
 private:
     WhittedSettings settings_;
     int supersample_ = 1;
+    bool twoTermLenses_ = false;  // lens_model = two_term
+    std::unique_ptr<TwoTermTracer> twoTerm_;  // its lens systems, built once per scene
 };
 
 }  // namespace hybridlab

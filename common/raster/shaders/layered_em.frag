@@ -1,0 +1,91 @@
+#version 460
+// Layered-EM lens pass, fragment stage (Hakura & Snyder 2001 §4-§5): per term and layer the cube
+// map read at the interpolated index with cubeMapLookup's texels and weights (texel reads, no
+// hardware filtering), layers composited front to back with "over" on premultiplied RGBA, the sky
+// behind the last layer, times the interpolated F G, the two terms summed; the two nearest
+// viewpoint samples blended. The twin of compositeLensPixel (techniques/layered_em/lens_draw.cpp).
+// Fragments behind what the G-buffer shows at the pixel are discarded (the lens is occluded).
+#extension GL_GOOGLE_include_directive : require
+#include "layered_em_common.glsl"
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 pathWeight[2];
+layout(location = 3) in vec3 skyWeight[2];
+layout(location = 5) in vec3 direction[2 * kMaxLayers];
+
+layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
+
+// cubeMapCoordinate (em_cube_map.cpp): the face by the major axis, OpenGL's s/t table.
+void cubeCoordinate(vec3 d, out int face, out vec2 st) {
+    vec3 a = abs(d);
+    float sc, tc, ma;
+    if (a.x >= a.y && a.x >= a.z) {
+        face = d.x >= 0.0 ? 0 : 1;
+        ma = a.x;
+        sc = d.x >= 0.0 ? -d.z : d.z;
+        tc = -d.y;
+    } else if (a.y >= a.z) {
+        face = d.y >= 0.0 ? 2 : 3;
+        ma = a.y;
+        sc = d.x;
+        tc = d.y >= 0.0 ? d.z : -d.z;
+    } else {
+        face = d.z >= 0.0 ? 4 : 5;
+        ma = a.z;
+        sc = d.z >= 0.0 ? d.x : -d.x;
+        tc = -d.y;
+    }
+    st = ma > 0.0 ? vec2(0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0)) : vec2(0.5);
+}
+
+// cubeMapLookup: the four texels (from a map's first texel) and bilinear weights around texel
+// centres (i + 0.5) / size, clamped to the face.
+struct Taps {
+    ivec4 texel;
+    vec4 weight;
+};
+Taps cubeLookup(vec3 d) {
+    int size = pc.maps.y;
+    int face;
+    vec2 st;
+    cubeCoordinate(d, face, st);
+    float fs = float(size);
+    float u = clamp(st.x * fs - 0.5, 0.0, fs - 1.0), v = clamp(st.y * fs - 0.5, 0.0, fs - 1.0);
+    int i0 = min(int(u), size - 1), j0 = min(int(v), size - 1);
+    int i1 = min(i0 + 1, size - 1), j1 = min(j0 + 1, size - 1);
+    float fu = u - float(i0), fv = v - float(j0);
+    int b = face * size * size;
+    Taps t;
+    t.texel = ivec4(b + j0 * size + i0, b + j0 * size + i1, b + j1 * size + i0, b + j1 * size + i1);
+    t.weight = vec4((1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv);
+    return t;
+}
+
+vec4 fetch(int base, Taps t) {
+    return t.weight.x * texels[base + t.texel.x] + t.weight.y * texels[base + t.texel.y] + t.weight.z * texels[base + t.texel.z] +
+           t.weight.w * texels[base + t.texel.w];
+}
+
+void main() {
+    vec4 g = texelFetch(gbufferPosition, ivec2(gl_FragCoord.xy), 0);
+    if (g.w > 0.0) {
+        float seen = distance(g.xyz, pc.cameraPosition.xyz), here = distance(worldPosition, pc.cameraPosition.xyz);
+        if (seen < here * (1.0 - pc.cameraPosition.w)) discard;
+    }
+    // Per term, both viewpoint samples' layers over one another; the two samples share the shells,
+    // so each layer's lookup (texels and weights) serves both.
+    int layerTexels = 6 * pc.maps.y * pc.maps.y;
+    bool blend = pc.blend.y > 0.0;
+    vec3 c = vec3(0.0);
+    for (int t = 0; t < 2; ++t) {
+        vec4 a = vec4(0.0), b = vec4(0.0);
+        for (int l = 0; l < pc.maps.x; ++l) {
+            Taps taps = cubeLookup(direction[t * kMaxLayers + l]);
+            a += (1.0 - a.a) * fetch(pc.maps.z + l * layerTexels, taps);
+            if (blend) b += (1.0 - b.a) * fetch(pc.maps.w + l * layerTexels, taps);
+        }
+        c += pc.blend.x * (pathWeight[t] * a.rgb + (1.0 - a.a) * skyWeight[t]);
+        if (blend) c += pc.blend.y * (pathWeight[t] * b.rgb + (1.0 - b.a) * skyWeight[t]);
+    }
+    outColor = vec4(c, 1.0);
+}

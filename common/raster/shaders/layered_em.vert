@@ -1,0 +1,23 @@
+#version 460
+// Layered-EM lens pass, vertex stage (Hakura & Snyder 2001 §5): the tessellated lens with its
+// per-vertex attributes, read from a storage buffer by gl_VertexIndex. Every attribute is
+// interpolated perspective-correctly (smooth), as rasterizeLens's barycentrics
+// (techniques/layered_em/README.md, "Contract with the renderer", 1-2).
+#extension GL_GOOGLE_include_directive : require
+#include "layered_em_common.glsl"
+
+layout(location = 0) out vec3 worldPosition;
+layout(location = 1) out vec3 pathWeight[2];     // F G of each term
+layout(location = 3) out vec3 skyWeight[2];      // F G times the sky in the term's exit direction
+layout(location = 5) out vec3 direction[2 * kMaxLayers];  // [term * kMaxLayers + layer]: the cube-map index
+
+void main() {
+    LensVertex v = vertices[gl_VertexIndex];
+    worldPosition = v.position.xyz;
+    for (int t = 0; t < 2; ++t) {
+        pathWeight[t] = v.weight[t].xyz;
+        skyWeight[t] = v.sky[t].xyz;
+        for (int l = 0; l < kMaxLayers; ++l) direction[t * kMaxLayers + l] = v.direction[t * kMaxLayers + l].xyz;
+    }
+    gl_Position = pc.viewProj * vec4(v.position.xyz, 1.0);
+}

@@ -1,0 +1,143 @@
+"""Hakura & Snyder 2001 tables from a result set of experiments/configs/hakura2001.toml.
+
+    /usr/bin/python3 paper_figures/hakura_tables.py RESULT_DIR [--out FILE.md]
+
+Results table (teapot-lens, the scene camera): per technique the paper's stages (ray tracing at
+vertices, texture-coordinate generation, tessellation, other including rendering), the total frame
+time, the rays, vertices and triangles after tessellation, SSIM and FLIP on the lens pixels against
+uniformly sampled ray tracing with the two-term model, and the reduction factors in time and rays
+against it (the paper: 25-45x in time, 6-10.8x in rays). Figure 8 as numbers: SSIM and FLIP at a
+view between viewpoint samples (circle frame 4) and one above their plane (above frame 4),
+multi-layer against single-layer, and the temporal error along the circling path. Figure 9 as
+numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
+approach. Times are medians over a run's repeats. Entries are found by label, as the config names
+them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention)."""
+import argparse
+import statistics
+import sys
+
+import results
+
+REFERENCE = "two-term-rt"
+STAGES = [("vertex_ray_tracing", "ray tracing at vertices"), ("texture_coordinates", "texture coordinates"),
+          ("tessellation", "tessellation"), ("other", "other (incl. rendering)")]
+
+
+def fmt(x, digits=3):
+    return "-" if x is None else ("%.*f" % (digits, x))
+
+
+def find(rows, label, scene, view, frame, size=None):
+    """The run of a label at a view (at `size`, "WxH", or the smallest size there)."""
+    rs = [r for r in rows if r["label"] == label and r["scene"] == scene and r["view"] == view and r["frame"] == frame
+          and (size is None or results.resolution(r) == size)]
+    return min(rs, key=lambda r: r["width"] * r["height"]) if rs else None
+
+
+def stage(r, name):
+    s = r["stages"].get(name)
+    return s["median"] if s else None
+
+
+def lens_metric(r, name):
+    return results.metric(r, "masked", name) if r else None
+
+
+def results_table(rows, size):
+    scene, labels = "teapot-lens", ["lem-tau3", "lem-tau5"]
+    ref = find(rows, REFERENCE, scene, "camera", -1, size)
+    out = ["**Results table** (teapot-lens, scene camera, %s; ms, medians over repeats; quality on the lens pixels "
+           "against two-term ray tracing)" % size, "",
+           "| | " + " | ".join([REFERENCE] + labels) + " |",
+           "|---|" + "---|" * (1 + len(labels))]
+    runs = [ref] + [find(rows, l, scene, "camera", -1, size) for l in labels]
+
+    def line(name, fn, digits=2):
+        out.append("| %s | %s |" % (name, " | ".join(fmt(fn(r), digits) if r else "-" for r in runs)))
+
+    for key, name in STAGES:
+        line(name, lambda r, k=key: stage(r, k) if r is not ref else None, 1)
+    line("trace (ray tracing every pixel)", lambda r: stage(r, "trace") if r is ref else None, 1)
+    line("**total**", lambda r: r["frame_ms"]["median"], 1)
+    line("rays (lens pixels for ray tracing)",
+         lambda r: r["counters"].get("rays_lens_pixels") if r is ref else r["counters"].get("rays_total"), 0)
+    line("rays (whole image)", lambda r: r["counters"].get("rays_total"), 0)
+    out.append("| triangle intersection tests | %s |" % " | ".join(["not counted (Embree)"] * len(runs)))
+    line("vertices after tessellation", lambda r: r["counters"].get("vertices") if r is not ref else None, 0)
+    line("triangles after tessellation", lambda r: r["counters"].get("triangles") if r is not ref else None, 0)
+    line("lens pixels", lambda r: r["counters"].get("lens_pixels"), 0)
+    line("SSIM (lens pixels)", lambda r: lens_metric(r, "ssim") if r is not ref else None, 4)
+    line("FLIP (lens pixels)", lambda r: lens_metric(r, "flip") if r is not ref else None, 4)
+    if ref:
+        t0 = ref["frame_ms"]["median"]
+        rays0 = ref["counters"].get("rays_lens_pixels")
+        line("**time reduction** (paper 25-45x)", lambda r: t0 / r["frame_ms"]["median"] if r is not ref else None, 1)
+        line("**ray reduction** (paper 6-10.8x)",
+             lambda r: rays0 / r["counters"]["rays_total"] if r is not ref and rays0 and r["counters"].get("rays_total") else None, 1)
+    return out + [""]
+
+
+def figure8(rows):
+    scene = "teapot-lens"
+    out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing)", "",
+           "| view | multi-layer (lem-tau3) | single-layer (lem-single) |", "|---|---|---|"]
+    for name, view, frame in (("between viewpoint samples (circle@4)", "circle", 4), ("above their plane (above@4)", "above", 4),
+                              ("at a viewpoint sample (camera)", "camera", -1)):
+        cells = []
+        for label in ("lem-tau3", "lem-single"):
+            r = find(rows, label, scene, view, frame)
+            cells.append("%s / %s" % (fmt(lens_metric(r, "ssim"), 4), fmt(lens_metric(r, "flip"), 4)) if r else "-")
+        out.append("| %s | %s |" % (name, " | ".join(cells)))
+    out += ["", "Temporal error along the circling path (mean |(T_k - T_k-1) - (R_k - R_k-1)|, whole image; viewpoint samples every 8 frames):", ""]
+    series = {}
+    for label in ("lem-tau3", "lem-single"):
+        rs = sorted((r for r in rows if r["label"] == label and r["scene"] == scene and r["view"] == "circle"
+                     and r.get("temporal_error") is not None), key=lambda r: r["frame"])
+        series[label] = {r["frame"]: r["temporal_error"] for r in rs}
+    frames = sorted(set().union(*[set(s) for s in series.values()])) if series else []
+    if frames:
+        out.append("| frame | " + " | ".join(str(f) for f in frames) + " | mean | max |")
+        out.append("|---|" + "---|" * (len(frames) + 2))
+        for label, s in series.items():
+            vals = [s.get(f) for f in frames]
+            present = [v for v in vals if v is not None]
+            out.append("| %s | %s | %s | %s |" % (label, " | ".join(fmt(v, 4) for v in vals),
+                                                   fmt(statistics.mean(present), 4) if present else "-",
+                                                   fmt(max(present), 4) if present else "-"))
+    return out + [""]
+
+
+def figure9(rows):
+    scene = "em-disocclusion"
+    rs = sorted({(r["view"], r["frame"]) for r in rows if r["scene"] == scene})
+    out = ["**Figure 9** (em-disocclusion; FLIP / SSIM on the lens pixels against two-term ray tracing)", "",
+           "| view | with disocclusion prevention (lem-tau3) | without (lem-no-prevention) |", "|---|---|---|"]
+    means = {"lem-tau3": [], "lem-no-prevention": []}
+    for view, frame in rs:
+        cells = []
+        for label in means:
+            r = find(rows, label, scene, view, frame)
+            if r:
+                means[label].append(lens_metric(r, "flip"))
+            cells.append("%s / %s" % (fmt(lens_metric(r, "flip"), 4), fmt(lens_metric(r, "ssim"), 4)) if r else "-")
+        out.append("| %s@%d | %s |" % (view, frame, " | ".join(cells)))
+    out.append("| mean FLIP | %s |" % " | ".join(fmt(statistics.mean(v), 4) if v else "-" for v in means.values()))
+    return out + [""]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--out", help="write the tables (Markdown) here as well as to standard output")
+    a = ap.parse_args()
+    rows = results.load(a.result_dir)
+    if not rows:
+        sys.exit("hakura_tables: %s has no runs" % a.result_dir)
+    sizes = sorted({results.resolution(r) for r in rows if r["scene"] == "teapot-lens" and r["view"] == "camera"},
+                   key=lambda s: int(s.split("x")[0]))
+    tables = [line for size in sizes for line in results_table(rows, size)]
+    results.write_tables(tables + figure8(rows) + figure9(rows), a.out)
+
+
+if __name__ == "__main__":
+    main()

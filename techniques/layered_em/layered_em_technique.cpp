@@ -1,0 +1,174 @@
+#include "techniques/layered_em/layered_em_technique.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "common/core/log.h"
+#include "techniques/layered_em/em_cache.h"
+#include "techniques/layered_em/lens_draw.h"
+#include "techniques/stage_clock.h"
+
+namespace hybridlab {
+
+// A lens system ready for per-frame tracing: its ray scenes and its welded mesh.
+struct LayeredEmTechnique::System {
+    LensSystem lens;
+    LensMesh mesh;
+    System(const Scene& scene, const LensSystemInfo& info) : lens(scene, info), mesh(buildLensMesh(lens)) {}
+};
+
+TechniqueInfo LayeredEmTechnique::info() {
+    const EmBakeSettings d;
+    return {"layered_em",
+            "Hakura & Snyder 2001: layered inferred environment maps per lens system (baked), per-frame vertex ray tracing with "
+            "adaptive tessellation, lens drawn with the EMs on the GPU",
+            {
+                ParamSpec::integer("layers", d.layers, 0, kMaxDrawnLayers, "EM layers per lens system (0: automatic, the smallest under the distortion threshold)"),
+                ParamSpec::boolean("single_layer", false, "one EM layer per lens system (the classic single environment map; overrides layers)"),
+                ParamSpec::real("tau", d.tessellation.tauPixels, 0.5, 1000.0,
+                                "per-frame adaptive tessellation stops when projected edges are shorter (pixels, §5; the bake keeps its own)"),
+                ParamSpec::integer("em_size", d.inference.size, 2, 1024, "cube-map texels a face side"),
+                ParamSpec::real("viewpoint_step", d.viewpoints.stepDegrees, 0.5, 360.0, "degrees between viewpoint samples on the circle"),
+                ParamSpec::integer("viewpoints", 0, 0, 100000, "keep only the first n viewpoint samples (0: the whole circle)"),
+                ParamSpec::integer("bake_width", d.width, 8, 4096, "lens image width of the bake (pixels)"),
+                ParamSpec::integer("bake_height", d.height, 8, 4096, "lens image height of the bake (pixels)"),
+                ParamSpec::integer("supersampling", d.records.supersampling, 1, 8, "n x n incoming rays a bake pixel"),
+                ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
+                ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
+                ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
+                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
+            },
+            [](const ParameterSet& p) { return std::make_unique<LayeredEmTechnique>(p); }};
+}
+
+EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
+    EmBakeSettings s;
+    s.layers = p.getBool("single_layer") ? 1 : static_cast<int>(p.getInt("layers"));
+    s.maxLayers = std::min(s.maxLayers, kMaxDrawnLayers);
+    s.inference.size = static_cast<int>(p.getInt("em_size"));
+    s.viewpoints.stepDegrees = static_cast<float>(p.getFloat("viewpoint_step"));
+    s.viewpoints.maxSamples = static_cast<int>(p.getInt("viewpoints"));
+    s.width = static_cast<int>(p.getInt("bake_width"));
+    s.height = static_cast<int>(p.getInt("bake_height"));
+    s.records.supersampling = static_cast<int>(p.getInt("supersampling"));
+    if (!p.getBool("disocclusion_prevention")) s.disablePrevention();
+    return s;
+}
+
+LayeredEmTechnique::LayeredEmTechnique(const ParameterSet& p) : bake_(bakeSettings(p)) {
+    frameTessellation_ = bake_.tessellation;
+    frameTessellation_.tauPixels = static_cast<float>(p.getFloat("tau"));
+    blendViewpoints_ = p.getBool("viewpoint_blending");
+    useCache_ = p.getBool("em_cache");
+    shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
+}
+
+LayeredEmTechnique::~LayeredEmTechnique() = default;
+
+RasterRequest LayeredEmTechnique::rasterRequest(const FrameRequest& frame) {
+    RasterRequest r = frame.rasterRequest();
+    r.lighting = true;
+    r.lightingOptions.shadows = true;
+    r.lightingOptions.environmentMapping = true;
+    r.shadowSettings = shadowSettings_;
+    r.passes = {pass_.get()};
+    return r;
+}
+
+void LayeredEmTechnique::prepare(SceneContext& context) {
+    const Scene& scene = context.scene();
+    systems_.clear();
+    ems_.clear();
+    const std::filesystem::path dir = defaultLayeredEmCacheDir();
+    for (const LensSystemInfo& info : findLensSystems(scene)) {
+        systems_.push_back(std::make_unique<System>(scene, info));
+        const std::filesystem::path file = dir / (layeredEmCacheKey(scene, info, bake_) + ".hlem");
+        std::optional<LayeredEm> em;
+        if (useCache_) em = readLayeredEm(file);
+        if (!em) {
+            EmBakeStats stats;
+            em = bakeLayeredEm(scene, info, bake_, stats);
+            if (useCache_) {
+                std::filesystem::create_directories(dir);
+                writeLayeredEm(file, *em);
+            }
+        }
+        ems_.push_back(std::move(*em));
+    }
+    preparedScene_ = &scene;
+    if (!pass_) pass_ = std::make_unique<LayeredEmPass>();
+    FrameRequest warmUp{scene.camera, 0.0, 64, 36};
+    context.rasterizer().render(rasterRequest(warmUp), raster_);
+}
+
+FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    if (preparedScene_ != &context.scene()) prepare(context);
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
+        // New targets cost page faults and allocations the steady state does not pay.
+        context.rasterizer().render(rasterRequest(frame), raster_);
+        warmWidth_ = frame.width;
+        warmHeight_ = frame.height;
+    }
+    FrameResult result;
+    // §5 per frame: vertex ray tracing with adaptive tessellation, then texture coordinates.
+    double traceMs = 0.0, tessellateMs = 0.0, texCoordMs = 0.0;
+    TessellationStats stats;
+    std::uint64_t vertices = 0, triangles = 0;
+    std::vector<LensDrawGeometry> geometry;
+    std::vector<LensDraw> draws;
+    geometry.reserve(systems_.size());
+    for (std::size_t s = 0; s < systems_.size(); ++s) {
+        auto t0 = Clock::now();
+        const TessellatedLens lens = tessellateLens(systems_[s]->lens, systems_[s]->mesh, frame.camera, frame.width, frame.height, frameTessellation_);
+        const double ms = since(t0);
+        traceMs += lens.stats.traceMilliseconds;
+        tessellateMs += std::max(0.0, ms - lens.stats.traceMilliseconds);
+        stats.pathQueries += lens.stats.pathQueries;
+        stats.visibilityQueries += lens.stats.visibilityQueries;
+        stats.tracedVertices += lens.stats.tracedVertices;
+        vertices += lens.vertices.size();
+        triangles += lens.triangles.size();
+        t0 = Clock::now();
+        geometry.push_back(lensDrawGeometry(lens, ems_[s].layers, context.scene()));
+        draws.push_back({&geometry.back(), &ems_[s], blendViewpoints(ems_[s], frame.camera.position, blendViewpoints_)});
+        texCoordMs += since(t0);
+    }
+
+    // Other: the G-buffer, lighting and the lens pass in one frame, then the lens over the lit image.
+    auto t0 = Clock::now();
+    pass_->setDraws(std::move(draws));
+    context.rasterizer().render(rasterRequest(frame), raster_);
+    const Image& lens = pass_->result();
+    result.image = std::move(raster_.lighting);
+    std::size_t lensPixels = 0;
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            glm::vec4& out = result.image.at(x, y);
+            const glm::vec4& l = lens.at(x, y);
+            if (l.a > 0.0f) {
+                out = glm::vec4(glm::vec3(l), 1.0f);
+                ++lensPixels;
+            }
+            out.a = 1.0f;
+        }
+    }
+    const double otherMs = since(t0);
+    result.stages = {{"vertex_ray_tracing", traceMs}, {"texture_coordinates", texCoordMs}, {"tessellation", tessellateMs}, {"other", otherMs}};
+    result.counters["rays_total"] = static_cast<double>(stats.pathQueries + stats.visibilityQueries);
+    result.counters["rays_lens_paths"] = static_cast<double>(stats.pathQueries);
+    result.counters["rays_visibility"] = static_cast<double>(stats.visibilityQueries);
+    result.counters["vertices_traced"] = static_cast<double>(stats.tracedVertices);
+    result.counters["vertices"] = static_cast<double>(vertices);
+    result.counters["triangles"] = static_cast<double>(triangles);
+    result.counters["lens_pixels"] = static_cast<double>(lensPixels);
+    result.counters["pixels_ray_traced"] = 0.0;
+    // What "other" holds: the rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
+    for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
+    result.counters["raster_wall_ms"] = raster_.wallMilliseconds();
+    result.debugImages["lens"] = lens;
+    return result;
+}
+
+}  // namespace hybridlab

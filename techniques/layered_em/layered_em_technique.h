@@ -1,0 +1,51 @@
+#pragma once
+// `layered_em`: hybrid rendering with layered inferred environment maps (Hakura & Snyder 2001).
+// prepare() bakes (or loads from the cache, em_cache.h) the layered EMs of every lens system; each
+// frame draws the G-buffer and deferred lighting of the scene, traces the two ray paths at the lens
+// vertices from the current viewpoint with adaptive tessellation (§5), generates the per-vertex
+// cube-map indices and draws the lenses with the EMs on the GPU (layered_em_pass.h) over the lit
+// image. Stage times as the paper's results table: vertex ray tracing, texture-coordinate
+// generation, tessellation, other (rendering included).
+#include <memory>
+#include <vector>
+
+#include "common/raster/rasterizer.h"
+#include "techniques/layered_em/em_bake.h"
+#include "techniques/layered_em/layered_em_pass.h"
+#include "techniques/technique.h"
+
+namespace hybridlab {
+
+class LayeredEmTechnique : public Technique {
+public:
+    static TechniqueInfo info();
+    // The bake settings the parameters give.
+    static EmBakeSettings bakeSettings(const ParameterSet& params);
+
+    explicit LayeredEmTechnique(const ParameterSet& params);
+    ~LayeredEmTechnique() override;
+
+    void prepare(SceneContext& context) override;
+    FrameResult render(SceneContext& context, const FrameRequest& frame) override;
+
+    // After prepare(): the layered EMs, one per lens system.
+    const std::vector<LayeredEm>& layeredEms() const { return ems_; }
+
+private:
+    struct System;
+    RasterRequest rasterRequest(const FrameRequest& frame);
+
+    EmBakeSettings bake_;                     // its tessellation is at the bake's lens-image resolution
+    TessellationSettings frameTessellation_;  // per frame, at the frame's resolution
+    bool blendViewpoints_ = true;
+    bool useCache_ = true;
+    ShadowSettings shadowSettings_;
+    const Scene* preparedScene_ = nullptr;
+    std::vector<std::unique_ptr<System>> systems_;
+    std::vector<LayeredEm> ems_;
+    std::unique_ptr<LayeredEmPass> pass_;
+    RasterFrame raster_;
+    int warmWidth_ = 0, warmHeight_ = 0;
+};
+
+}  // namespace hybridlab
