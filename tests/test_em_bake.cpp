@@ -62,6 +62,7 @@ TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
     std::string kinds;
     for (const EmLayer& l : em.layers) kinds += l.shell.kind == ShellKind::Sphere ? "S" : l.shell.kind == ShellKind::Quad ? "Q" : "C";
     RecordProperty("shell_kinds", kinds);
+    EXPECT_EQ(kinds, "QCS") << "Figure 7: a quad for the sparse cup layer, a cylinder for the columns, a sphere for the walls";
     EXPECT_LT(stats.maxRelativeResidual, 1e-3);
 
     EmBakeSettings single = settings;
@@ -126,7 +127,7 @@ TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     test::TempDir dir;
     const std::string cache = (dir / "cache").string();
     const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache, "--quiet",
-                                            "--width", "24", "--height", "18", "--supersampling", "1", "--em-size", "4",
+                                            "--width", "32", "--height", "24", "--supersampling", "1", "--em-size", "4",
                                             "--max-viewpoints", "2", "--layers", "2"};
     auto results = test::runHybridlabAll({{quick, {}},
                                           {{"bake-em", "--scene", "teapot-lens", "--system", "vase", "--cache", cache}, {}},

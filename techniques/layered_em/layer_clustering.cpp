@@ -116,9 +116,30 @@ LayerPartition partitionByWholeObjects(const std::vector<ClusterSample>& samples
 
 LayerPartition clusterLayers(const std::vector<ClusterSample>& samples, std::size_t objectCount, int layers, int maxLayers,
                              double maxRelativeRms) {
-    std::vector<float> d(samples.size());
-    for (std::size_t i = 0; i < samples.size(); ++i) d[i] = samples[i].distance;
-    LbgClusters c = layers > 0 ? lbgCluster(d, layers) : lbgClusterAuto(d, maxLayers, maxRelativeRms);
+    // LBG runs on each object's mean inverse distance, and the objects' clusters go to their samples.
+    // Inverse distance: a point at distance d drawn on a shell at r moves on screen by about
+    // b |1/d - 1/r| for a viewpoint offset b (parallax), so squared error in 1/d is the error the
+    // shells make. Per object rather than per sample: the whole-object rule (§4.2) makes layers
+    // unions of objects anyway, and over samples the many hits on large far objects (the walls)
+    // claim the clusters, so that a small near layer (the cup before the teapot) merges with the next.
+    std::vector<double> sum(objectCount, 0.0);
+    std::vector<std::uint64_t> count(objectCount, 0);
+    for (const ClusterSample& s : samples) {
+        sum[s.object] += 1.0 / std::max(static_cast<double>(s.distance), 1e-6);
+        ++count[s.object];
+    }
+    std::vector<float> objectValues;
+    std::vector<int> valueOf(objectCount, -1);
+    for (std::size_t o = 0; o < objectCount; ++o) {
+        if (!count[o]) continue;
+        valueOf[o] = static_cast<int>(objectValues.size());
+        objectValues.push_back(static_cast<float>(sum[o] / static_cast<double>(count[o])));
+    }
+    const int k = std::min<int>(layers, static_cast<int>(objectValues.size()));
+    const LbgClusters objects = layers > 0 ? lbgCluster(objectValues, k) : lbgClusterAuto(objectValues, maxLayers, maxRelativeRms);
+    LbgClusters c = objects;
+    c.assignment.resize(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) c.assignment[i] = objects.assignment[valueOf[samples[i].object]];
     return partitionByWholeObjects(samples, c, objectCount);
 }
 
