@@ -1,9 +1,9 @@
 #pragma once
 // Layers of a lens system's environment (Hakura & Snyder 2001 §4.2): LBG clustering (Linde, Buzo
-// & Gray 1980) of the distances of the environment intersections from the lens centre, over all
-// viewpoint samples at once; whole objects go to the one cluster that holds most of their
-// intersections; each shell sits at its cluster's mean distance, where the intersections of one
-// continued ray count only by its frontmost member in the cluster.
+// & Gray 1980) of the environment intersections' distances from the lens centre, over all viewpoint
+// samples at once; whole objects go to one cluster; each shell sits at its cluster's mean distance,
+// where the intersections of one continued ray count only by its frontmost member in the cluster.
+// clusterLayers clusters each object's mean inverse distance (see there for why).
 #include <cstdint>
 #include <vector>
 
@@ -46,7 +46,8 @@ struct LayerPartition {
 LayerPartition partitionByWholeObjects(const std::vector<ClusterSample>& samples, const LbgClusters& clusters,
                                        std::size_t objectCount);
 
-// Clusters the samples' distances (k = layers, or automatic when layers == 0) and partitions.
+// Clusters the objects by their samples' mean inverse distance (k = layers, or automatic when
+// layers == 0) and partitions.
 LayerPartition clusterLayers(const std::vector<ClusterSample>& samples, std::size_t objectCount, int layers,
                              int maxLayers = 4, double maxRelativeRms = 0.1);
 
