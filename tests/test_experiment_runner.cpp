@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "report_checks.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "techniques/technique.h"
@@ -163,25 +164,10 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     const fs::path report = dir.path() / "report";
     test::CliResult r = test::runHybridlab({"report", (dir.path() / "a").string(), "--out", report.string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
-    std::ifstream in(report / "index.html");
-    const std::string page((std::istreambuf_iterator<char>(in)), {});
-    std::size_t links = 0;
-    for (const std::string attr : {"href=\"", "src=\""}) {
-        for (std::size_t at = page.find(attr); at != std::string::npos; at = page.find(attr, at + 1)) {
-            const std::size_t start = at + attr.size(), end = page.find('"', start);
-            // The viewer's links name a run after '#': the file is what must exist.
-            const std::string link = page.substr(start, end - start), target = link.substr(0, link.find('#'));
-            EXPECT_TRUE(fs::exists(report / target)) << link;
-            ++links;
-        }
-    }
-    EXPECT_GT(links, 20u * 4);  // per run at least: thumbnail, image, exr, reference (+ maps)
-    std::size_t figures = 0;
-    for (const auto& f : fs::directory_iterator(report / "figures")) {
-        ++figures;
-        EXPECT_GT(fs::file_size(f.path()), 2000u) << f.path();
-    }
-    EXPECT_GE(figures, 2u * (2 * 2 + 1));  // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path
+    const std::string page = test::readReportPage(report);
+    EXPECT_GT(test::expectReportLinksResolve(report), 20u * 4);  // per run at least: thumbnail, image, exr, reference (+ maps)
+    // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path (+ its "where methods fail" figure)
+    EXPECT_GE(test::expectFiguresHaveContent(report), 2u * (2 * 2 + 1));
     EXPECT_TRUE(fs::exists(report / "report.md"));
     // Every run opens in the viewer from the table (the viewer itself: tests/browser).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
