@@ -39,7 +39,7 @@ def speed_accuracy(records, out_dir, key, title):
     for ax, name, better_high in ((axes[0], "ssim", True), (axes[1], "flip", False)):
         points = []
         for v in sorted(col):
-            rows = [r for r in records if rs.variant(r) == v]
+            rows = [r for r in records if rs.variant(r) == v and rs.metric(r, "whole", name) is not None]
             xs = [r["frame_ms"]["median"] for r in rows]
             ys = [rs.metric(r, "whole", name) for r in rows]
             ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85).set_urls(point_links(rows))
@@ -90,9 +90,10 @@ def along_path(records, out_dir, key, title):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         frames = [r["frame"] for r in rows]
         axes[0].plot(frames, [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
-        axes[1].plot(frames, [rs.metric(r, "whole", "flip") for r in rows], marker="o", ms=3, color=col[v])
-        for ax, ys in ((axes[0], [r["frame_ms"]["median"] for r in rows]), (axes[1], [rs.metric(r, "whole", "flip") for r in rows])):
-            ax.scatter(frames, ys, s=12, color=col[v]).set_urls(point_links(rows))
+        scored = [r for r in rows if rs.metric(r, "whole", "flip") is not None]
+        axes[1].plot([r["frame"] for r in scored], [rs.metric(r, "whole", "flip") for r in scored], marker="o", ms=3, color=col[v])
+        for ax, pts, ys in ((axes[0], rows, [r["frame_ms"]["median"] for r in rows]), (axes[1], scored, [rs.metric(r, "whole", "flip") for r in scored])):
+            ax.scatter([r["frame"] for r in pts], ys, s=12, color=col[v]).set_urls(point_links(pts))
         temporal = [(r["frame"], r["temporal_error"]) for r in rows if "temporal_error" in r]
         if temporal:
             axes[2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
@@ -172,9 +173,9 @@ def markdown_summary(records):
         for r in rows:
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items()):
-            lines.append("| %s | %d | %.2f | %.4f | %.4f |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
-                                                             statistics.mean(rs.metric(r, "whole", "ssim") for r in vs),
-                                                             statistics.mean(rs.metric(r, "whole", "flip") for r in vs)))
+            lines.append("| %s | %d | %.2f | %s | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
+                                                         fmt(rs.mean_known(rs.metric(r, "whole", "ssim") for r in vs), "%.4f"),
+                                                         fmt(rs.mean_known(rs.metric(r, "whole", "flip") for r in vs), "%.4f")))
         lines.append("| reference (whitted) | | %.2f | 1 | 0 |" % statistics.median(r["reference"]["frame_ms"] for r in rows))
     return "\n".join(lines)
 

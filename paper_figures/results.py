@@ -24,12 +24,13 @@ def resolution(r):
 
 
 def metric(r, region, name):
-    """SSIM, RMSE, PSNR (dB) or FLIP mean of a record on 'whole' or 'masked'; None if absent."""
+    """SSIM, RMSE, PSNR (dB) or FLIP mean of a record on 'whole' or 'masked'; None if absent (the
+    region, or the metric: a config's `metrics` may leave it out)."""
     m = r["metrics"].get(region)
     if not m:
         return None
     if name == "flip":
-        return m["flip"]["mean"]
+        return m["flip"]["mean"] if "flip" in m else None
     if name == "psnr":
         return m.get("psnr_db")
     return m.get(name)
@@ -44,3 +45,9 @@ def pareto_front(points, higher_is_better):
             front.append((t, v, p))
             best = v
     return front
+
+
+def mean_known(values):
+    """The mean of the values that are not None; None if there are none."""
+    known = [v for v in values if v is not None]
+    return sum(known) / len(known) if known else None

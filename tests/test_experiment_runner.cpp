@@ -238,6 +238,73 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
     EXPECT_EQ(runExperiment(c, options(dir.path() / "c", cache)).referencesRendered, 1u);
 }
 
+TEST(ExperimentRunner, ConfigChoosesTheMetricsAndTheImagesKept) {
+    TempDir dir;
+    // heuristic_rt writes debug images; three frames of a path give two temporal errors.
+    const std::string body = R"(
+warmup_frames = 0
+repeats = 1
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[48, 27]]
+[[scenes.views]]
+path = "orbit"
+frames = [0, 20]
+stride = 10
+[[techniques]]
+name = "heuristic_rt"
+)";
+    auto run = [&](const std::string& name, const std::string& choice) {
+        const fs::path out = dir.path() / name;
+        RunnerOptions o = options(out, dir.path() / "cache");
+        EXPECT_TRUE(runExperiment(loadExperimentConfig(writeConfig(dir, "[experiment]\n" + choice + body, name + ".toml")), o).complete);
+        return results(out);
+    };
+    const auto everything = run("all", "");
+    const auto ssimTemporal = run("ssim-temporal", "metrics = [\"ssim\", \"temporal\"]\nkeep = []\n");
+    const auto flipMaps = run("flip-maps", "metrics = [\"flip\"]\nkeep = [\"error_maps\"]\n");
+    ASSERT_EQ(everything.size(), 3u);
+    ASSERT_EQ(ssimTemporal.size(), 3u);
+    ASSERT_EQ(flipMaps.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        SCOPED_TRACE(i);
+        // By default: every metric, error maps and debug images.
+        const json& all = everything[i];
+        for (const char* m : {"ssim", "flip", "rmse", "psnr_db"}) EXPECT_TRUE(all.at("metrics").at("whole").contains(m)) << m;
+        EXPECT_TRUE(fs::exists(dir.path() / "all" / all.at("images").at("maps").get<std::string>() / "flip.png"));
+        ASSERT_TRUE(all.at("images").contains("debug"));
+        for (const auto& [name, file] : all.at("images").at("debug").items()) EXPECT_TRUE(fs::exists(dir.path() / "all" / file.get<std::string>())) << name;
+        EXPECT_EQ(all.contains("temporal_error"), i > 0);
+
+        // SSIM and the temporal error alone, no optional images: the same values as with everything.
+        const json& st = ssimTemporal[i];
+        EXPECT_EQ(st.at("metrics").at("whole").at("ssim"), all.at("metrics").at("whole").at("ssim"));
+        EXPECT_EQ(st.at("metrics").at("masked").at("ssim"), all.at("metrics").at("masked").at("ssim"));
+        for (const char* m : {"flip", "rmse", "psnr_db"}) EXPECT_FALSE(st.at("metrics").at("whole").contains(m)) << m;
+        EXPECT_TRUE(st.at("images").at("maps").is_null());
+        EXPECT_FALSE(st.at("images").contains("debug"));
+        if (i > 0) {
+            EXPECT_EQ(st.at("temporal_error"), all.at("temporal_error"));
+        }
+
+        // FLIP with its map only; no temporal error.
+        const json& fm = flipMaps[i];
+        EXPECT_EQ(fm.at("metrics").at("whole").at("flip"), all.at("metrics").at("whole").at("flip"));
+        EXPECT_FALSE(fm.at("metrics").at("whole").contains("ssim"));
+        const fs::path maps = dir.path() / "flip-maps" / fm.at("images").at("maps").get<std::string>();
+        EXPECT_TRUE(fs::exists(maps / "flip.png"));
+        EXPECT_FALSE(fs::exists(maps / "ssim.png"));
+        EXPECT_FALSE(fs::exists(maps / "diff.png"));
+        EXPECT_FALSE(fm.contains("temporal_error"));
+    }
+    // A report of a result set without FLIP still draws its figures.
+    const fs::path report = dir.path() / "report";
+    const test::CliResult r = test::runHybridlab({"report", (dir.path() / "ssim-temporal").string(), "--out", report.string()});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    EXPECT_GT(test::expectReportLinksResolve(report), 3u * 3);
+    EXPECT_GE(test::expectFiguresHaveContent(report), 2u * 4);  // speed-accuracy, stages, path, where methods fail
+}
+
 TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
     // quick.toml needs no assets; stability.toml and paper.toml need the paper scenes' models.
     const fs::path configs = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "experiments" / "configs";
@@ -304,6 +371,14 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
         {"tiny-resolution", "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[8, 8]]\n" + technique, "each side must be in [11, 16384]"},
         {"no-techniques", scene, "an experiment needs at least one technique"},
         {"no-scenes", technique, "an experiment needs at least one scene"},
+        {"unknown-metric", "[experiment]\nmetrics = [\"ssim\", \"lpips\"]\n" + scene + technique,
+         "experiment.metrics: 'lpips' is not one of: ssim, flip, rmse, psnr, temporal"},
+        {"no-metrics", "[experiment]\nmetrics = []\n" + scene + technique, "experiment.metrics: an empty list measures nothing"},
+        {"metrics-not-names", "[experiment]\nmetrics = \"ssim\"\n" + scene + technique, "experiment.metrics: expected an array of strings"},
+        {"unknown-keep", "[experiment]\nkeep = [\"thumbnails\"]\n" + scene + technique,
+         "experiment.keep: 'thumbnails' is not one of: error_maps, debug_images"},
+        {"maps-without-metric", "[experiment]\nmetrics = [\"temporal\"]\nkeep = [\"error_maps\"]\n" + scene + technique,
+         "experiment.keep: error_maps needs ssim, flip, rmse or psnr in metrics"},
     };
     std::vector<test::CliRun> runs;
     for (const auto& c : cases) {

@@ -28,7 +28,7 @@ const char* kConfig = R"(
 name = "failures"
 warmup_frames = 0
 repeats = 1
-error_maps = false
+keep = []
 
 [[scenes]]
 scene = "offscreen-reflection"
