@@ -3,6 +3,7 @@
 Every script in paper_figures/ reads only results.json / results.csv, never the renderer."""
 import json
 import os
+import sys
 
 
 def load(result_dir):
@@ -51,3 +52,12 @@ def mean_known(values):
     """The mean of the values that are not None; None if there are none."""
     known = [v for v in values if v is not None]
     return sum(known) / len(known) if known else None
+
+
+def write_table(lines, out_path=None):
+    """A table script's Markdown lines to standard output, and to `out_path` if given."""
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if out_path:
+        with open(out_path, "w") as f:
+            f.write(text)

@@ -55,11 +55,7 @@ def main():
     rows = results.load(a.result_dir)
     if not rows:
         sys.exit("sabino_table3: %s has no runs" % a.result_dir)
-    text = "\n".join(table3(rows)) + "\n"
-    sys.stdout.write(text)
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write(text)
+    results.write_table(table3(rows), a.out)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #include "report_checks.h"
 
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 
@@ -8,6 +9,12 @@
 namespace hybridlab::test {
 
 namespace fs = std::filesystem;
+
+std::string formatNumber(const char* spec, double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, spec, v);
+    return text;
+}
 
 std::string readReportPage(const fs::path& reportDir) {
     std::ifstream in(reportDir / "index.html");

@@ -7,6 +7,9 @@
 
 namespace hybridlab::test {
 
+// `v` formatted as printf's `spec` does (as Python's "%" operator the report scripts use).
+std::string formatNumber(const char* spec, double v);
+
 // index.html's text.
 std::string readReportPage(const std::filesystem::path& reportDir);
 

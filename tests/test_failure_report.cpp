@@ -4,7 +4,6 @@
 // computed here from results.json, beside the baseline's median; its links must resolve and its
 // figures have content.
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <map>
 
@@ -53,12 +52,6 @@ param_sets = [ { fallback = "rt" }, { fallback = "none" } ]
 [[techniques]]
 name = "raster"
 )";
-
-std::string format(const char* spec, double v) {
-    char text[64];
-    std::snprintf(text, sizeof text, spec, v);
-    return text;
-}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -115,13 +108,13 @@ TEST(FailureReport, SummaryTableHoldsWorstFramesMediansAndTheBaseline) {
         const std::size_t w = std::min_element(ssim.begin(), ssim.end()) - ssim.begin();
         worstSsim[name] = ssim[w];
         // The worst frame with its number, linked to the viewer on that run.
-        EXPECT_NE(row.find("[" + format("%.4f", ssim[w]) + " (" + std::to_string(rows[w].at("frame").get<int>()) + ")](viewer.html#run=" +
+        EXPECT_NE(row.find("[" + test::formatNumber("%.4f", ssim[w]) + " (" + std::to_string(rows[w].at("frame").get<int>()) + ")](viewer.html#run=" +
                            rows[w].at("id").get<std::string>() + ")"),
                   std::string::npos)
             << row;
-        EXPECT_NE(row.find(" | " + format("%.4f", median(ssim)) + " | "), std::string::npos) << row;
-        EXPECT_NE(row.find(" | " + format("%.2f", *std::max_element(ms.begin(), ms.end()) / median(ms)) + " | "), std::string::npos) << row;
-        EXPECT_NE(row.find(" | " + format("%.4f", median(baseSsim)) + " | "), std::string::npos) << row;
+        EXPECT_NE(row.find(" | " + test::formatNumber("%.4f", median(ssim)) + " | "), std::string::npos) << row;
+        EXPECT_NE(row.find(" | " + test::formatNumber("%.2f", *std::max_element(ms.begin(), ms.end()) / median(ms)) + " | "), std::string::npos) << row;
+        EXPECT_NE(row.find(" | " + test::formatNumber("%.4f", median(baseSsim)) + " | "), std::string::npos) << row;
     }
     // SSR alone loses the statue behind the camera; the fallback recovers it.
     EXPECT_LT(worstSsim.at("ssr_fallback [fallback=none]") + 0.3, worstSsim.at("ssr_fallback [fallback=rt]"));

@@ -1,7 +1,6 @@
 // The paper-table scripts of paper_figures/ on small result sets: Sabino 2012 Table 3
 // (sabino_table3.py) must print each scene's size and the medians the records hold, and the gain
 // as their ratio.
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -10,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/runner/experiment_runner.h"
+#include "report_checks.h"
 #include "test_support.h"
 
 namespace hybridlab {
@@ -17,12 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string format(const char* spec, double v) {
-    char text[64];
-    std::snprintf(text, sizeof text, spec, v);
-    return text;
-}
 
 TEST(PaperTables, SabinoTable3HoldsTheHybridsStagesAndTheGain) {
     test::TempDir dir;
@@ -65,8 +59,8 @@ label = "rt"
         const double tHybrid = hybrid.at("frame_ms").at("median"), tRt = rt.at("frame_ms").at("median");
         const std::string row = "| " + scene + " | " + std::to_string(hybrid.at("scene_stats").at("vertices").get<int>()) + " | " +
                                 std::to_string(hybrid.at("scene_stats").at("triangles").get<int>()) + " | " +
-                                format("%.1f", hybrid.at("stages").at("rast").at("median")) + " | " + format("%.1f", tRt) + " | " +
-                                format("%.1f", tHybrid) + " | " + format("%.2f", tRt / tHybrid) + " | ";
+                                test::formatNumber("%.1f", hybrid.at("stages").at("rast").at("median")) + " | " + test::formatNumber("%.1f", tRt) + " | " +
+                                test::formatNumber("%.1f", tHybrid) + " | " + test::formatNumber("%.2f", tRt / tHybrid) + " | ";
         EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
         EXPECT_GT(hybrid.at("scene_stats").at("triangles").get<int>(), 0);
     }
