@@ -177,7 +177,7 @@ def markdown_table(rows, link):
 
 
 def html_table(rows, link):
-    out = ['<table class="runs failures"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in HEADER) + "</tr></thead><tbody>"]
+    out = ['<table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in HEADER) + "</tr></thead><tbody>"]
     for key, s, b in rows:
         cells = [html.escape(c) for c in row_cells(key, s, b)]
         if s["worst_ssim"]:

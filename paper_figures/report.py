@@ -116,7 +116,7 @@ def rel(out_dir, result_dir, path):
 
 TABLE_SCRIPT = """<script>
 // Click a column header to sort the table by it (numbers numerically).
-document.querySelectorAll('table.runs th').forEach((th, i) => th.addEventListener('click', () => {
+document.querySelectorAll('table.sortable th').forEach((th, i) => th.addEventListener('click', () => {
   const body = th.closest('table').tBodies[0];
   const asc = th.dataset.asc !== '1'; th.dataset.asc = asc ? '1' : '0';
   const val = tr => { const t = tr.cells[i].dataset.v ?? tr.cells[i].textContent; const n = parseFloat(t); return isNaN(n) ? t : n; };
@@ -156,7 +156,7 @@ def runs_table(records, out_dir, result_dir):
             "<td>%s</td>" % maps,
         ]
         rows.append("<tr>" + "".join(cells) + "</tr>")
-    return ('<table class="runs"><thead><tr>' + "".join("<th>%s</th>" % h for h in head) + "</tr></thead><tbody>\n" + "\n".join(rows)
+    return ('<table class="runs sortable"><thead><tr>' + "".join("<th>%s</th>" % h for h in head) + "</tr></thead><tbody>\n" + "\n".join(rows)
             + "\n</tbody></table>")
 
 
