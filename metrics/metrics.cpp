@@ -8,12 +8,13 @@ namespace hybridlab {
 
 namespace {
 
-RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, const MetricMaps& maps, const cv::Mat1b* region) {
+RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, const MetricMaps& maps, const cv::Mat1b* region,
+                            const MetricSelection& selection) {
     RegionMetrics m;
-    m.pixels = region ? static_cast<std::size_t>(cv::countNonZero(*region)) : maps.flip.total();
-    m.ssim = ssimMean(maps.ssim, region);
-    m.error = errorStats(test, reference, region);
-    m.flip = flipStats(maps.flip, region);
+    m.pixels = region ? static_cast<std::size_t>(cv::countNonZero(*region)) : test.total();
+    if (selection.ssim) m.ssim = ssimMean(maps.ssim, region);
+    if (selection.error()) m.error = errorStats(test, reference, region);
+    if (selection.flip) m.flip = flipStats(maps.flip, region);
     return m;
 }
 
@@ -32,12 +33,13 @@ MetricReport computeMetrics(const Image& test, const Image& reference, const Met
     const cv::Mat3f errorTest = linear ? metricRgb(test, ValueSpace::Linear) : displayTest;
     const cv::Mat3f errorReference = linear ? metricRgb(reference, ValueSpace::Linear) : displayReference;
 
-    report.maps.ssim = ssimMap(displayTest, displayReference, options.ssimChannels);
-    report.maps.flip = flipMap(displayTest, displayReference, options.pixelsPerDegree);
-    report.maps.absoluteDifference = absoluteDifferenceMap(errorTest, errorReference);
+    const MetricSelection& chosen = options.selection;
+    if (chosen.ssim) report.maps.ssim = ssimMap(displayTest, displayReference, options.ssimChannels);
+    if (chosen.flip) report.maps.flip = flipMap(displayTest, displayReference, options.pixelsPerDegree);
+    if (chosen.error()) report.maps.absoluteDifference = absoluteDifferenceMap(errorTest, errorReference);
 
-    report.whole = regionMetrics(errorTest, errorReference, report.maps, nullptr);
-    if (mask) report.masked = regionMetrics(errorTest, errorReference, report.maps, &mask->pixels());
+    report.whole = regionMetrics(errorTest, errorReference, report.maps, nullptr, chosen);
+    if (mask) report.masked = regionMetrics(errorTest, errorReference, report.maps, &mask->pixels(), chosen);
     return report;
 }
 

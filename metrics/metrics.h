@@ -15,12 +15,26 @@
 
 namespace hybridlab {
 
+// Which metrics a report holds. SSIM and FLIP each need a map of the whole image (the costly part
+// of scoring an image); one not chosen is not computed, and neither its values nor its heat map
+// appear in the report's files.
+struct MetricSelection {
+    bool ssim = true;
+    bool flip = true;
+    bool rmse = true;
+    bool psnr = true;
+
+    bool error() const { return rmse || psnr; }  // both come from the difference (errorStats)
+    bool any() const { return ssim || flip || error(); }
+};
+
 struct MetricOptions {
     // RMSE, PSNR and the difference map: display values (default) or the linear HDR values.
     // SSIM and FLIP always see the display image.
     ValueSpace errorSpace = ValueSpace::Display;
     SsimChannels ssimChannels = SsimChannels::Luma;
     double pixelsPerDegree = kDefaultPixelsPerDegree;  // FLIP's viewing condition
+    MetricSelection selection;
 };
 
 struct RegionMetrics {
@@ -30,6 +44,7 @@ struct RegionMetrics {
     FlipStats flip;
 };
 
+// A metric not selected is left at its default (zero), its map empty.
 struct MetricMaps {
     cv::Mat1f absoluteDifference;  // mean |test - reference| over R, G, B, in the error space
     cv::Mat1f ssim;

@@ -17,32 +17,34 @@ namespace {
 
 nlohmann::json numberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-nlohmann::json regionJson(const RegionMetrics& m) {
-    return {
-        {"pixels", m.pixels},
-        {"ssim", m.ssim},
-        {"rmse", m.error.rmse},
-        {"psnr_db", numberOrNull(m.error.psnr)},
-        {"flip",
-         {{"mean", m.flip.mean},
-          {"weighted_median", m.flip.weightedMedian},
-          {"weighted_first_quartile", m.flip.weightedFirstQuartile},
-          {"weighted_third_quartile", m.flip.weightedThirdQuartile}}},
-    };
+nlohmann::json regionJson(const RegionMetrics& m, const MetricSelection& chosen) {
+    nlohmann::json j = {{"pixels", m.pixels}};
+    if (chosen.ssim) j["ssim"] = m.ssim;
+    if (chosen.rmse) j["rmse"] = m.error.rmse;
+    if (chosen.psnr) j["psnr_db"] = numberOrNull(m.error.psnr);
+    if (chosen.flip) {
+        j["flip"] = {{"mean", m.flip.mean},
+                     {"weighted_median", m.flip.weightedMedian},
+                     {"weighted_first_quartile", m.flip.weightedFirstQuartile},
+                     {"weighted_third_quartile", m.flip.weightedThirdQuartile}};
+    }
+    return j;
 }
 
 }  // namespace
 
 std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report) {
-    double largest = 0.0;
-    cv::minMaxLoc(report.maps.absoluteDifference, nullptr, &largest);
-    // A legend from 0 to 0 says nothing; equal images show the bottom colour on 0 to 1.
-    const LegendRange differenceRange{0.0, largest > 0.0 ? largest : 1.0};
-    return {
-        {"diff.png", "|T-R|", ColorMap::Viridis, differenceRange, &report.maps.absoluteDifference},
-        {"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim},
-        {"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip},
-    };
+    const MetricSelection& chosen = report.options.selection;
+    std::vector<HeatmapSpec> maps;
+    if (chosen.error()) {
+        double largest = 0.0;
+        cv::minMaxLoc(report.maps.absoluteDifference, nullptr, &largest);
+        // A legend from 0 to 0 says nothing; equal images show the bottom colour on 0 to 1.
+        maps.push_back({"diff.png", "|T-R|", ColorMap::Viridis, {0.0, largest > 0.0 ? largest : 1.0}, &report.maps.absoluteDifference});
+    }
+    if (chosen.ssim) maps.push_back({"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim});
+    if (chosen.flip) maps.push_back({"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip});
+    return maps;
 }
 
 nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources) {
@@ -57,8 +59,8 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
         {"ssim_channels", ssimChannelsName(report.options.ssimChannels)},
         {"flip_pixels_per_degree", report.options.pixelsPerDegree},
     };
-    j["whole"] = regionJson(report.whole);
-    j["masked"] = report.masked ? regionJson(*report.masked) : nlohmann::json(nullptr);
+    j["whole"] = regionJson(report.whole, report.options.selection);
+    j["masked"] = report.masked ? regionJson(*report.masked, report.options.selection) : nlohmann::json(nullptr);
     nlohmann::json maps = nlohmann::json::object();
     for (const HeatmapSpec& h : reportHeatmaps(report)) {
         maps[fs::path(h.file).stem().string()] = {

@@ -29,7 +29,7 @@ struct HeatmapSpec {
 };
 
 // diff.png (|test - reference|, viridis, 0 to the largest difference), ssim.png (viridis, 0 to 1)
-// and flip.png (magma, 0 to 1, as NVIDIA's FLIP tool shows it).
+// and flip.png (magma, 0 to 1, as NVIDIA's FLIP tool shows it), each if its metric was selected.
 std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report);
 
 // The numbers: sources, size, settings, whole-image (and masked) metrics, the maps' files and

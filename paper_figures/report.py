@@ -2,12 +2,14 @@
 """The report of a hybridlab result set: index.html (works from the file system), report.md and
 the figures as SVG and PDF.
 
-    report.py RESULT_DIR --out REPORT_DIR
+    report.py RESULT_DIR --out REPORT_DIR [--baseline SCENE]
 
 Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
 the Pareto front drawn and labelled and the reference's frame time marked; per scene the stage-time
 breakdown of every technique (Walewski 2019 Table 5 as a chart); along each camera path the frame
-time, the error and the temporal error per frame. Every run in the tables and every point in the
+time, the error and the temporal error per frame; and "where methods fail" (failures.py): each
+technique setting's worst frames along every path against its median and against the baseline
+scene's path. Every run in the tables and every point in the
 charts links to viewer.html (paper_figures/viewer.py) opened on that run."""
 import argparse
 import collections
@@ -16,34 +18,12 @@ import os
 import statistics
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-import results as rs  # noqa: E402
-import viewer  # noqa: E402
-
-
-def save(fig, out_dir, name):
-    paths = []
-    for ext in ("svg", "pdf"):
-        p = os.path.join(out_dir, "figures", name + "." + ext)
-        fig.savefig(p, bbox_inches="tight")
-        paths.append(p)
-    plt.close(fig)
-    # The points' links (set_urls) open the viewer in the whole window, not inside the <object>
-    # that shows the figure in index.html.
-    with open(paths[0]) as f:
-        svg = f.read()
-    with open(paths[0], "w") as f:
-        f.write(svg.replace("<a xlink:href=", '<a target="_top" xlink:href='))
-    return paths[0]
-
-
-def point_links(records):
-    """The viewer on each run, from a figure in figures/."""
-    return [viewer.link(r["id"], "figures") for r in records]
+import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import failures
+import matplotlib.pyplot as plt
+import results as rs
+import viewer
+from figure_files import point_links, save
 
 
 def colours(variants):
@@ -59,7 +39,7 @@ def speed_accuracy(records, out_dir, key, title):
     for ax, name, better_high in ((axes[0], "ssim", True), (axes[1], "flip", False)):
         points = []
         for v in sorted(col):
-            rows = [r for r in records if rs.variant(r) == v]
+            rows = [r for r in records if rs.variant(r) == v and rs.metric(r, "whole", name) is not None]
             xs = [r["frame_ms"]["median"] for r in rows]
             ys = [rs.metric(r, "whole", name) for r in rows]
             ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85).set_urls(point_links(rows))
@@ -112,9 +92,10 @@ def along_path(records, out_dir, key, title):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         frames = [r["frame"] for r in rows]
         axes[0].plot(frames, [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
-        axes[1].plot(frames, [rs.metric(r, "whole", "flip") for r in rows], marker="o", ms=3, color=col[v])
-        for ax, ys in ((axes[0], [r["frame_ms"]["median"] for r in rows]), (axes[1], [rs.metric(r, "whole", "flip") for r in rows])):
-            ax.scatter(frames, ys, s=12, color=col[v]).set_urls(point_links(rows))
+        scored = [r for r in rows if rs.metric(r, "whole", "flip") is not None]
+        axes[1].plot([r["frame"] for r in scored], [rs.metric(r, "whole", "flip") for r in scored], marker="o", ms=3, color=col[v])
+        for ax, pts, ys in ((axes[0], rows, [r["frame_ms"]["median"] for r in rows]), (axes[1], scored, [rs.metric(r, "whole", "flip") for r in scored])):
+            ax.scatter([r["frame"] for r in pts], ys, s=12, color=col[v]).set_urls(point_links(pts))
         temporal = [(r["frame"], r["temporal_error"]) for r in rows if "temporal_error" in r]
         if temporal:
             axes[2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
@@ -137,7 +118,7 @@ def rel(out_dir, result_dir, path):
 
 TABLE_SCRIPT = """<script>
 // Click a column header to sort the table by it (numbers numerically).
-document.querySelectorAll('table.runs th').forEach((th, i) => th.addEventListener('click', () => {
+document.querySelectorAll('table.sortable th').forEach((th, i) => th.addEventListener('click', () => {
   const body = th.closest('table').tBodies[0];
   const asc = th.dataset.asc !== '1'; th.dataset.asc = asc ? '1' : '0';
   const val = tr => { const t = tr.cells[i].dataset.v ?? tr.cells[i].textContent; const n = parseFloat(t); return isNaN(n) ? t : n; };
@@ -177,7 +158,7 @@ def runs_table(records, out_dir, result_dir):
             "<td>%s</td>" % maps,
         ]
         rows.append("<tr>" + "".join(cells) + "</tr>")
-    return ('<table class="runs"><thead><tr>' + "".join("<th>%s</th>" % h for h in head) + "</tr></thead><tbody>\n" + "\n".join(rows)
+    return ('<table class="runs sortable"><thead><tr>' + "".join("<th>%s</th>" % h for h in head) + "</tr></thead><tbody>\n" + "\n".join(rows)
             + "\n</tbody></table>")
 
 
@@ -194,9 +175,9 @@ def markdown_summary(records):
         for r in rows:
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items()):
-            lines.append("| %s | %d | %.2f | %.4f | %.4f |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
-                                                             statistics.mean(rs.metric(r, "whole", "ssim") for r in vs),
-                                                             statistics.mean(rs.metric(r, "whole", "flip") for r in vs)))
+            lines.append("| %s | %d | %.2f | %s | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
+                                                         fmt(rs.mean_known(rs.metric(r, "whole", "ssim") for r in vs), "%.4f"),
+                                                         fmt(rs.mean_known(rs.metric(r, "whole", "flip") for r in vs), "%.4f")))
         lines.append("| reference (whitted) | | %.2f | 1 | 0 |" % statistics.median(r["reference"]["frame_ms"] for r in rows))
     return "\n".join(lines)
 
@@ -205,6 +186,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("result_dir")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--baseline", default=failures.BASELINE_SCENE,
+                    help="the scene whose path is the \"where methods fail\" section's baseline (default: %(default)s)")
     a = ap.parse_args()
     records = rs.load(a.result_dir)
     if not records:
@@ -226,24 +209,23 @@ def main():
         for path, prs in sorted(paths.items()):
             figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path)))
         sections.append((scene, res, figs))
+    failure_html, failure_md = failures.write_section(records, a.out, a.baseline) or ("", [])
 
     figure_html = []
     for scene, res, figs in sections:
         figure_html.append("<h2>%s at %s</h2>" % (html.escape(scene), res))
-        for f in figs:
-            r = os.path.relpath(f, a.out)
-            # An <object>, not an <img>: the points link to the viewer.
-            figure_html.append('<p><object data="%s" type="image/svg+xml" style="max-width:100%%"></object><br><a href="%s">svg</a> <a href="%s">pdf</a></p>'
-                               % (html.escape(r), html.escape(r), html.escape(r[:-4] + ".pdf")))
+        figure_html += [figure_files.embed_html(f, a.out) for f in figs]
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
     page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
             "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
             "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
             "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
-            "opens it there. Click a column header to sort.</p>%s<h2>Every run</h2>%s%s</body></html>"
+            "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
             % (html.escape(title), html.escape(title), len(records), html.escape(rel(a.out, a.result_dir, "results.csv")),
-               html.escape(rel(a.out, a.result_dir, "results.json")), "\n".join(figure_html), runs_table(records, a.out, a.result_dir),
+               html.escape(rel(a.out, a.result_dir, "results.json")),
+               ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
+               "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
                TABLE_SCRIPT))
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
@@ -251,6 +233,7 @@ def main():
     md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
+    md += failure_md
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("report: %s" % os.path.join(a.out, "index.html"))

@@ -11,15 +11,6 @@ def load(result_dir):
         return json.load(f)
 
 
-def write_tables(lines, out=None):
-    """Markdown lines to standard output, and to the file `out` when given."""
-    text = "\n".join(lines) + "\n"
-    sys.stdout.write(text)
-    if out:
-        with open(out, "w") as f:
-            f.write(text)
-
-
 def variant(r):
     """A technique with its parameter set: the unit that gets one colour and one series."""
     return r["label"] + (" [" + r["parameters_text"] + "]" if r["parameters_text"] else "")
@@ -34,12 +25,13 @@ def resolution(r):
 
 
 def metric(r, region, name):
-    """SSIM, RMSE, PSNR (dB) or FLIP mean of a record on 'whole' or 'masked'; None if absent."""
+    """SSIM, RMSE, PSNR (dB) or FLIP mean of a record on 'whole' or 'masked'; None if absent (the
+    region, or the metric: a config's `metrics` may leave it out)."""
     m = r["metrics"].get(region)
     if not m:
         return None
     if name == "flip":
-        return m["flip"]["mean"]
+        return m["flip"]["mean"] if "flip" in m else None
     if name == "psnr":
         return m.get("psnr_db")
     return m.get(name)
@@ -54,3 +46,18 @@ def pareto_front(points, higher_is_better):
             front.append((t, v, p))
             best = v
     return front
+
+
+def mean_known(values):
+    """The mean of the values that are not None; None if there are none."""
+    known = [v for v in values if v is not None]
+    return sum(known) / len(known) if known else None
+
+
+def write_table(lines, out_path=None):
+    """A table script's Markdown lines to standard output, and to `out_path` if given."""
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if out_path:
+        with open(out_path, "w") as f:
+            f.write(text)

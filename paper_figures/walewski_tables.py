@@ -135,7 +135,7 @@ def main():
     scenes = sorted({r["scene"] for r in rows})
     if not scenes:
         sys.exit("walewski_tables: %s has no runs" % a.result_dir)
-    results.write_tables(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out)
+    results.write_table(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@
 #include "common/core/input_error.h"
 #include "metrics/heatmap.h"
 #include "metrics/metrics.h"
+#include "metrics/report_files.h"
 #include "tests/metric_test_images.h"
 
 namespace hybridlab {
@@ -120,6 +121,35 @@ TEST(MetricReport, MaskRestrictsEveryMetric) {
     const PixelMask corner = PixelMask::fromImage(cornerImage);
     const MetricReport flat = computeMetrics(a, b, {}, &corner);
     EXPECT_NEAR(flat.masked->ssim, flat.whole.ssim, 1e-6);  // flat: the map is the same everywhere
+}
+
+TEST(MetricReport, SelectedMetricsAloneAreComputedWithTheSameValues) {
+    const Image test = test::fromDisplay(test::displayPattern(40, 32)), reference = flatDisplay(40, 32, glm::vec3(0.4f));
+    const MetricReport all = computeMetrics(test, reference);
+    MetricOptions ssimOnly;
+    ssimOnly.selection = {.ssim = true, .flip = false, .rmse = false, .psnr = false};
+    const MetricReport r = computeMetrics(test, reference, ssimOnly);
+    EXPECT_EQ(r.whole.ssim, all.whole.ssim);
+    EXPECT_TRUE(r.maps.flip.empty());
+    EXPECT_TRUE(r.maps.absoluteDifference.empty());
+    ASSERT_EQ(reportHeatmaps(r).size(), 1u);
+    EXPECT_STREQ(reportHeatmaps(r)[0].file, "ssim.png");
+    const nlohmann::json j = reportJson(r, {"t.exr", "r.exr", std::nullopt});
+    EXPECT_TRUE(j.at("whole").contains("ssim"));
+    for (const char* absent : {"flip", "rmse", "psnr_db"}) EXPECT_FALSE(j.at("whole").contains(absent)) << absent;
+    EXPECT_FALSE(j.at("maps").contains("flip"));
+
+    MetricOptions flipAndPsnr;
+    flipAndPsnr.selection = {.ssim = false, .flip = true, .rmse = false, .psnr = true};
+    const MetricReport f = computeMetrics(test, reference, flipAndPsnr);
+    EXPECT_EQ(f.whole.flip.mean, all.whole.flip.mean);
+    EXPECT_EQ(f.whole.error.psnr, all.whole.error.psnr);
+    EXPECT_TRUE(f.maps.ssim.empty());
+    const nlohmann::json k = reportJson(f, {"t.exr", "r.exr", std::nullopt});
+    EXPECT_TRUE(k.at("whole").contains("psnr_db"));
+    EXPECT_FALSE(k.at("whole").contains("rmse"));
+    EXPECT_FALSE(k.at("whole").contains("ssim"));
+    EXPECT_EQ(reportHeatmaps(f).size(), 2u);  // diff.png (PSNR's difference) and flip.png
 }
 
 TEST(MetricReport, BadInputIsAnInputError) {

@@ -177,6 +177,15 @@ std::vector<std::string> TomlTable::stringArray(const std::string& key) const {
     return out;
 }
 
+std::vector<std::string> TomlTable::choiceArray(const std::string& key, const std::vector<std::string>& fallback,
+                                                const std::vector<std::string>& choices) const {
+    if (!has(key)) return fallback;
+    std::vector<std::string> values = stringArray(key);
+    for (const auto& v : values)
+        if (std::find(choices.begin(), choices.end(), v) == choices.end()) fail(key, "'" + v + "' is not one of: " + join(choices));
+    return values;
+}
+
 std::optional<TomlTable> TomlTable::table(const std::string& key) const {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;

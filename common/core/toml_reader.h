@@ -58,6 +58,9 @@ public:
     // A number s means (s, s, s); else an array of three.
     glm::vec3 scalarOrVec3(const std::string& key, glm::vec3 fallback) const;
     std::vector<std::string> stringArray(const std::string& key) const;
+    // An array of strings, each one of `choices` (as `choice`); `fallback` when the key is absent.
+    std::vector<std::string> choiceArray(const std::string& key, const std::vector<std::string>& fallback,
+                                         const std::vector<std::string>& choices) const;
 
     std::optional<TomlTable> table(const std::string& key) const;
     // An array of tables ([[key]] or key = [{...}, ...]); empty when absent.

@@ -41,14 +41,18 @@ int runProgram(const std::vector<std::string>& args) {
 void addReportCommand(CLI::App& app) {
     auto dir = std::make_shared<std::string>();
     auto out = std::make_shared<std::string>();
+    auto baseline = std::make_shared<std::string>();
     auto* cmd = app.add_subcommand("report", "Write the report of a result set: index.html, report.md, figures (SVG, PDF)");
     cmd->add_option("results", *dir, "Result folder written by `hybridlab run` or `merge`")->required();
     cmd->add_option("--out", *out, "Report folder (default: RESULTS/report)");
-    cmd->callback([dir, out] {
+    cmd->add_option("--baseline", *baseline, "Scene whose camera path is the baseline of \"where methods fail\" (default: sponza-spheres)");
+    cmd->callback([dir, out, baseline] {
         if (!fs::exists(fs::path(*dir) / "results.json")) throw InputError(*dir + ": no results.json (not a result folder of `hybridlab run`)");
         const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
         const fs::path script = fs::path(HYBRIDLAB_SOURCE_DIR) / "paper_figures" / "report.py";
-        const int status = runProgram({python(), script.string(), *dir, "--out", target});
+        std::vector<std::string> args = {python(), script.string(), *dir, "--out", target};
+        if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
+        const int status = runProgram(args);
         if (status != 0) throw std::runtime_error("paper_figures/report.py failed (exit status " + std::to_string(status) + ")");
     });
 }

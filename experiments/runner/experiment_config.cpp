@@ -1,5 +1,6 @@
 #include "experiments/runner/experiment_config.h"
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -61,6 +62,26 @@ std::vector<ParameterList> expandSweep(const TomlTable& t) {
     return sets;
 }
 
+const std::vector<std::string> kMetricNames = {"ssim", "flip", "rmse", "psnr", "temporal"};
+const std::vector<std::string> kKeepNames = {"error_maps", "debug_images"};
+
+bool contains(const std::vector<std::string>& list, const std::string& name) { return std::find(list.begin(), list.end(), name) != list.end(); }
+
+// `metrics = [...]` and `keep = [...]` of [experiment].
+void readMetricsAndKeep(const TomlTable& e, ExperimentConfig& c) {
+    const std::vector<std::string> metrics = e.choiceArray("metrics", kMetricNames, kMetricNames);
+    if (metrics.empty()) e.fail("metrics", "an empty list measures nothing (metrics: ssim, flip, rmse, psnr, temporal)");
+    c.metrics = {contains(metrics, "ssim"), contains(metrics, "flip"), contains(metrics, "rmse"), contains(metrics, "psnr")};
+    c.temporalError = contains(metrics, "temporal");
+    const std::vector<std::string> keep = e.choiceArray("keep", kKeepNames, kKeepNames);
+    c.keepDebugImages = contains(keep, "debug_images");
+    c.keepErrorMaps = contains(keep, "error_maps") && c.metrics.any();
+    // Asked for explicitly, error maps without a metric that has one are a mistake; by default
+    // they are simply not written.
+    if (e.has("keep") && contains(keep, "error_maps") && !c.metrics.any())
+        e.fail("keep", "error_maps needs ssim, flip, rmse or psnr in metrics (each map is one of theirs)");
+}
+
 std::string safeName(const std::string& s) {
     std::string out;
     for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.') ? c : '_';
@@ -82,7 +103,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
         c.description = e->string("description", "");
         c.warmupFrames = e->integer("warmup_frames", c.warmupFrames, 0, 1000);
         c.repeats = e->integer("repeats", c.repeats, 1, 1000);
-        c.keepErrorMaps = e->boolean("error_maps", c.keepErrorMaps);
+        readMetricsAndKeep(*e, c);
         e->rejectUnknownKeys();
     }
     if (auto r = root.table("reference")) {
@@ -196,6 +217,14 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
     }
     root.rejectUnknownKeys();
     return c;
+}
+
+std::vector<std::string> metricNames(const ExperimentConfig& config) {
+    const MetricSelection& m = config.metrics;
+    std::vector<std::string> names;
+    for (const auto& [name, chosen] : {std::pair{"ssim", m.ssim}, {"flip", m.flip}, {"rmse", m.rmse}, {"psnr", m.psnr}, {"temporal", config.temporalError}})
+        if (chosen) names.push_back(name);
+    return names;
 }
 
 std::vector<RunSpec> planRuns(const ExperimentConfig& config) {

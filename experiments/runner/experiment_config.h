@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "metrics/metrics.h"
 #include "techniques/parameters.h"
 
 namespace hybridlab {
@@ -41,13 +42,19 @@ struct ExperimentConfig {
     std::string hash;          // of the config file's bytes
     int warmupFrames = 1;
     int repeats = 3;
-    bool keepErrorMaps = true;
+    MetricSelection metrics;       // `metrics`: what each image is scored with
+    bool temporalError = true;     // `metrics` holds "temporal": the error between path frames
+    bool keepErrorMaps = true;     // `keep` holds "error_maps" (and a metric has a map)
+    bool keepDebugImages = true;   // `keep` holds "debug_images"
     ParameterList referenceParameters;  // for the `whitted` reference
     std::vector<SceneSpec> scenes;
     std::vector<TechniqueSpec> techniques;
 };
 
 ExperimentConfig loadExperimentConfig(const std::filesystem::path& file);
+
+// The `metrics` names of a config, in the order `metrics = [...]` accepts them.
+std::vector<std::string> metricNames(const ExperimentConfig& config);
 
 // One render of one technique with one parameter set at one frame.
 struct RunSpec {

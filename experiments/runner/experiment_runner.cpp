@@ -68,6 +68,7 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, int s
             {"config_hash", config.hash},
             {"runs_total", runsTotal},
             {"shard", {{"index", shardIndex}, {"count", shardCount}}},
+            {"metrics", metricNames(config)},
             {"program", programVersionHash()}};
 }
 
@@ -195,7 +196,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         }
 
         const PixelMask mask = PixelMask::fromImage(ref->mask);
-        const MetricReport report = computeMetrics(result.image, ref->image, {}, mask.count() > 0 ? &mask : nullptr);
+        MetricOptions scoring;
+        scoring.selection = config.metrics;
+        const MetricReport report = computeMetrics(result.image, ref->image, scoring, mask.count() > 0 ? &mask : nullptr);
         const std::string image = "images/" + run->id;
         writeImageAtomically(o.outDir / (image + ".exr"), result.image);
         writeImageAtomically(o.outDir / (image + ".png"), result.image);
@@ -211,6 +214,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["index"] = run->index;
         record["id"] = run->id;
         record["scene"] = sceneSpec.name;
+        const SceneStats stats = scene.stats();  // for tables that list scene sizes (Sabino 2012 Table 3)
+        record["scene_stats"] = {{"objects", stats.objects}, {"vertices", stats.vertices}, {"triangles", stats.triangles},
+                                 {"lights", stats.lights}, {"reflective", stats.reflectiveObjects}, {"refractive", stats.refractiveObjects}};
         record["view"] = run->cameraPath.empty() ? "camera" : run->cameraPath;
         record["frame"] = run->frame;
         record["time"] = view.time;
@@ -230,10 +236,12 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["reference"] = {{"key", key}, {"exr", "references/" + key + ".exr"}, {"png", "references/" + key + ".png"},
                                {"frame_ms", ref->frameMilliseconds}, {"cache_hit", ref->cacheHit}};
         record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
-        for (const auto& [name, dbg] : result.debugImages) {
-            const std::string p = image + "." + name + ".png";
-            writeImageAtomically(o.outDir / p, dbg);
-            record["images"]["debug"][name] = p;
+        if (config.keepDebugImages) {
+            for (const auto& [name, dbg] : result.debugImages) {
+                const std::string p = image + "." + name + ".png";
+                writeImageAtomically(o.outDir / p, dbg);
+                record["images"]["debug"][name] = p;
+            }
         }
         store.writeRecord(record);
         store.writeResults(store.loadRecords());
@@ -246,7 +254,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     summary.complete = true;
     for (const RunSpec* run : mine) summary.complete &= store.hasRecord(run->id);
     // Temporal errors need neighbouring frames, which another shard may hold: `merge` adds them.
-    if (summary.complete && o.shardCount == 1) {
+    if (summary.complete && o.shardCount == 1 && config.temporalError) {
         addTemporalErrors(records, o.outDir);
         store.writeResults(records);
     }
@@ -294,7 +302,9 @@ void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir)
         throw InputError("merge: the shards hold " + std::to_string(records.size()) + " of " + std::to_string(first.at("runs_total").get<std::size_t>()) +
                          " runs (finish them with `hybridlab run --resume --shard i/n` first)");
     }
-    addTemporalErrors(records, outDir);
+    // Without "temporal" in the config's metrics (older result sets list none: they all had it).
+    const json metrics = first.value("metrics", json::array({"temporal"}));
+    if (std::find(metrics.begin(), metrics.end(), "temporal") != metrics.end()) addTemporalErrors(records, outDir);
     out.writeResults(records);
     writeFileAtomically(outDir / "experiment.json", meta.dump(1) + "\n");
 }

@@ -39,7 +39,7 @@ const CONFIG = `
 name = "viewer-test"
 warmup_frames = 0
 repeats = 1
-error_maps = true
+keep = ["error_maps", "debug_images"]
 
 [reference]
 params = { max_depth = 4 }

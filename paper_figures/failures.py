@@ -1,0 +1,213 @@
+"""The report's "where methods fail" section (issue 12): along every camera path, how each
+technique's quality and frame time behave frame by frame, and where they break.
+
+Per scene, path and resolution one figure, a row per technique and a series per setting: frame
+time, SSIM and FLIP per frame with each setting's worst frame marked and its median drawn, and the
+temporal error. A summary table per (scene, technique, setting): the worst-frame SSIM (and its
+frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst FLIP, the
+mean and worst temporal error and the frame-time spike (the largest frame time over the median),
+beside the same setting's median SSIM and frame time along the baseline scene's path
+(sponza-spheres: issue 12's "clearly worse than the same method's median on sponza-spheres").
+Reads only the records of results.json."""
+import collections
+import html
+import os
+import statistics
+
+import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import matplotlib.pyplot as plt
+import results as rs
+import viewer
+from figure_files import point_links, save
+
+BASELINE_SCENE = "sponza-spheres"
+
+
+def series_key(r):
+    """One sequence along a path: scene, resolution, path and the technique setting."""
+    return (r["scene"], rs.resolution(r), r["view"], r["technique"], rs.variant(r))
+
+
+def sequences(records):
+    """Every sequence of two or more frames along a camera path, its records in frame order."""
+    seqs = collections.defaultdict(list)
+    for r in records:
+        if r["frame"] >= 0:
+            seqs[series_key(r)].append(r)
+    return {k: sorted(v, key=lambda r: r["frame"]) for k, v in seqs.items() if len(v) >= 2}
+
+
+def worst(rows, value, higher_is_better=True):
+    """(value, record) of the worst frame; None when no record has the value."""
+    scored = [(value(r), r) for r in rows if value(r) is not None]
+    if not scored:
+        return None
+    return (min if higher_is_better else max)(scored, key=lambda vr: vr[0])
+
+
+def median_of(rows, value):
+    vals = [value(r) for r in rows if value(r) is not None]
+    return statistics.median(vals) if vals else None
+
+
+def frame_ms(r):
+    return r["frame_ms"]["median"]
+
+
+def ssim(r):
+    return rs.metric(r, "whole", "ssim")
+
+
+def masked_ssim(r):
+    return rs.metric(r, "masked", "ssim")
+
+
+def flip(r):
+    return rs.metric(r, "whole", "flip")
+
+
+def temporal(r):
+    return r.get("temporal_error")
+
+
+def sequence_summary(rows):
+    """The summary numbers of one sequence (see the module's docstring)."""
+    t_median = median_of(rows, frame_ms)
+    t_max = max(frame_ms(r) for r in rows)
+    temporals = [temporal(r) for r in rows if temporal(r) is not None]
+    return {
+        "frames": len(rows),
+        "worst_ssim": worst(rows, ssim),
+        "median_ssim": median_of(rows, ssim),
+        "worst_masked_ssim": worst(rows, masked_ssim),
+        "worst_flip": worst(rows, flip, higher_is_better=False),
+        "temporal_mean": statistics.mean(temporals) if temporals else None,
+        "temporal_worst": max(temporals) if temporals else None,
+        "median_ms": t_median,
+        "spike": t_max / t_median if t_median else None,
+    }
+
+
+def baseline_summaries(seqs, baseline_scene):
+    """The baseline scene's sequences by (resolution, technique setting)."""
+    return {(k[1], k[4]): sequence_summary(rows) for k, rows in seqs.items() if k[0] == baseline_scene}
+
+
+def summary_rows(records, baseline_scene=BASELINE_SCENE):
+    """One row per sequence outside the baseline scene: (key, its summary, the baseline's or None)."""
+    seqs = sequences(records)
+    base = baseline_summaries(seqs, baseline_scene)
+    return [(k, sequence_summary(rows), base.get((k[1], k[4]))) for k, rows in sorted(seqs.items()) if k[0] != baseline_scene]
+
+
+def along_path_by_technique(seqs, out_dir, name, title, baseline):
+    """Rows: techniques; columns: frame time, SSIM, FLIP, temporal error per frame. Each setting's
+    worst frame is marked (the largest frame time, the lowest SSIM, the highest FLIP) and its median
+    drawn dotted; the same setting's median SSIM on the baseline scene is drawn dashed."""
+    techniques = sorted({k[3] for k in seqs})
+    fig, axes = plt.subplots(len(techniques), 4, figsize=(17, 2.9 * len(techniques)), squeeze=False)
+    cmap = plt.get_cmap("tab10")
+    panels = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP mean", False),
+              (temporal, "temporal error", False))
+    for row, technique in zip(axes, techniques):
+        variants = sorted(k for k in seqs if k[3] == technique)
+        for i, k in enumerate(variants):
+            rows, colour = seqs[k], cmap(i % cmap.N)
+            for ax, (value, _, higher_is_better) in zip(row, panels):
+                pts = [r for r in rows if value(r) is not None]
+                if not pts:
+                    continue
+                frames, ys = [r["frame"] for r in pts], [value(r) for r in pts]
+                ax.plot(frames, ys, lw=1.2, color=colour, label=k[4] if value is frame_ms else None)
+                ax.scatter(frames, ys, s=9, color=colour).set_urls(point_links(pts))
+                ax.axhline(statistics.median(ys), color=colour, ls=":", lw=0.8)
+                if value is not temporal:
+                    y, r = worst(pts, value, higher_is_better)
+                    ax.scatter([r["frame"]], [y], s=70, marker="v" if higher_is_better else "^", facecolors="none",
+                               edgecolors="red", linewidths=1.3, zorder=5)
+            base = baseline.get((k[1], k[4]))
+            if base and base["median_ssim"] is not None:
+                row[1].axhline(base["median_ssim"], color=colour, ls="--", lw=0.8)
+        for ax, (_, label, _) in zip(row, panels):
+            ax.set_xlabel("frame")
+            ax.set_ylabel(label, fontsize=8)
+            ax.grid(alpha=0.3)
+        row[0].set_title(technique, loc="left", fontsize=9, fontweight="bold")
+        row[0].legend(fontsize=6)
+    fig.suptitle(title + "\nred: each setting's worst frame; dotted: its median along the path; dashed (SSIM): its median on the baseline scene",
+                 fontsize=10)
+    fig.tight_layout()
+    return save(fig, out_dir, name)
+
+
+def fmt(v, spec):
+    return "-" if v is None else spec % v
+
+
+def worst_cell(w, spec):
+    return "-" if w is None else (spec + " (%d)") % (w[0], w[1]["frame"])
+
+
+HEADER = ["scene", "path", "size", "technique", "setting", "frames", "worst-frame SSIM (frame)", "median SSIM",
+          "worst SSIM refl./refr. (frame)", "worst FLIP (frame)", "temporal error mean / worst", "frame ms median",
+          "frame-time spike (max / median)", "baseline median SSIM", "baseline frame ms median", "baseline spike"]
+
+
+def row_cells(key, s, b):
+    """The summary row's cells as text (Markdown and HTML share them); the worst SSIM cell is
+    returned separately with its run so that it can link to the viewer."""
+    scene, res, path, technique, variant = key
+    cells = [scene, path, res, technique, variant, str(s["frames"]), worst_cell(s["worst_ssim"], "%.4f"), fmt(s["median_ssim"], "%.4f"),
+             worst_cell(s["worst_masked_ssim"], "%.4f"), worst_cell(s["worst_flip"], "%.4f"),
+             "%s / %s" % (fmt(s["temporal_mean"], "%.5f"), fmt(s["temporal_worst"], "%.5f")), fmt(s["median_ms"], "%.1f"),
+             fmt(s["spike"], "%.2f")]
+    cells += [fmt(b["median_ssim"], "%.4f"), fmt(b["median_ms"], "%.1f"), fmt(b["spike"], "%.2f")] if b else ["-", "-", "-"]
+    return cells
+
+
+def markdown_table(rows, link):
+    """`link(run_id)`: the viewer on a run, from report.md."""
+    lines = ["| " + " | ".join(HEADER) + " |", "|" + "---|" * len(HEADER)]
+    for key, s, b in rows:
+        cells = row_cells(key, s, b)
+        if s["worst_ssim"]:
+            cells[6] = "[%s](%s)" % (cells[6], link(s["worst_ssim"][1]["id"]))
+        lines.append("| " + " | ".join(c.replace("|", "/") for c in cells) + " |")
+    return lines
+
+
+def html_table(rows, link):
+    out = ['<table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in HEADER) + "</tr></thead><tbody>"]
+    for key, s, b in rows:
+        cells = [html.escape(c) for c in row_cells(key, s, b)]
+        if s["worst_ssim"]:
+            cells[6] = '<a href="%s" title="the worst frame in the viewer">%s</a>' % (html.escape(link(s["worst_ssim"][1]["id"])), cells[6])
+        out.append("<tr>" + "".join("<td>%s</td>" % c for c in cells) + "</tr>")
+    return "\n".join(out) + "\n</tbody></table>"
+
+
+def write_section(records, out_dir, baseline_scene=BASELINE_SCENE):
+    """Writes the figures; returns the section as (HTML, Markdown lines), or None when no path has
+    two frames."""
+    seqs = sequences(records)
+    if not seqs:
+        return None
+    baseline = baseline_summaries(seqs, baseline_scene)
+    figures = []
+    by_path = collections.defaultdict(dict)
+    for k, rows in seqs.items():
+        by_path[k[:3]][k] = rows
+    for (scene, res, path), group in sorted(by_path.items()):
+        name = "failures-%s-%s-%s" % (os.path.basename(scene).replace(".toml", ""), res, path)
+        title = "%s at %s along %s: per technique and frame" % (scene, res, path)
+        figures.append(((scene, res, path), along_path_by_technique(group, out_dir, name, title, baseline)))
+    rows = summary_rows(records, baseline_scene)
+    intro = ("Along every camera path, each technique setting's worst frame against its median: the worst-frame SSIM, the "
+             "frame-time spike (largest frame time over the median) and the temporal error, beside the same setting's median SSIM "
+             "and frame time along %s's path (the baseline). The worst-frame SSIM opens that frame in the viewer." % baseline_scene)
+    page = ["<h2 id=\"failures\">Where methods fail</h2>", "<p>%s</p>" % html.escape(intro), html_table(rows, viewer.link)]
+    md = ["", "## Where methods fail", "", intro, ""] + markdown_table(rows, viewer.link)
+    for (scene, res, path), svg in figures:
+        page += ["<h3>%s at %s along %s</h3>" % (html.escape(scene), res, html.escape(path)), figure_files.embed_html(svg, out_dir)]
+        md += ["", "### %s at %s along %s" % (scene, res, path), "", "![](%s)" % os.path.relpath(svg, out_dir)]
+    return "\n".join(page), md

@@ -1,0 +1,40 @@
+"""Figures of the report as files (SVG and PDF in figures/) and as they appear in its pages: the
+SVG's points link to the viewer, the page embeds the SVG as an <object> so that those links work."""
+import html
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import viewer  # noqa: E402
+
+
+def save(fig, out_dir, name):
+    """figures/NAME.svg and .pdf; returns the SVG's path."""
+    paths = []
+    for ext in ("svg", "pdf"):
+        p = os.path.join(out_dir, "figures", name + "." + ext)
+        fig.savefig(p, bbox_inches="tight")
+        paths.append(p)
+    plt.close(fig)
+    # The points' links (set_urls) open the viewer in the whole window, not inside the <object>
+    # that shows the figure in index.html.
+    with open(paths[0]) as f:
+        svg = f.read()
+    with open(paths[0], "w") as f:
+        f.write(svg.replace("<a xlink:href=", '<a target="_top" xlink:href='))
+    return paths[0]
+
+
+def point_links(records):
+    """The viewer on each run, from a figure in figures/."""
+    return [viewer.link(r["id"], "figures") for r in records]
+
+
+def embed_html(svg, out_dir):
+    """The figure in index.html: an <object>, not an <img>, so that its points link to the viewer."""
+    r = os.path.relpath(svg, out_dir)
+    return ('<p><object data="%s" type="image/svg+xml" style="max-width:100%%"></object><br><a href="%s">svg</a> <a href="%s">pdf</a></p>'
+            % (html.escape(r), html.escape(r), html.escape(r[:-4] + ".pdf")))

@@ -1,0 +1,62 @@
+"""Sabino et al. 2012 Table 3 from a result set of experiments/configs/sabino2012.toml.
+
+    /usr/bin/python3 paper_figures/sabino_table3.py RESULT_DIR [--out FILE.md]
+
+Table 3 ("Performance comparison between our hybrid render and a pure ray tracer implementation",
+ms) per scene: vertices, triangles, DR (the hybrid's deferred-rendering time: its rasterization
+stage), RT (the ray-tracing-only frame), Hybrid (the hybrid's frame) and the gain RT / Hybrid. Here
+the hybrid is the entry labelled `hybrid` (heuristic_rt), the ray tracer the one labelled `rt`
+(rt_only); times are the medians over a run's repeats, and each one's SSIM against the reference
+is given beside them (the paper reports none). A scene with several frames (a camera path) gets
+the mean over its frames."""
+import argparse
+import statistics
+import sys
+
+import results
+
+HYBRID, RAY_TRACER = "hybrid", "rt"
+RASTER_STAGE = "rast"
+
+
+def scene_rows(rows, scene, label):
+    return [r for r in rows if r["scene"] == scene and r["label"] == label]
+
+
+def mean(rows, value):
+    return statistics.mean(value(r) for r in rows)
+
+
+def table3(rows):
+    scenes = sorted({r["scene"] for r in rows})
+    out = ["**Sabino 2012 Table 3** (ms, medians over repeats; %s)" % ", ".join(sorted({results.resolution(r) for r in rows})), "",
+           "| Scene | Vertices | Triangles | DR | RT | Hybrid | Gain | SSIM hybrid / RT |", "|---|---|---|---|---|---|---|---|"]
+    for scene in scenes:
+        hybrid, rt = scene_rows(rows, scene, HYBRID), scene_rows(rows, scene, RAY_TRACER)
+        if not hybrid or not rt:
+            sys.exit("sabino_table3: %s needs runs labelled '%s' and '%s'" % (scene, HYBRID, RAY_TRACER))
+        if RASTER_STAGE not in hybrid[0]["stages"]:
+            sys.exit("sabino_table3: the '%s' runs have no '%s' stage (is it heuristic_rt?)" % (HYBRID, RASTER_STAGE))
+        stats = hybrid[0]["scene_stats"]
+        dr = mean(hybrid, lambda r: r["stages"][RASTER_STAGE]["median"])
+        t_rt = mean(rt, lambda r: r["frame_ms"]["median"])
+        t_hybrid = mean(hybrid, lambda r: r["frame_ms"]["median"])
+        out.append("| %s | %d | %d | %.1f | %.1f | %.1f | %.2f | %.4f / %.4f |" % (
+            scene, stats["vertices"], stats["triangles"], dr, t_rt, t_hybrid, t_rt / t_hybrid,
+            mean(hybrid, lambda r: results.metric(r, "whole", "ssim")), mean(rt, lambda r: results.metric(r, "whole", "ssim"))))
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--out", help="write the table (Markdown) here as well as to standard output")
+    a = ap.parse_args()
+    rows = results.load(a.result_dir)
+    if not rows:
+        sys.exit("sabino_table3: %s has no runs" % a.result_dir)
+    results.write_table(table3(rows), a.out)
+
+
+if __name__ == "__main__":
+    main()

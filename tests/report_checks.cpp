@@ -1,0 +1,51 @@
+#include "report_checks.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+namespace hybridlab::test {
+
+namespace fs = std::filesystem;
+
+std::string formatNumber(const char* spec, double v) {
+    char text[64];
+    std::snprintf(text, sizeof text, spec, v);
+    return text;
+}
+
+std::string readReportPage(const fs::path& reportDir) {
+    std::ifstream in(reportDir / "index.html");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::size_t expectReportLinksResolve(const fs::path& reportDir) {
+    const std::string page = readReportPage(reportDir);
+    std::size_t links = 0;
+    for (const std::string attr : {"href=\"", "src=\""}) {
+        for (std::size_t at = page.find(attr); at != std::string::npos; at = page.find(attr, at + 1)) {
+            const std::size_t start = at + attr.size(), end = page.find('"', start);
+            const std::string link = page.substr(start, end - start), target = link.substr(0, link.find('#'));
+            // A link within the page ("#failures") names no file.
+            if (!target.empty()) {
+                EXPECT_TRUE(fs::exists(reportDir / target)) << link;
+            }
+            ++links;
+        }
+    }
+    return links;
+}
+
+std::size_t expectFiguresHaveContent(const fs::path& reportDir, const std::string& prefix) {
+    std::size_t figures = 0;
+    for (const auto& f : fs::directory_iterator(reportDir / "figures")) {
+        if (f.path().filename().string().rfind(prefix, 0) != 0) continue;
+        ++figures;
+        EXPECT_GT(fs::file_size(f.path()), 2000u) << f.path();
+    }
+    return figures;
+}
+
+}  // namespace hybridlab::test
