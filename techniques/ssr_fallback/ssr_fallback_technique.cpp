@@ -6,6 +6,7 @@
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
+#include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -141,8 +142,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
     result.stages.push_back({"ssr", ssrMs});
 
-    const RayScene& rays = context.rayScene(frame.time);
-    clock.lap("bvh_update");
+    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
     const GBuffer& g = raster_.gbuffer;

@@ -2,6 +2,7 @@
 
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
+#include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -45,8 +46,7 @@ void WhittedTechnique::prepare(SceneContext& context) { context.rayScene(0.0); }
 FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& frame) {
     FrameResult result;
     StageClock clock(result);
-    const RayScene& rays = context.rayScene(frame.time);
-    clock.lap("bvh_update");
+    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     const WhittedTracer tracer(rays, settings_);
     result.image = Image(frame.width, frame.height);
