@@ -135,7 +135,6 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
 }
 
 bool GpuScene::setTime(double time) {
-    if (timeSet_ && time == time_) return false;
     bool moved = !timeSet_;
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
         if (timeSet_ && !scene_.objects[o].isDynamic()) continue;
@@ -149,7 +148,6 @@ bool GpuScene::setTime(double time) {
         moved = true;
     }
     timeSet_ = true;
-    time_ = time;
     return moved;
 }
 

@@ -44,7 +44,9 @@ public:
     const VulkanDevice& device() const { return *device_; }
 
     // Moves animated objects to `time` and rewrites deforming objects' vertices (deformMesh, the
-    // function the ray tracer uses too); true when anything moved (first call included).
+    // function the ray tracer uses too); true when anything moved (first call included). Dynamic
+    // objects are rewritten at an unchanged time too, as RayScene::setTime re-commits them: a
+    // repeated frame of an animation costs what a new one does.
     bool setTime(double time);
 
     // Set 0 of the geometry passes: the draw's object and material (binding 0, a dynamic uniform
@@ -95,7 +97,6 @@ private:
     std::vector<std::int32_t> meshVertexOffset_;  // per mesh: its first vertex in vertices_
     DeformedVertices deformed_;                   // scratch of writeDeformedVertices
     bool timeSet_ = false;
-    double time_ = 0.0;
 };
 
 }  // namespace hybridlab

@@ -182,7 +182,6 @@ RayScene::~RayScene() {
 }
 
 void RayScene::setTime(double time) {
-    if (time == time_) return;
     auto start = std::chrono::steady_clock::now();
     time_ = time;
     bool changed = false;

@@ -58,7 +58,9 @@ public:
     const Scene& scene() const { return scene_; }
 
     // Moves animated objects to `time`, deforms and refits deforming ones (deformMesh, the function
-    // the rasterizer uses too), and re-commits the top level (a no-op for static scenes).
+    // the rasterizer uses too), and re-commits the top level (a no-op for static scenes). Also at
+    // an unchanged time: every frame of an animation pays its update, and so do the repeats that
+    // time one frame.
     void setTime(double time);
     double time() const { return time_; }
 
