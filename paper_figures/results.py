@@ -3,6 +3,7 @@
 Every script in paper_figures/ reads only results.json / results.csv, never the renderer."""
 import json
 import os
+import sys
 
 
 def load(result_dir):
@@ -33,6 +34,15 @@ def metric(r, region, name):
     if name == "psnr":
         return m.get("psnr_db")
     return m.get(name)
+
+
+def emit(lines, out=None):
+    """A table script's Markdown: to standard output, and to the file `out` as well when given."""
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if out:
+        with open(out, "w") as f:
+            f.write(text)
 
 
 def pareto_front(points, higher_is_better):

@@ -135,12 +135,7 @@ def main():
     scenes = sorted({r["scene"] for r in rows})
     if not scenes:
         sys.exit("walewski_tables: %s has no runs" % a.result_dir)
-    lines = target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes)
-    text = "\n".join(lines) + "\n"
-    sys.stdout.write(text)
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write(text)
+    results.emit(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out)
 
 
 if __name__ == "__main__":
