@@ -175,7 +175,7 @@ TEST(CliBadInput, UnknownSceneNameOrFile) {
     TempDir dir;
     const std::string missing = (dir / "nowhere.toml").string();
     auto r = runHybridlabAll({{{"scene-info", "no-such-scene"}, {}}, {{"scene-info", missing}, {}}});
-    expectBadInput(r[0], {"unknown scene 'no-such-scene' (built-in scenes: cornell-mirror-glass, ", " whitted-classic",
+    expectBadInput(r[0], {"unknown scene 'no-such-scene' (built-in scenes: bunnies-falling-10, ", " cornell-mirror-glass, ", " whitted-classic",
                           "; or give a path to a .toml file)"});
     expectBadInput(r[1], {missing + ": scene file not found"});
 }

@@ -1,11 +1,13 @@
-// The paper scenes (scenes/sponza-*.toml, teapot-lens.toml) with their assets: exact triangle
-// counts of the models and Walewski 2019 Table 4's reflective and refractive object counts.
+// The paper scenes (scenes/sponza-*.toml, teapot-lens.toml, de Macedo & Rodrigues' dynamic
+// bunnies-falling-N and teapots-deforming-N) with their assets: exact triangle counts of the
+// models and Walewski 2019 Table 4's reflective and refractive object counts.
 // They need HYBRIDLAB_ASSETS and are skipped without it (CI sets it).
 //
 // Sponza: sponza.gltf holds 66,450 triangles, 6 of which have zero area (three distinct vertices
 // on one line: 1 in mesh 'relief', 4 in 'object3', 1 in 'doors'). The loader drops them with a
 // warning, so the sponza object has 66,444 triangles and droppedDegenerateTriangles is 6.
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -20,6 +22,7 @@ constexpr std::size_t kSponzaDegenerateTriangles = 6;
 constexpr std::size_t kSponzaTriangles = kSponzaTrianglesInFile - kSponzaDegenerateTriangles;  // 66,444
 constexpr std::size_t kTeapotTriangles = 15704;
 constexpr std::size_t kArmadilloTriangles = 345944;
+constexpr std::size_t kBunnyTriangles = 69451;
 
 constexpr std::size_t sphereTriangles(std::size_t slices, std::size_t stacks) { return 2 * slices * (stacks - 1); }
 
@@ -128,6 +131,33 @@ TEST(PaperScenes, TeapotLensCounts) {
     }
     // The teapot wears the scene's glass instead of its own material.
     EXPECT_EQ(s.materials[s.meshes[s.objects[teapot].meshes[0]].material].name, "glass");
+}
+
+// de Macedo & Rodrigues Tables I-II: N rigidly moving bunnies / N deforming teapots (N = 5 to 30 in
+// steps of 5, one file per N differing only in the copy count) around a static mirror sphere on a
+// static floor, with the orbit path the tables are measured along.
+TEST(PaperScenes, DynamicScenesCounts) {
+    REQUIRE_ASSETS();
+    for (int n = 5; n <= 30; n += 5) {
+        for (const auto& [family, model, triangles] : {std::tuple{"bunnies-falling-", "bunny", kBunnyTriangles},
+                                                       std::tuple{"teapots-deforming-", "teapot", kTeapotTriangles}}) {
+            const std::string name = family + std::to_string(n);
+            SCOPED_TRACE(name);
+            const Scene s = loadSceneFile(test::builtinSceneFile(name), {.loadTextures = false});
+            EXPECT_EQ(s.name, name);
+            ASSERT_EQ(s.objects.size(), static_cast<std::size_t>(n) + 2);
+            EXPECT_EQ(s.stats().triangles, n * triangles + 2 + sphereTriangles(96, 48));
+            EXPECT_EQ(s.stats().reflectiveObjects, 1u);
+            for (int k = 0; k < n; ++k) {
+                const SceneObject& o = s.objects[objectIndex(s, std::string(model) + "-" + std::to_string(k))];
+                EXPECT_EQ(o.isAnimated(), std::string(model) == "bunny");
+                EXPECT_EQ(o.isDeforming(), std::string(model) == "teapot");
+            }
+            EXPECT_FALSE(s.objects[objectIndex(s, "sphere")].isDynamic());
+            ASSERT_NE(s.findCameraPath("orbit"), nullptr);
+            EXPECT_EQ(s.findCameraPath("orbit")->frameCount(), 121);
+        }
+    }
 }
 
 TEST(PaperScenes, SponzaArmadilloCounts) {

@@ -8,11 +8,13 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "common/core/input_error.h"
 #include "common/image/color.h"
 #include "common/image/image_io.h"
+#include "common/scene/deformation.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/transform.h"
@@ -456,6 +458,51 @@ TEST(SceneFile, LensObjectsAndLensGroups) {
     EXPECT_CONTAINS(loadError(dir / "empty.toml"), "empty.toml:12:14: objects[0].lens_group: expected a non-empty group name");
     writeTextFile(dir / "type.toml", head + "[[objects]]\nname = \"pot\"\nprimitive = \"sphere\"\nmaterial = \"glass\"\nlens = true\nlens_group = 3\n");
     EXPECT_CONTAINS(loadError(dir / "type.toml"), "type.toml:12:14: objects[0].lens_group: expected a string");
+}
+
+}  // namespace
+}  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+// [objects.copies]: copy k is copy 0 turned about the vertical axis through the centre by k steps,
+// k * time_step seconds late in both its rigid animation and its deformation; each owns its meshes.
+TEST(SceneFile, CopiesInARing) {
+    TempDir dir;
+    const std::string head =
+        "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n"
+        "[camera]\nposition = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+    writeTextFile(dir / "ring.toml", head +
+        "[[objects]]\nname = \"box\"\nprimitive = \"sphere\"\nmaterial = \"grey\"\n"
+        "[objects.animation]\nkeys = [ { time = 0.0, position = [3.0, 0.0, 0.0] }, { time = 2.0, position = [3.0, 2.0, 1.0], rotation = [0.0, 40.0, 0.0] } ]\n"
+        "[objects.deform]\namplitude = 0.05\nwavelength = 0.3\nspeed = 0.7\n"
+        "[objects.copies]\ncount = 3\ncenter = [1.0, 0.0, 0.0]\nangle_step = 90.0\ntime_step = 0.5\n");
+    const Scene s = loadSceneFile(dir / "ring.toml", {.loadTextures = false});
+    ASSERT_EQ(s.objects.size(), 3u);
+    const double t = 0.6;
+    DeformedVertices first, late;
+    deformMesh(s.objects[0].deformation, s.meshes[s.objects[0].meshes[0]], t, first);
+    for (std::size_t k = 0; k < 3; ++k) {
+        SCOPED_TRACE(k);
+        const SceneObject& o = s.objects[k];
+        EXPECT_EQ(o.name, "box-" + std::to_string(k));
+        EXPECT_EQ(o.meshes, std::vector<std::uint32_t>{static_cast<std::uint32_t>(k)});
+        const glm::mat4 turn = glm::translate(glm::mat4(1.0f), glm::vec3(1, 0, 0)) *
+                               glm::mat4_cast(eulerDegreesToQuat(glm::vec3(0.0f, 90.0f * static_cast<float>(k), 0.0f))) *
+                               glm::translate(glm::mat4(1.0f), glm::vec3(-1, 0, 0));
+        const glm::vec4 p(0.2f, 0.1f, -0.3f, 1.0f);
+        EXPECT_VEC_NEAR(glm::vec3(o.worldMatrix(t + 0.5 * static_cast<double>(k)) * p), glm::vec3(turn * s.objects[0].worldMatrix(t) * p), 1e-5f);
+        deformMesh(o.deformation, s.meshes[o.meshes[0]], t + 0.5 * static_cast<double>(k), late);
+        for (std::size_t v = 0; v < late.positions.size(); v += 97) EXPECT_VEC_NEAR(late.positions[v], first.positions[v], 1e-4f);
+    }
+    // Copy 1 starts when copy 0 does plus the time step.
+    EXPECT_DOUBLE_EQ(s.objects[1].animation.times[0], 0.5);
+
+    writeTextFile(dir / "clash.toml", head +
+        "[[objects]]\nname = \"box-1\"\nprimitive = \"cube\"\nmaterial = \"grey\"\n"
+        "[[objects]]\nname = \"box\"\nprimitive = \"cube\"\nmaterial = \"grey\"\n[objects.copies]\ncount = 2\n");
+    EXPECT_CONTAINS(loadError(dir / "clash.toml"), "clash.toml:15:9: objects[1].copies.count: copy name 'box-1' is already an object's name");
 }
 
 }  // namespace

@@ -132,5 +132,32 @@ TEST(SsrFallback, OnAMirrorFloorTheHybridIsCloseToTheReferenceAndSsrCarriesMostP
     EXPECT_GE(hybrid.counters.at("ssr_hits") + hybrid.counters.at("fallback_rays"), hybrid.counters.at("reflective_pixels"));
 }
 
+// glass = "ssr": refractive texels take their Fresnel reflection from SSR as mirrors do and trace
+// only their refraction. With SSR off the fallback traces that reflection: the image is exactly
+// glass = "rt"'s. With SSR on, SSR resolves some glass texels (fewer reflection rays, more SSR hits)
+// and the image stays close to the reference.
+TEST(SsrFallback, GlassTakesItsReflectionFromSsr) {
+    const Scene scene = loadSceneFile(findSceneFile("whitted-classic"));
+    RASTERIZER_OR_SKIP(probe, scene);
+    constexpr int kWidth = 320, kHeight = 180;
+    const Params glassSsr = {{"glass", std::string("ssr")}};
+    const FrameResult offRt = renderFrame(scene, "ssr_fallback", {{"ssr", false}}, kWidth, kHeight);
+    const FrameResult offSsr = renderFrame(scene, "ssr_fallback", {{"ssr", false}, {"glass", std::string("ssr")}}, kWidth, kHeight);
+    for (std::size_t i = 0; i < offRt.image.pixelCount(); ++i) ASSERT_EQ(offRt.image.data()[i], offSsr.image.data()[i]) << i;
+
+    const FrameResult whitted = renderFrame(scene, "whitted", {}, kWidth, kHeight);
+    const FrameResult rt = renderFrame(scene, "ssr_fallback", {}, kWidth, kHeight);
+    const FrameResult ssr = renderFrame(scene, "ssr_fallback", glassSsr, kWidth, kHeight);
+    const double ssimRt = computeMetrics(rt.image, whitted.image).whole.ssim;
+    const double ssimSsr = computeMetrics(ssr.image, whitted.image).whole.ssim;
+    std::printf("[ ssr      ] glass reflection by SSR: SSIM %.5f (ray traced: %.5f); reflection rays %g (%g), SSR hits %g (%g)\n", ssimSsr,
+                ssimRt, ssr.counters.at("rays_reflection"), rt.counters.at("rays_reflection"), ssr.counters.at("ssr_hits"),
+                rt.counters.at("ssr_hits"));
+    EXPECT_GT(ssr.counters.at("ssr_hits"), rt.counters.at("ssr_hits"));
+    EXPECT_LT(ssr.counters.at("rays_reflection"), rt.counters.at("rays_reflection"));
+    EXPECT_GT(ssr.counters.at("reflective_pixels"), rt.counters.at("reflective_pixels"));  // the glass texels join the composer
+    EXPECT_GE(ssimSsr, 0.97);
+}
+
 }  // namespace
 }  // namespace hybridlab

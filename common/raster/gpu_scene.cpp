@@ -18,6 +18,15 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 48);
 
+// Vertex v of `m`, with the attributes of `deformed` in place of the rest pose when given.
+Vertex packVertex(const Mesh& m, std::size_t v, const DeformedVertices* deformed) {
+    const std::vector<glm::vec3>& positions = deformed ? deformed->positions : m.positions;
+    const std::vector<glm::vec3>& normals = deformed ? deformed->normals : m.normals;
+    const std::vector<glm::vec4>& tangents = deformed ? deformed->tangents : m.tangents;
+    return {positions[v], normals.empty() ? glm::vec3(0, 1, 0) : normals[v], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v],
+            tangents.empty() ? glm::vec4(0.0f) : tangents[v]};
+}
+
 // std140 twins of shaders/scene_data.glsl.
 struct ObjectData {
     glm::mat4 model;
@@ -56,15 +65,13 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
     : device_(std::move(device)), scene_(scene), textures_(*device_, scene) {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
-    std::vector<std::int32_t> meshVertexOffset(scene.meshes.size()), meshFirstIndex(scene.meshes.size());
+    std::vector<std::int32_t> meshFirstIndex(scene.meshes.size());
+    meshVertexOffset_.resize(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& m = scene.meshes[i];
-        meshVertexOffset[i] = static_cast<std::int32_t>(vertices.size());
+        meshVertexOffset_[i] = static_cast<std::int32_t>(vertices.size());
         meshFirstIndex[i] = static_cast<std::int32_t>(indices.size());
-        for (std::size_t v = 0; v < m.positions.size(); ++v) {
-            vertices.push_back({m.positions[v], m.normals.empty() ? glm::vec3(0, 1, 0) : m.normals[v],
-                                m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v], m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[v]});
-        }
+        for (std::size_t v = 0; v < m.positions.size(); ++v) vertices.push_back(packVertex(m, v, nullptr));
         for (const glm::uvec3& t : m.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
     }
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) {
@@ -78,10 +85,10 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
             d.material = m.material;
             d.firstIndex = static_cast<std::uint32_t>(meshFirstIndex[mesh]);
             d.indexCount = static_cast<std::uint32_t>(3 * m.triangles.size());
-            d.vertexOffset = meshVertexOffset[mesh];
+            d.vertexOffset = meshVertexOffset_[mesh];
             d.flags = (!m.uvs.empty() && !m.tangents.empty()) ? kHasTangentSpace : 0u;
             d.castsShadow = castsShadow(scene.materials[m.material]);
-            d.localBounds = m.bounds();
+            d.localBounds = scene.objects[o].deformation.envelope(m.bounds());
             draws_.push_back(d);
         }
         objectDraws_.push_back({first, draws_.size()});
@@ -89,7 +96,16 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
     worldBounds_.resize(draws_.size());
 
     const VulkanDevice& dev = *device_;
-    vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    bool anyDeforming = false;
+    for (const SceneObject& o : scene.objects) anyDeforming |= o.isDeforming();
+    if (anyDeforming) {
+        // Deforming meshes are rewritten every frame (setTime): host-visible, like the draw records.
+        vertices_ = GpuBuffer(dev, std::max<std::size_t>(1, vertices.size()) * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                              GpuBuffer::Memory::HostVisible);
+        vertices_.write(vertices.data(), vertices.size() * sizeof(Vertex));
+    } else {
+        vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    }
     indices_ = GpuBuffer::withData(dev, indices.data(), indices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     const VkDeviceSize align = std::max<VkDeviceSize>(16, dev.properties().limits.minUniformBufferOffsetAlignment);
     recordStride_ = (sizeof(DrawRecord) + align - 1) / align * align;
@@ -119,10 +135,10 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
 }
 
 bool GpuScene::setTime(double time) {
-    if (timeSet_ && time == time_) return false;
     bool moved = !timeSet_;
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
-        if (timeSet_ && !scene_.objects[o].isAnimated()) continue;
+        if (timeSet_ && !scene_.objects[o].isDynamic()) continue;
+        if (scene_.objects[o].isDeforming()) writeDeformedVertices(o, time);
         const glm::mat4 model = scene_.objects[o].worldMatrix(time);
         const ObjectData data{model, glm::mat4(normalMatrix(model))};
         for (std::size_t d = objectDraws_[o].first; d < objectDraws_[o].second; ++d) {
@@ -132,8 +148,18 @@ bool GpuScene::setTime(double time) {
         moved = true;
     }
     timeSet_ = true;
-    time_ = time;
     return moved;
+}
+
+void GpuScene::writeDeformedVertices(std::size_t object, double time) {
+    std::vector<Vertex> packed;
+    for (std::uint32_t mesh : scene_.objects[object].meshes) {
+        const Mesh& m = scene_.meshes[mesh];
+        deformMesh(scene_.objects[object].deformation, m, time, deformed_);
+        packed.resize(m.positions.size());
+        for (std::size_t v = 0; v < packed.size(); ++v) packed[v] = packVertex(m, v, &deformed_);
+        vertices_.write(packed.data(), packed.size() * sizeof(Vertex), static_cast<VkDeviceSize>(meshVertexOffset_[mesh]) * sizeof(Vertex));
+    }
 }
 
 Aabb GpuScene::bounds() const {

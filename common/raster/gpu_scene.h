@@ -1,7 +1,7 @@
 #pragma once
 // A scene on the GPU, uploaded once: every mesh in one vertex and one index buffer, the materials,
 // the textures (SceneTextures), and the objects' matrices at the current time (re-written when the
-// time changes). The geometry passes (G-buffer, shadow maps, visible pixels) draw through it, one
+// time changes; deforming objects' vertices too). The geometry passes (G-buffer, shadow maps, visible pixels) draw through it, one
 // draw per (object, mesh), culled against the pass's frustum.
 #include <functional>
 #include <memory>
@@ -43,7 +43,10 @@ public:
     const Scene& scene() const { return scene_; }
     const VulkanDevice& device() const { return *device_; }
 
-    // Moves animated objects to `time`; true when anything moved (first call included).
+    // Moves animated objects to `time` and rewrites deforming objects' vertices (deformMesh, the
+    // function the ray tracer uses too); true when anything moved (first call included). Dynamic
+    // objects are rewritten at an unchanged time too, as RayScene::setTime re-commits them: a
+    // repeated frame of an animation costs what a new one does.
     bool setTime(double time);
 
     // Set 0 of the geometry passes: the draw's object and material (binding 0, a dynamic uniform
@@ -78,6 +81,8 @@ public:
     static bool castsShadow(const Material& m);
 
 private:
+    void writeDeformedVertices(std::size_t object, double time);
+
     std::shared_ptr<VulkanDevice> device_;
     const Scene& scene_;
     SceneTextures textures_;
@@ -89,8 +94,9 @@ private:
     std::vector<MeshDraw> draws_;
     std::vector<Aabb> worldBounds_;
     std::vector<std::pair<std::size_t, std::size_t>> objectDraws_;
+    std::vector<std::int32_t> meshVertexOffset_;  // per mesh: its first vertex in vertices_
+    DeformedVertices deformed_;                   // scratch of writeDeformedVertices
     bool timeSet_ = false;
-    double time_ = 0.0;
 };
 
 }  // namespace hybridlab

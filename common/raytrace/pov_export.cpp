@@ -407,7 +407,16 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
     for (const auto& o : scene.objects) {
         const glm::mat4 toWorld = o.worldMatrix(time);
         for (auto meshIndex : o.meshes) {
-            const Mesh& mesh = scene.meshes[meshIndex];
+            Mesh deformedMesh;
+            if (o.isDeforming()) {  // the surface at `time`, as the renderers see it (deformation.h)
+                DeformedVertices d;
+                deformMesh(o.deformation, scene.meshes[meshIndex], time, d);
+                deformedMesh = scene.meshes[meshIndex];
+                deformedMesh.positions = std::move(d.positions);
+                deformedMesh.normals = std::move(d.normals);
+                deformedMesh.tangents = std::move(d.tangents);
+            }
+            const Mesh& mesh = o.isDeforming() ? deformedMesh : scene.meshes[meshIndex];
             if (mesh.triangles.empty()) continue;
             const MaterialPlan& p = plans[mesh.material];
             const std::string id = "HL_Mesh_" + std::to_string(meshCount++);

@@ -48,12 +48,13 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const glm::mat4* toWorld) {
+RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const std::vector<glm::vec3>& positions, const glm::mat4* toWorld,
+                                           bool refit) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          mesh.positions.size()));
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        glm::vec3 p = toWorld ? glm::vec3(*toWorld * glm::vec4(mesh.positions[i], 1.0f)) : mesh.positions[i];
+                                                          positions.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        glm::vec3 p = toWorld ? glm::vec3(*toWorld * glm::vec4(positions[i], 1.0f)) : positions[i];
         v[3 * i] = p.x, v[3 * i + 1] = p.y, v[3 * i + 2] = p.z;
     }
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
@@ -64,8 +65,24 @@ RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const glm::mat4* to
     const Material& m = scene_.materials[mesh.material];
     rtcSetGeometryUserData(g, const_cast<Material*>(&m));
     if (m.isRefractive() || !m.castsShadows) rtcSetGeometryOccludedFilterFunction(g, shadowFilter);
+    if (refit) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
     rtcCommitGeometry(g);
     return g;
+}
+
+void RayScene::deformObject(std::size_t object, double time) {
+    const SceneObject& o = scene_.objects[object];
+    std::uint32_t k = 0;
+    for (std::uint32_t mesh : o.meshes) {
+        DeformedVertices& d = deformed_[mesh];
+        deformMesh(o.deformation, scene_.meshes[mesh], time, d);
+        RTCGeometry g = rtcGetGeometry(objectScenes_[object], k++);
+        if (!g) continue;
+        auto* v = static_cast<float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
+        for (std::size_t i = 0; i < d.positions.size(); ++i) v[3 * i] = d.positions[i].x, v[3 * i + 1] = d.positions[i].y, v[3 * i + 2] = d.positions[i].z;
+        rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+        rtcCommitGeometry(g);
+    }
 }
 
 RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time) {
@@ -83,19 +100,21 @@ RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time)
     for (std::size_t o = 0; o < n; ++o) {
         toWorld_[o] = scene.objects[o].worldMatrix(time);
         normalToWorld_[o] = normalMatrix(toWorld_[o]);
-        anyAnimated |= scene.objects[o].isAnimated();
+        anyAnimated |= scene.objects[o].isDynamic();
+        triangles_ += scene.objectTriangleCount(o);
     }
+    deformed_.resize(scene.meshes.size());
 
     static_ = rtcNewScene(device_);
     worldPositions_.resize(scene.meshes.size());
     worldNormals_.resize(scene.meshes.size());
     for (std::size_t o = 0; o < n; ++o) {
-        if (scene.objects[o].isAnimated()) continue;
+        if (scene.objects[o].isDynamic()) continue;
         for (std::uint32_t mesh : scene.objects[o].meshes) {
             const Mesh& m = scene.meshes[mesh];
             for (const auto& p : m.positions) worldPositions_[mesh].push_back(glm::vec3(toWorld_[o] * glm::vec4(p, 1.0f)));
             for (const auto& nrm : m.normals) worldNormals_[mesh].push_back(normalToWorld_[o] * nrm);
-            RTCGeometry g = makeTriangleGeometry(scene.meshes[mesh], &toWorld_[o]);
+            RTCGeometry g = makeTriangleGeometry(m, m.positions, &toWorld_[o], false);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);
             staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh});
@@ -116,11 +135,23 @@ RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time)
         rtcReleaseGeometry(inst);
         instanceObject_.resize(staticInstance + 1, std::numeric_limits<std::uint32_t>::max());
         for (std::size_t o = 0; o < n; ++o) {
-            if (!scene.objects[o].isAnimated()) continue;
+            const SceneObject& object = scene.objects[o];
+            if (!object.isDynamic()) continue;
             RTCScene s = rtcNewScene(device_);
+            const bool deforming = object.isDeforming();
+            if (deforming) {
+                // A two-level build whose per-geometry BVHs refit when only the vertices change.
+                rtcSetSceneFlags(s, RTC_SCENE_FLAG_DYNAMIC);
+                rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
+                deformingTriangles_ += scene.objectTriangleCount(o);
+            } else {
+                rigidMovingTriangles_ += scene.objectTriangleCount(o);
+            }
             std::uint32_t k = 0;
-            for (std::uint32_t mesh : scene.objects[o].meshes) {
-                RTCGeometry g = makeTriangleGeometry(scene.meshes[mesh], nullptr);
+            for (std::uint32_t mesh : object.meshes) {
+                const Mesh& m = scene.meshes[mesh];
+                if (deforming) deformMesh(object.deformation, m, time, deformed_[mesh]);
+                RTCGeometry g = makeTriangleGeometry(m, deforming ? deformed_[mesh].positions : m.positions, nullptr, deforming);
                 rtcAttachGeometryByID(s, g, k++);
                 rtcReleaseGeometry(g);
             }
@@ -151,12 +182,15 @@ RayScene::~RayScene() {
 }
 
 void RayScene::setTime(double time) {
-    if (time == time_) return;
     auto start = std::chrono::steady_clock::now();
     time_ = time;
     bool changed = false;
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
-        if (!scene_.objects[o].isAnimated()) continue;
+        if (!scene_.objects[o].isDynamic()) continue;
+        if (scene_.objects[o].isDeforming()) {
+            deformObject(o, time);
+            rtcCommitScene(objectScenes_[o]);  // refits the object's BVH
+        }
         toWorld_[o] = scene_.objects[o].worldMatrix(time);
         normalToWorld_[o] = normalMatrix(toWorld_[o]);
         RTCGeometry inst = rtcGetGeometry(top_, instanceGeometry_[o]);
@@ -234,10 +268,15 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
         p0 = wp[tri.x], p1 = wp[tri.y], p2 = wp[tri.z];
         hit.shadingNormal = glm::normalize(w * wn[tri.x] + u * wn[tri.y] + v * wn[tri.z]);
     } else {
-        p0 = glm::vec3(M * glm::vec4(m.positions[tri.x], 1.0f));
-        p1 = glm::vec3(M * glm::vec4(m.positions[tri.y], 1.0f));
-        p2 = glm::vec3(M * glm::vec4(m.positions[tri.z], 1.0f));
-        hit.shadingNormal = glm::normalize(N * (w * m.normals[tri.x] + u * m.normals[tri.y] + v * m.normals[tri.z]));
+        // An instance: the object-space vertices, deformed at time_ for a deforming object.
+        const DeformedVertices& d = deformed_[mesh];
+        const bool deformed = !d.positions.empty();
+        const std::vector<glm::vec3>& positions = deformed ? d.positions : m.positions;
+        const std::vector<glm::vec3>& normals = deformed ? d.normals : m.normals;
+        p0 = glm::vec3(M * glm::vec4(positions[tri.x], 1.0f));
+        p1 = glm::vec3(M * glm::vec4(positions[tri.y], 1.0f));
+        p2 = glm::vec3(M * glm::vec4(positions[tri.z], 1.0f));
+        hit.shadingNormal = glm::normalize(N * (w * normals[tri.x] + u * normals[tri.y] + v * normals[tri.z]));
     }
     hit.position = w * p0 + u * p1 + v * p2;
     hit.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
@@ -251,7 +290,8 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     }
     const Material& mat = *hit.material;
     if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {
-        glm::vec4 t4 = w * m.tangents[tri.x] + u * m.tangents[tri.y] + v * m.tangents[tri.z];
+        const std::vector<glm::vec4>& tangents = deformed_[mesh].tangents.empty() ? m.tangents : deformed_[mesh].tangents;
+        glm::vec4 t4 = w * tangents[tri.x] + u * tangents[tri.y] + v * tangents[tri.z];
         glm::vec3 t = glm::normalize(glm::mat3(M) * glm::vec3(t4));
         t = glm::normalize(t - hit.shadingNormal * glm::dot(hit.shadingNormal, t));
         glm::vec3 b = glm::cross(hit.shadingNormal, t) * (t4.w < 0.0f ? -1.0f : 1.0f);

@@ -1,7 +1,11 @@
 #pragma once
 // The Embree 3 scene of a Scene (DESIGN.md "A frame, as data"). Static geometry lives in one BVH
-// in world space; each animated object is an instance of its own object-space BVH, so a new frame
-// re-commits only the top level. Geometry and instance ids map back to objects and meshes.
+// in world space; each dynamic object is an instance of its own object-space BVH, so a new frame
+// re-commits only the top level. A deforming object's BVH is refitted each frame, not rebuilt
+// (RTC_BUILD_QUALITY_REFIT on its geometry, in a two-level RTC_BUILD_QUALITY_LOW scene): the
+// deformation moves vertices but keeps the topology, and a refit costs a pass over the nodes
+// where a rebuild sorts the triangles again (de Macedo & Rodrigues' Table II times this update).
+// Geometry and instance ids map back to objects and meshes.
 #include <limits>
 #include <memory>
 #include <vector>
@@ -53,7 +57,10 @@ public:
 
     const Scene& scene() const { return scene_; }
 
-    // Moves animated objects to `time` and re-commits the top level (a no-op for static scenes).
+    // Moves animated objects to `time`, deforms and refits deforming ones (deformMesh, the function
+    // the rasterizer uses too), and re-commits the top level (a no-op for static scenes). Also at
+    // an unchanged time: every frame of an animation pays its update, and so do the repeats that
+    // time one frame.
     void setTime(double time);
     double time() const { return time_; }
 
@@ -77,6 +84,11 @@ public:
 
     double buildMilliseconds() const { return buildMs_; }
     double lastUpdateMilliseconds() const { return updateMs_; }
+    // Triangles that a frame update touches: of rigidly moving instances (the top level moves
+    // them) and of deforming objects (their BVHs are refitted).
+    std::size_t rigidMovingTriangles() const { return rigidMovingTriangles_; }
+    std::size_t deformingTriangles() const { return deformingTriangles_; }
+    std::size_t triangleCount() const { return triangles_; }  // every object's
 
 private:
     struct GeometryRef {
@@ -85,7 +97,10 @@ private:
     };
 
     void resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const;
-    RTCGeometry makeTriangleGeometry(const Mesh& mesh, const glm::mat4* toWorld);
+    // `positions` are the mesh's (or its deformed ones), placed by `toWorld` when given.
+    RTCGeometry makeTriangleGeometry(const Mesh& mesh, const std::vector<glm::vec3>& positions, const glm::mat4* toWorld, bool refit);
+    // Writes the deformed vertices of `object` at `time` into its geometries (commit the object's scene after).
+    void deformObject(std::size_t object, double time);
 
     const Scene& scene_;
     RTCDevice device_ = nullptr;
@@ -101,6 +116,8 @@ private:
     // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
     std::vector<std::vector<glm::vec3>> worldPositions_;
     std::vector<std::vector<glm::vec3>> worldNormals_;
+    std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)
+    std::size_t rigidMovingTriangles_ = 0, deformingTriangles_ = 0, triangles_ = 0;
     std::vector<MipChain> textureMips_;                // per scene texture
     RayLog* log_ = nullptr;
     double time_ = 0.0;

@@ -23,7 +23,7 @@ const CameraPath* Scene::findCameraPath(const std::string& pathName) const {
 
 bool Scene::isAnimated() const {
     for (const auto& o : objects)
-        if (o.isAnimated()) return true;
+        if (o.isDynamic()) return true;
     return false;
 }
 
@@ -48,7 +48,7 @@ std::size_t Scene::objectTriangleCount(std::size_t object) const {
 Aabb Scene::objectLocalBounds(std::size_t object) const {
     Aabb local;
     for (auto m : objects[object].meshes) local.extend(meshes[m].bounds());
-    return local;
+    return objects[object].deformation.envelope(local);
 }
 
 Aabb Scene::objectBounds(std::size_t object, double time) const {

@@ -8,6 +8,7 @@
 
 #include "common/scene/camera.h"
 #include "common/scene/camera_path.h"
+#include "common/scene/deformation.h"
 #include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/mesh.h"
@@ -23,6 +24,7 @@ struct SceneObject {
     std::vector<std::uint32_t> meshes;  // into Scene::meshes, in object space
     Transform transform;                // placement when not animated
     RigidAnimation animation;           // keyframed placement (dynamic scenes); empty = static
+    Deformation deformation;            // per-vertex deformation in object space; inactive = rigid
     float relevance = 1.0f;             // Walewski's static relevance K
     float cost = 1.0f;                  // Walewski's estimated cost E
     bool lens = false;                  // a lens object of the layered-EM technique (Hakura & Snyder)
@@ -32,6 +34,9 @@ struct SceneObject {
     std::string lensGroup;
 
     bool isAnimated() const { return !animation.empty(); }
+    bool isDeforming() const { return deformation.active(); }
+    // Anything about the object changes with time: its placement or its vertices.
+    bool isDynamic() const { return isAnimated() || isDeforming(); }
     glm::mat4 worldMatrix(double time) const;
 };
 
@@ -71,13 +76,14 @@ struct Scene {
     std::vector<std::filesystem::path> sourceFiles;
 
     const CameraPath* findCameraPath(const std::string& pathName) const;
-    bool isAnimated() const;
+    bool isAnimated() const;  // some object is dynamic (moves or deforms)
 
     // Some material of the object reflects (mirror or Fresnel) / transmits (opacity < 1).
     bool objectIsReflective(std::size_t object) const;
     bool objectIsRefractive(std::size_t object) const;
     std::size_t objectTriangleCount(std::size_t object) const;
-    Aabb objectLocalBounds(std::size_t object) const;          // object space (scans every vertex)
+    // Object space (scans every vertex); a deforming object's covers every time.
+    Aabb objectLocalBounds(std::size_t object) const;
     Aabb objectBounds(std::size_t object, double time) const;  // world space
     Aabb bounds(double time = 0.0) const;                      // world space
     SceneStats stats() const;

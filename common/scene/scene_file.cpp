@@ -1,6 +1,10 @@
 #include "common/scene/scene_file.h"
 
+#include <cmath>
 #include <map>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "common/core/input_error.h"
 #include "common/core/log.h"
@@ -209,14 +213,53 @@ private:
             if (t.has("lens_group") && !o.lens) t.fail("lens_group", "a lens group needs 'lens = true' on the object");
             if (t.has("lens_group") && o.lensGroup.empty()) t.fail("lens_group", "expected a non-empty group name");
             if (auto a = t.table("animation")) o.animation = readAnimation(*a, o.transform);
+            if (auto d = t.table("deform")) o.deformation = readDeformation(*d);
+            std::vector<SceneObject> copies;
+            if (auto c = t.table("copies")) copies = readCopies(*c, o, names);
+            else copies.push_back(std::move(o));
             t.rejectUnknownKeys();
-            for (auto& m : meshes) {
-                o.meshes.push_back(static_cast<std::uint32_t>(scene_.meshes.size()));
-                scene_.meshes.push_back(std::move(m));
+            for (SceneObject& copy : copies) {
+                for (const Mesh& m : meshes) {  // every copy owns its meshes: a deforming copy rewrites them
+                    copy.meshes.push_back(static_cast<std::uint32_t>(scene_.meshes.size()));
+                    scene_.meshes.push_back(m);
+                }
+                objectIds_[copy.name] = scene_.objects.size();
+                scene_.objects.push_back(std::move(copy));
             }
-            objectIds_[o.name] = scene_.objects.size();
-            scene_.objects.push_back(std::move(o));
         }
+    }
+
+    // `count` copies of `o` in a ring: copy k turned about the vertical axis through `center` by
+    // k * angle_step degrees, its animation and deformation running k * time_step seconds late
+    // (the populations of de Macedo & Rodrigues' Tables I-II: N bunnies, N teapots).
+    std::vector<SceneObject> readCopies(const TomlTable& t, const SceneObject& o, std::map<std::string, int>& names) const {
+        const int count = t.integer("count", 1, 1, 10000);
+        const glm::vec3 center = t.vec3("center", glm::vec3(0.0f));
+        const auto angleStep = static_cast<float>(t.number("angle_step", 360.0 / count, {-360.0, 360.0}));
+        const double timeStep = t.number("time_step", 0.0, {0.0, 1e6});
+        t.rejectUnknownKeys();
+        std::vector<SceneObject> copies;
+        for (int k = 0; k < count; ++k) {
+            SceneObject c = o;
+            c.name = o.name + "-" + std::to_string(k);
+            if (names.count(c.name)) t.fail("count", "copy name '" + c.name + "' is already an object's name");
+            names[c.name] = 1;
+            const glm::quat turn = eulerDegreesToQuat(glm::vec3(0.0f, angleStep * static_cast<float>(k), 0.0f));
+            auto place = [&](glm::vec3& position, glm::quat& rotation) {
+                position = center + turn * (position - center);
+                rotation = turn * rotation;
+            };
+            place(c.transform.position, c.transform.rotation);
+            for (std::size_t i = 0; i < c.animation.times.size(); ++i) {
+                place(c.animation.positions[i], c.animation.rotations[i]);
+                c.animation.times[i] += k * timeStep;
+            }
+            // Late by k * time_step: sin(k_w x - w (t - k dt)) = sin(k_w x - w t + w k dt).
+            const double omega = 2.0 * 3.14159265358979323846 / c.deformation.wavelength * c.deformation.speed;
+            c.deformation.phaseRadians += static_cast<float>(omega * k * timeStep);
+            copies.push_back(std::move(c));
+        }
+        return copies;
     }
 
     // Key times must increase strictly; at least two keys.
@@ -243,6 +286,27 @@ private:
         }
         t.rejectUnknownKeys();
         return a;
+    }
+
+    // A travelling wave (deformation.h); direction and axis are normalised and must be perpendicular.
+    Deformation readDeformation(const TomlTable& t) const {
+        Deformation d;
+        t.choice("type", "wave", {"wave"});
+        d.amplitude = static_cast<float>(t.requiredNumber("amplitude", {0.0, 1e6}));
+        d.wavelength = static_cast<float>(t.requiredNumber("wavelength", {1e-6, 1e9}));
+        d.speed = static_cast<float>(t.number("speed", 0.0, {-1e9, 1e9}));
+        d.phaseRadians = glm::radians(static_cast<float>(t.number("phase", 0.0, {-1e6, 1e6})));
+        auto unit = [&](const std::string& key, glm::vec3 fallback) {
+            const glm::vec3 v = t.vec3(key, fallback);
+            if (glm::length(v) == 0.0f) t.fail(key, "expected a non-zero vector");
+            return glm::normalize(v);
+        };
+        d.direction = unit("direction", d.direction);
+        d.axis = unit("axis", d.axis);
+        if (std::abs(glm::dot(d.direction, d.axis)) > 1e-4f)
+            t.fail("axis", "expected the displacement axis perpendicular to the wave's direction (a transverse wave)");
+        t.rejectUnknownKeys();
+        return d;
     }
 
     void readLights(const TomlTable& root) {

@@ -70,7 +70,8 @@ void addSceneInfoCommand(CLI::App& app) {
             const auto& o = scene.objects[i];
             std::printf("%-24s %10zu %11s %11s %8.3g %5.3g %8s%s\n", o.name.c_str(), scene.objectTriangleCount(i),
                         scene.objectIsReflective(i) ? "yes" : "no", scene.objectIsRefractive(i) ? "yes" : "no", o.relevance, o.cost,
-                        o.isAnimated() ? "yes" : "no", o.lens ? "  lens" : "");
+                        o.isDeforming() ? "deforms" : o.isAnimated() ? "yes" : "no",
+                        o.lens ? "  lens" : "");
         }
         std::printf("\n");
         for (const auto& l : scene.lights) {

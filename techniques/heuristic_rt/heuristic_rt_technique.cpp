@@ -10,6 +10,7 @@
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
+#include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
 #include "techniques/whitted/whitted_technique.h"
 
@@ -162,8 +163,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     }
     clock.lap("heur");
 
-    const RayScene& rays = context.rayScene(frame.time);
-    clock.lap("bvh_update");
+    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     // rayt: Listings 8a-8d from the G-buffer, for masked pixels only.
     const WhittedTracer tracer(rays, tracer_);

@@ -6,6 +6,7 @@
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
+#include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -59,6 +60,9 @@ TechniqueInfo SsrFallbackTechnique::info() {
                 ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"),
                 ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
                                   "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
+                ParamSpec::choice("glass", "rt", {"rt", "ssr"},
+                                  "refractive texels: ray trace everything, or take their Fresnel reflection from SSR as opaque "
+                                  "mirrors do (with the same fallback) and ray trace only the refraction"),
                 ParamSpec::choice("recursion", "rt", {"rt", "single"},
                                   "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
                 ParamSpec::choice("traversal", "linear", {"linear", "hiz"},
@@ -87,6 +91,7 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
     const std::string& f = p.getChoice("fallback");
     fallback_ = f == "rt" ? Fallback::RayTraced : f == "sky" ? Fallback::Sky : Fallback::None;
     recursion_ = p.getChoice("recursion") == "rt" ? Recursion::RayTraced : Recursion::Single;
+    ssrSettings_.refractive = p.getChoice("glass") == "ssr";
     blurRadius_ = static_cast<int>(p.getInt("blur_radius"));
     ssrSettings_.traversal = p.getChoice("traversal") == "hiz" ? SsrSettings::Traversal::HiZ : SsrSettings::Traversal::Linear;
     ssrSettings_.maxSteps = static_cast<int>(p.getInt("max_steps"));
@@ -141,8 +146,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
     result.stages.push_back({"ssr", ssrMs});
 
-    const RayScene& rays = context.rayScene(frame.time);
-    clock.lap("bvh_update");
+    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
     const GBuffer& g = raster_.gbuffer;
@@ -172,9 +176,9 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         }
         const GBufferSurface surface(g, i, camera);
         const glm::vec3 litLocal(lit.at(x, y));
-        if (optical.z < 1.0f) {
+        refractive[i] = optical.z < 1.0f;
+        if (refractive[i] && !ssrSettings_.refractive) {
             // Refractive: ray traced whole, as SSR does not refract.
-            refractive[i] = 1;
             ++pixelsTraced;
             ShadingParts parts =
                 tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, true, true}, footprint(surface));
@@ -185,10 +189,11 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         const SsrPixel* sp = ssr ? &ssr->pixels[i] : nullptr;
         const float confidence = sp && sp->resolved() ? sp->confidence : 0.0f;
         const bool traceFallback = !opaqueMatte && confidence < 1.0f && fallback_ == Fallback::RayTraced;
-        if (traceFallback || rayTracedShadows_) ++pixelsTraced;
+        if (traceFallback || rayTracedShadows_ || refractive[i]) ++pixelsTraced;
         if (traceFallback) ++fallbackRays;
-        ShadingParts parts =
-            tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, traceFallback, false}, footprint(surface));
+        // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
+        ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, traceFallback, refractive[i] != 0},
+                                               footprint(surface));
         if (!rayTracedShadows_) parts.local = litLocal;
         if (!parts.composes) {
             result.image.at(x, y) = glm::vec4(parts.local, 1.0f);

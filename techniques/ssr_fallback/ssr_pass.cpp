@@ -115,7 +115,7 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     u.march = glm::vec4(static_cast<float>(settings_.maxSteps), static_cast<float>(settings_.stride), settings_.thickness,
                         settings_.maxDistance);
     u.screen = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), settings_.edgeFade, camera.nearPlane);
-    u.hiz = glm::vec4(static_cast<float>(pyramidLevels_.size() - 1), 0.0f, 0.0f, 0.0f);
+    u.hiz = glm::vec4(static_cast<float>(pyramidLevels_.size() - 1), settings_.refractive ? 1.0f : 0.0f, 0.0f, 0.0f);
     uniforms_.write(&u, sizeof u);
 
     // Rewritten every frame: the targets are recreated when the frame size changes.

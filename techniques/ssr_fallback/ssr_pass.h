@@ -27,11 +27,12 @@ struct SsrSettings {
     float thickness = 0.25f;     // depth of every visible surface's slab behind it, in view-depth units
     float maxDistance = 100.0f;  // world length of the ray
     float edgeFade = 0.05f;      // confidence ramps from 0 at the screen border over this fraction of the smaller side (0: none)
+    bool refractive = false;     // also march the mirror rays of refractive texels (their Fresnel reflection)
 };
 
 // Bits of SsrPixel::flags (the twins of the constants in ssr_trace.comp).
 enum SsrFlag : std::uint32_t {
-    kSsrTraced = 1u << 0,       // an opaque reflective texel: a ray was marched
+    kSsrTraced = 1u << 0,       // a reflective texel (opaque, or any with SsrSettings::refractive): a ray was marched
     kSsrOffScreen = 1u << 1,    // the ray left the screen, or the view frustum through the near plane
     kSsrBehind = 1u << 2,       // it passed behind a surface by more than the thickness and found no hit
     kSsrOutOfSteps = 1u << 3,   // it ran out of steps

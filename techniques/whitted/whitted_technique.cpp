@@ -5,6 +5,7 @@
 #include "techniques/layered_em/two_term_tracer.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
+#include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -57,8 +58,7 @@ void WhittedTechnique::prepare(SceneContext& context) {
 FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& frame) {
     FrameResult result;
     StageClock clock(result);
-    const RayScene& rays = context.rayScene(frame.time);
-    clock.lap("bvh_update");
+    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     const WhittedTracer tracer(rays, settings_);
     if (twoTermLenses_ && (!twoTerm_ || &twoTerm_->scene() != &context.scene())) twoTerm_ = std::make_unique<TwoTermTracer>(context.scene());

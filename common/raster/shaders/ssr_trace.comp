@@ -14,7 +14,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool kHiZ = false;
 
 // Bits of ssrHit.z; the failure bits mirror SsrFailure in techniques/ssr_fallback/ssr_pass.h.
-const uint kTraced = 1u;       // an opaque reflective texel: a ray was marched
+const uint kTraced = 1u;       // a reflective texel (opaque, or any with hiz.y): a ray was marched
 const uint kOffScreen = 2u;    // the ray left the screen (or the view frustum through the near plane)
 const uint kBehind = 4u;       // it passed behind a surface by more than the thickness and found no hit
 const uint kOutOfSteps = 8u;   // it ran out of steps
@@ -28,7 +28,7 @@ layout(std140, set = 0, binding = 0) uniform SsrUniforms {
     vec4 cameraForward;   // xyz
     vec4 march;           // x max steps, y stride (pixels), z thickness (view depth), w max distance (world)
     vec4 screen;          // x width, y height, z edge fade (fraction of the smaller side), w near plane distance
-    vec4 hiz;             // x the pyramid's top level
+    vec4 hiz;             // x the pyramid's top level; y 1: refractive texels too (their Fresnel reflection)
 } u;
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
@@ -65,7 +65,8 @@ void main() {
     if (texelFetch(gObjectId, pixel, 0).r == 0u) return;
     vec4 optical = texelFetch(gOptical, pixel, 0);  // reflectivity, IOR, opacity, fresnel
     bool reflective = optical.x > 0.0 || optical.w > 0.5;
-    if (!reflective || optical.z < 1.0) return;     // refractive texels are ray traced: SSR does not refract
+    // SSR does not refract: refractive texels are ray traced, their reflection too unless hiz.y asks for it.
+    if (!reflective || (optical.z < 1.0 && u.hiz.y < 0.5)) return;
 
     vec3 p = texelFetch(gPosition, pixel, 0).xyz;
     vec4 normalAndFacing = texelFetch(gNormal, pixel, 0);
