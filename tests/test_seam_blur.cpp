@@ -1,6 +1,7 @@
 // The seam blur of the reflection composer (techniques/ssr_fallback/seam_blur.h): only a band of
 // the given radius around the boundary between SSR and ray-traced texels changes; a constant
-// reflection stays constant; texels without a reflection never bleed in; radius 0 is off.
+// reflection stays constant; texels without a reflection never bleed in; radius 0 is off; the
+// bilateral variant smooths a small step at the seam and keeps a reflected edge inside the band.
 #include <gtest/gtest.h>
 
 #include "techniques/ssr_fallback/seam_blur.h"
@@ -68,6 +69,26 @@ TEST(SeamBlur, TexelsWithoutAReflectionDoNotBleedIn) {
     blurReflectionSeams(h.reflection, h.source, kW, kH, 2);
     for (int i = kW; i < kW * kH; ++i) EXPECT_LE(h.reflection[i].r, 1.0f) << i;
     for (int x = 0; x < kW; ++x) EXPECT_EQ(h.reflection[x].r, 100.0f);
+}
+
+TEST(SeamBlur, TheBilateralBlurSmoothsASmallSeamStepAndKeepsAReflectedEdge) {
+    // A small step between the two paths' results (0.50 against 0.52): smoothed as by the Gaussian.
+    Halves step(0.5f, 0.52f), stepGaussian(0.5f, 0.52f);
+    blurReflectionSeams(step.reflection, step.source, kW, kH, 2, 0.1f);
+    blurReflectionSeams(stepGaussian.reflection, stepGaussian.source, kW, kH, 2);
+    for (int x = 7; x <= 12; ++x) EXPECT_NEAR(step.reflection[5 * kW + x].r, stepGaussian.reflection[5 * kW + x].r, 1e-3f) << x;
+    EXPECT_GT(step.reflection[5 * kW + 9].r, 0.5f);
+    // A thin reflected pole (one bright column) inside the band: the Gaussian smears it, the
+    // bilateral blur keeps it and its dark surroundings.
+    Halves pole(0.1f, 0.1f), poleGaussian(0.1f, 0.1f);
+    for (Halves* h : {&pole, &poleGaussian})
+        for (int y = 0; y < kH; ++y) h->reflection[y * kW + 8] = glm::vec3(2.0f);
+    blurReflectionSeams(pole.reflection, pole.source, kW, kH, 2, 0.1f);
+    blurReflectionSeams(poleGaussian.reflection, poleGaussian.source, kW, kH, 2);
+    EXPECT_NEAR(pole.reflection[5 * kW + 8].r, 2.0f, 1e-3f);
+    EXPECT_NEAR(pole.reflection[5 * kW + 9].r, 0.1f, 1e-3f);
+    EXPECT_LT(poleGaussian.reflection[5 * kW + 8].r, 1.5f);
+    EXPECT_GT(poleGaussian.reflection[5 * kW + 9].r, 0.3f);
 }
 
 }  // namespace

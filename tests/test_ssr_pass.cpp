@@ -169,19 +169,26 @@ TEST_P(SsrTraversal, OnlyOpaqueReflectiveTexelsAreTraced) {
     }
 }
 
+// The linear march (stride is its parameter; the default traversal is the pyramid).
+SsrSettings linearMarch() {
+    SsrSettings s;
+    s.traversal = SsrSettings::Traversal::Linear;
+    return s;
+}
+
 TEST(SsrPass, ParametersLimitAndCoarsenTheMarch) {
     const Scene scene = test::mirrorFloorScene();
     RASTERIZER_OR_SKIP(rasterizer, scene);
-    const SsrFrame fine = renderSsr(*rasterizer, scene, {});
-    SsrSettings few;
+    const SsrFrame fine = renderSsr(*rasterizer, scene, linearMarch());
+    SsrSettings few = linearMarch();
     few.maxSteps = 3;
     const SsrFrame shortMarch = renderSsr(*rasterizer, scene, few);
-    SsrSettings coarse;
+    SsrSettings coarse = linearMarch();
     coarse.stride = 4;
     const SsrFrame strided = renderSsr(*rasterizer, scene, coarse);
-    SsrSettings noFade;
+    SsrSettings noFade = linearMarch();
     noFade.edgeFade = 0.0f;
-    SsrSettings wideFade;
+    SsrSettings wideFade = linearMarch();
     wideFade.edgeFade = 0.5f;  // only the very centre of the screen keeps full confidence
     const SsrFrame faded = renderSsr(*rasterizer, scene, wideFade);
     const SsrFrame unfaded = renderSsr(*rasterizer, scene, noFade);
@@ -223,7 +230,7 @@ INSTANTIATE_TEST_SUITE_P(SsrPass, SsrTraversal, ::testing::Values(SsrSettings::T
 TEST(SsrPass, HiZFindsTheLinearMarchHitsInFewerSteps) {
     const Scene scene = test::mirrorFloorScene();
     RASTERIZER_OR_SKIP(rasterizer, scene);
-    const SsrFrame linear = renderSsr(*rasterizer, scene, {});
+    const SsrFrame linear = renderSsr(*rasterizer, scene, linearMarch());
     SsrSettings hizSettings;
     hizSettings.traversal = SsrSettings::Traversal::HiZ;
     const SsrFrame hiz = renderSsr(*rasterizer, scene, hizSettings);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -29,10 +31,13 @@ std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t>& in, int width,
     return out;
 }
 
+// c / (1 + c) per channel: colour differences on a bounded scale, whatever the radiance.
+glm::vec3 compressed(const glm::vec3& c) { return c / (glm::vec3(1.0f) + glm::max(c, glm::vec3(0.0f))); }
+
 }  // namespace
 
 std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::vector<ReflectionSource>& source, int width, int height,
-                                int radius) {
+                                int radius, float rangeSigma) {
     if (radius <= 0) return 0;
     auto at = [width](int x, int y) { return static_cast<std::size_t>(y) * width + x; };
     // The seam: reflecting texels with a reflecting 4-neighbour from another path.
@@ -60,6 +65,7 @@ std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::v
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
                 if (!band[at(x, y)] || source[at(x, y)] == ReflectionSource::None) continue;
+                const glm::vec3 centre = compressed(input[at(x, y)]);
                 glm::vec3 sum(0.0f);
                 float weight = 0.0f;
                 for (int dy = -radius; dy <= radius; ++dy) {
@@ -68,7 +74,11 @@ std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::v
                     for (int dx = -radius; dx <= radius; ++dx) {
                         const int nx = x + dx;
                         if (nx < 0 || nx >= width || source[at(nx, ny)] == ReflectionSource::None) continue;
-                        const float w = kernel[dx + radius] * kernel[dy + radius];
+                        float w = kernel[dx + radius] * kernel[dy + radius];
+                        if (rangeSigma > 0.0f) {
+                            const glm::vec3 d = compressed(input[at(nx, ny)]) - centre;
+                            w *= std::exp(-0.5f * glm::dot(d, d) / (rangeSigma * rangeSigma));
+                        }
                         sum += w * input[at(nx, ny)];
                         weight += w;
                     }

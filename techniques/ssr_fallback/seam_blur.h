@@ -25,7 +25,13 @@ enum class ReflectionSource : std::uint8_t {
 // a texel with a different source, averaging only over texels that have a reflection (source not
 // None), so that the surroundings do not bleed in. Returns the number of texels blurred; radius 0
 // does nothing.
+//
+// rangeSigma > 0 makes the blur bilateral (Tomasi & Manduchi 1998): a neighbour also weighs
+// exp(-|t(c_n) - t(c)|^2 / (2 rangeSigma^2)), t(c) = c / (1 + c) per channel, so that the small
+// step between the SSR and ray-traced results at a seam is smoothed while the edges of reflected
+// objects inside the band stay sharp. rangeSigma = 0 is the paper's plain Gaussian, which smears
+// thin reflected detail wherever the band covers it.
 std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::vector<ReflectionSource>& source, int width, int height,
-                                int radius);
+                                int radius, float rangeSigma = 0.0f);
 
 }  // namespace hybridlab

@@ -65,7 +65,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
                                   "mirrors do (with the same fallback) and ray trace only the refraction"),
                 ParamSpec::choice("recursion", "rt", {"rt", "single"},
                                   "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
-                ParamSpec::choice("traversal", "linear", {"linear", "hiz"},
+                ParamSpec::choice("traversal", d.traversal == SsrSettings::Traversal::HiZ ? "hiz" : "linear", {"linear", "hiz"},
                                   "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
                 ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"),
                 ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"),
@@ -74,6 +74,9 @@ TechniqueInfo SsrFallbackTechnique::info() {
                 ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
                                 "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
                 ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
+                ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
+                                "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
+                                "smears thin reflected detail)"),
                 ParamSpec::integer("max_depth", 10, 0, 64, "ray-traced bounces, as the reference"),
                 ParamSpec::real("importance_cutoff", 0.0, 0.0, 1.0,
                                 "ray tracing: do not trace secondary rays whose weight in the pixel is below this (0: the full ray tree, as the reference)"),
@@ -93,6 +96,7 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
     recursion_ = p.getChoice("recursion") == "rt" ? Recursion::RayTraced : Recursion::Single;
     ssrSettings_.refractive = p.getChoice("glass") == "ssr";
     blurRadius_ = static_cast<int>(p.getInt("blur_radius"));
+    blurRange_ = static_cast<float>(p.getFloat("blur_range"));
     ssrSettings_.traversal = p.getChoice("traversal") == "hiz" ? SsrSettings::Traversal::HiZ : SsrSettings::Traversal::Linear;
     ssrSettings_.maxSteps = static_cast<int>(p.getInt("max_steps"));
     ssrSettings_.stride = static_cast<int>(p.getInt("stride"));
@@ -224,7 +228,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     });
     clock.lap("ray_trace");
 
-    const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_);
+    const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_, blurRange_);
     clock.lap("seam_blur");
 
     std::size_t reflective = 0, ssrHits = 0;

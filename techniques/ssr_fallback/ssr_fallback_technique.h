@@ -37,6 +37,7 @@ private:
     Fallback fallback_ = Fallback::RayTraced;
     Recursion recursion_ = Recursion::RayTraced;
     int blurRadius_ = 2;
+    float blurRange_ = 0.1f;
     SsrSettings ssrSettings_;
     ShadowSettings shadowSettings_;
     WhittedSettings tracerSettings_;

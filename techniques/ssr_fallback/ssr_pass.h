@@ -21,10 +21,15 @@ namespace hybridlab {
 
 struct SsrSettings {
     enum class Traversal { Linear, HiZ };
-    Traversal traversal = Traversal::Linear;  // the DDA pixel by pixel, or the min-depth pyramid (FidelityFX SSSR)
+    // The min-depth pyramid (FidelityFX SSSR) or the DDA pixel by pixel: the same hits, found
+    // faster by the pyramid (ssr.toml; the notes of issue 7).
+    Traversal traversal = Traversal::HiZ;
     int maxSteps = 512;          // steps per ray (DDA steps, refinement steps, or pyramid cells visited)
     int stride = 1;              // linear: pixels per coarse step; a coarse hit is refined with unit steps
-    float thickness = 0.25f;     // depth of every visible surface's slab behind it, in view-depth units
+    // Depth of every visible surface's slab behind it, in view-depth units. Thinner than the
+    // thinnest thing a scene shows (the 5 cm poles of thin-objects): a ray passing behind a thin
+    // object is then a failure that the fallback traces, not a false hit on the object.
+    float thickness = 0.02f;
     float maxDistance = 100.0f;  // world length of the ray
     float edgeFade = 0.05f;      // confidence ramps from 0 at the screen border over this fraction of the smaller side (0: none)
     bool refractive = false;     // also march the mirror rays of refractive texels (their Fresnel reflection)
