@@ -10,6 +10,7 @@ repeats), the `bvh_update` stage's mean, and SSIM and FLIP against the `whitted`
 (mean +/- standard deviation, worst). Below each table: how the `bvh_update` stage grows with the
 number of dynamic triangles (least-squares slope and correlation over the table's lines)."""
 import argparse
+import os
 import re
 import statistics
 import sys
@@ -33,7 +34,8 @@ def table(rows, number, family, what):
     pattern = re.compile(r"^%s-(\d+)$" % re.escape(family))
     lines = {}
     for r in rows:
-        m = pattern.match(r["scene"])
+        # The config names a scene by name or by file: bunnies-falling-10 or .../bunnies-falling-10.toml.
+        m = pattern.match(os.path.splitext(os.path.basename(r["scene"]))[0])
         if m and r["frame"] >= 0 and r["label"] != "whitted":
             lines.setdefault((results.variant(r), int(m.group(1))), []).append(r)
     if not lines:

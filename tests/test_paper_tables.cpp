@@ -1,6 +1,7 @@
 // The paper-table scripts of paper_figures/ on small result sets: Sabino 2012 Table 3
 // (sabino_table3.py) must print each scene's size and the medians the records hold, and the gain
-// as their ratio.
+// as their ratio; de Macedo & Rodrigues Tables I-II (macedo_tables.py) a line per N with the
+// dynamic triangles the ray scene updated, and the bvh_update stage's growth with them.
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -64,6 +65,85 @@ label = "rt"
         EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
         EXPECT_GT(hybrid.at("scene_stats").at("triangles").get<int>(), 0);
     }
+}
+
+// A procedural stand-in for teapots-deforming-N: N waving spheres in a ring around a mirror ball.
+std::string deformingSpheres(int n) {
+    return R"([scene]
+name = "teapots-deforming-)" + std::to_string(n) + R"("
+[materials.mirror]
+diffuse = [0.05, 0.05, 0.05]
+reflectivity = 0.9
+[materials.matte]
+diffuse = [0.7, 0.5, 0.3]
+[[objects]]
+name = "ball"
+primitive = "sphere"
+material = "mirror"
+[[objects]]
+name = "blob"
+primitive = "sphere"
+material = "matte"
+position = [2.0, 0.0, 0.0]
+scale = 0.6
+[objects.deform]
+amplitude = 0.1
+wavelength = 0.5
+speed = 1.0
+[objects.copies]
+count = )" + std::to_string(n) + R"(
+[[lights]]
+type = "point"
+position = [0, 4, 3]
+intensity = 20.0
+[camera]
+position = [0.0, 2.0, 6.0]
+look_at = [0.0, 0.0, 0.0]
+[camera_paths.orbit]
+fps = 10
+keys = [{ time = 0.0, position = [0.0, 2.0, 6.0], look_at = [0.0, 0.0, 0.0] }, { time = 0.3, position = [3.0, 2.0, 5.0], look_at = [0.0, 0.0, 0.0] }]
+)";
+}
+
+TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
+    test::TempDir dir;
+    std::string scenes;
+    for (int n : {1, 3}) {
+        const fs::path file = dir.path() / ("teapots-deforming-" + std::to_string(n) + ".toml");
+        test::writeTextFile(file, deformingSpheres(n));
+        scenes += "[[scenes]]\nscene = '" + file.string() + "'\nresolutions = [[48, 27]]\n[[scenes.views]]\npath = \"orbit\"\n";
+    }
+    const fs::path config = dir.path() / "macedo.toml";
+    test::writeTextFile(config, "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n" + scenes +
+                                    "[[techniques]]\nname = \"ssr_fallback\"\n");
+    RunnerOptions o;
+    o.outDir = dir.path() / "results";
+    o.cacheDir = dir.path() / "cache";
+    o.quiet = true;
+    ASSERT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
+    const fs::path script = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "paper_figures" / "macedo_tables.py";
+    const fs::path table = dir.path() / "tables.md";
+    const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + o.outDir.string() + "' --out '" + table.string() + "' > /dev/null";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream tableIn(table), resultsIn(o.outDir / "results.json");
+    const std::string text((std::istreambuf_iterator<char>(tableIn)), {});
+    EXPECT_NE(text.find("**Table II**"), std::string::npos) << text;
+    EXPECT_EQ(text.find("**Table I**"), std::string::npos) << "no bunnies-falling-N runs, no Table I";
+    // One line per N, its dynamic triangles the refitted copies' (N times one sphere's).
+    std::map<int, double> refit;
+    for (const auto& r : json::parse(resultsIn)) {
+        const std::string scene = r.at("scene");
+        refit[std::stoi(scene.substr(scene.rfind('-') + 1))] = r.at("counters").at("bvh_refit_triangles").get<double>();
+    }
+    ASSERT_EQ(refit.size(), 2u);
+    EXPECT_GT(refit.at(1), 0.0);
+    EXPECT_EQ(refit.at(3), 3.0 * refit.at(1));
+    for (const auto& [n, triangles] : refit) {
+        const std::string cells = "| " + std::to_string(n) + " | ";
+        EXPECT_NE(text.find(cells), std::string::npos) << cells << "\n" << text;
+        EXPECT_NE(text.find(test::formatNumber("%.1f", triangles / 1e3)), std::string::npos) << text;
+    }
+    EXPECT_NE(text.find("ms per 1000 dynamic triangles"), std::string::npos) << text;
 }
 
 }  // namespace
