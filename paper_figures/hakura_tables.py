@@ -12,9 +12,7 @@ multi-layer against single-layer, and the temporal error along the circling path
 numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
 approach. Times are medians over a run's repeats. Entries are found by label, as the config names
 them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention)."""
-import argparse
 import statistics
-import sys
 
 import results
 
@@ -126,13 +124,7 @@ def figure9(rows):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("result_dir")
-    ap.add_argument("--out", help="write the tables (Markdown) here as well as to standard output")
-    a = ap.parse_args()
-    rows = results.load(a.result_dir)
-    if not rows:
-        sys.exit("hakura_tables: %s has no runs" % a.result_dir)
+    a, rows = results.table_script(__doc__, "hakura_tables")
     sizes = sorted({results.resolution(r) for r in rows if r["scene"] == "teapot-lens" and r["view"] == "camera"},
                    key=lambda s: int(s.split("x")[0]))
     tables = [line for size in sizes for line in results_table(rows, size)]

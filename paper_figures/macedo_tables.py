@@ -9,7 +9,6 @@ frame time mean +/- standard deviation, min and max (each frame's time is the me
 repeats), the `bvh_update` stage's mean, and SSIM and FLIP against the `whitted` reference per frame
 (mean +/- standard deviation, worst). Below each table: how the `bvh_update` stage grows with the
 number of dynamic triangles (least-squares slope and correlation over the table's lines)."""
-import argparse
 import os
 import re
 import statistics
@@ -73,11 +72,7 @@ def table(rows, number, family, what):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("result_dir")
-    ap.add_argument("--out", help="write the tables (Markdown) here as well as to standard output")
-    a = ap.parse_args()
-    rows = results.load(a.result_dir)
+    a, rows = results.table_script(__doc__, "macedo_tables")
     lines = []
     for number, family, what in FAMILIES:
         lines += table(rows, number, family, what)

@@ -1,6 +1,7 @@
 """Reading a hybridlab result set (results.json) for the figure and report scripts.
 
 Every script in paper_figures/ reads only results.json / results.csv, never the renderer."""
+import argparse
 import json
 import os
 import sys
@@ -52,6 +53,24 @@ def mean_known(values):
     """The mean of the values that are not None; None if there are none."""
     known = [v for v in values if v is not None]
     return sum(known) / len(known) if known else None
+
+
+def table_script(doc, name, extra_arguments=()):
+    """The command line every table script shares: RESULT_DIR [--out FILE.md] plus `extra_arguments`
+    (argparse add_argument argument tuples, keyword dicts). Returns the parsed arguments and the
+    result set's rows; exits with a message naming the folder when it holds no runs."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--out", help="write the table(s) (Markdown) here as well as to standard output")
+    for args, kwargs in extra_arguments:
+        ap.add_argument(*args, **kwargs)
+    a = ap.parse_args()
+    if not os.path.isfile(os.path.join(a.result_dir, "results.json")):
+        sys.exit("%s: %s is not a result set (no results.json)" % (name, a.result_dir))
+    rows = load(a.result_dir)
+    if not rows:
+        sys.exit("%s: %s has no runs" % (name, a.result_dir))
+    return a, rows
 
 
 def write_table(lines, out_path=None):

@@ -9,7 +9,6 @@ the hybrid is the entry labelled `hybrid` (heuristic_rt), the ray tracer the one
 (rt_only); times are the medians over a run's repeats, and each one's SSIM against the reference
 is given beside them (the paper reports none). A scene with several frames (a camera path) gets
 the mean over its frames."""
-import argparse
 import statistics
 import sys
 
@@ -48,13 +47,7 @@ def table3(rows):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("result_dir")
-    ap.add_argument("--out", help="write the table (Markdown) here as well as to standard output")
-    a = ap.parse_args()
-    rows = results.load(a.result_dir)
-    if not rows:
-        sys.exit("sabino_table3: %s has no runs" % a.result_dir)
+    a, rows = results.table_script(__doc__, "sabino_table3")
     results.write_table(table3(rows), a.out)
 
 

@@ -9,7 +9,6 @@ frame time and each one's SSIM and FLIP against the reference beside them. Table
 scene's camera path): mean frame time with and without the heuristic. Times are the medians over a
 run's repeats; means along a path are over its frames. The technique entries are found by label
 (heuristic, no-heuristic, rt_only, whitted), as the config names them."""
-import argparse
 import statistics
 import sys
 
@@ -126,15 +125,9 @@ def target_report(rows, settle=10, tolerance=0.15):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("result_dir")
-    ap.add_argument("--target", action="store_true", help="report the frame-time target run (walewski2019_target.toml)")
-    ap.add_argument("--out", help="write the tables (Markdown) here as well as to standard output")
-    a = ap.parse_args()
-    rows = results.load(a.result_dir)
+    a, rows = results.table_script(__doc__, "walewski_tables", [(("--target",), {
+        "action": "store_true", "help": "report the frame-time target run (walewski2019_target.toml)"})])
     scenes = sorted({r["scene"] for r in rows})
-    if not scenes:
-        sys.exit("walewski_tables: %s has no runs" % a.result_dir)
     results.write_table(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out)
 
 

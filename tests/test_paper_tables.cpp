@@ -19,10 +19,32 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Runs the experiment `configText` into dir/results, then paper_figures/`script` on it; returns the
+// table it wrote.
+std::string runAndTabulate(const test::TempDir& dir, const std::string& configText, const std::string& script) {
+    const fs::path config = dir.path() / "config.toml";
+    test::writeTextFile(config, configText);
+    RunnerOptions o;
+    o.outDir = dir.path() / "results";
+    o.cacheDir = dir.path() / "cache";
+    o.quiet = true;
+    EXPECT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
+    const fs::path path = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "paper_figures" / script;
+    const fs::path table = dir.path() / "table.md";
+    const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + o.outDir.string() + "' --out '" + table.string() + "' > /dev/null";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(table);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+json resultsOf(const test::TempDir& dir) {
+    std::ifstream in(dir.path() / "results" / "results.json");
+    return json::parse(in);
+}
+
 TEST(PaperTables, SabinoTable3HoldsTheHybridsStagesAndTheGain) {
     test::TempDir dir;
-    const fs::path config = dir.path() / "sabino.toml";
-    test::writeTextFile(config, R"(
+    const std::string text = runAndTabulate(dir, R"(
 [experiment]
 warmup_frames = 0
 repeats = 1
@@ -39,20 +61,10 @@ label = "hybrid"
 [[techniques]]
 name = "rt_only"
 label = "rt"
-)");
-    RunnerOptions o;
-    o.outDir = dir.path() / "results";
-    o.cacheDir = dir.path() / "cache";
-    o.quiet = true;
-    ASSERT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
-    const fs::path script = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "paper_figures" / "sabino_table3.py";
-    const fs::path table = dir.path() / "table3.md";
-    const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + o.outDir.string() + "' --out '" + table.string() + "' > /dev/null";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream tableIn(table), resultsIn(o.outDir / "results.json");
-    const std::string text((std::istreambuf_iterator<char>(tableIn)), {});
+)",
+                                             "sabino_table3.py");
     std::map<std::string, std::map<std::string, json>> runs;  // scene -> label -> record
-    for (const auto& r : json::parse(resultsIn)) runs[r.at("scene")][r.at("label")] = r;
+    for (const auto& r : resultsOf(dir)) runs[r.at("scene")][r.at("label")] = r;
     ASSERT_EQ(runs.size(), 2u);
     for (const auto& [scene, byLabel] : runs) {
         SCOPED_TRACE(scene);
@@ -113,25 +125,14 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
         test::writeTextFile(file, deformingSpheres(n));
         scenes += "[[scenes]]\nscene = '" + file.string() + "'\nresolutions = [[48, 27]]\n[[scenes.views]]\npath = \"orbit\"\n";
     }
-    const fs::path config = dir.path() / "macedo.toml";
-    test::writeTextFile(config, "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n" + scenes +
-                                    "[[techniques]]\nname = \"ssr_fallback\"\n");
-    RunnerOptions o;
-    o.outDir = dir.path() / "results";
-    o.cacheDir = dir.path() / "cache";
-    o.quiet = true;
-    ASSERT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
-    const fs::path script = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "paper_figures" / "macedo_tables.py";
-    const fs::path table = dir.path() / "tables.md";
-    const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + o.outDir.string() + "' --out '" + table.string() + "' > /dev/null";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream tableIn(table), resultsIn(o.outDir / "results.json");
-    const std::string text((std::istreambuf_iterator<char>(tableIn)), {});
+    const std::string text = runAndTabulate(
+        dir, "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n" + scenes + "[[techniques]]\nname = \"ssr_fallback\"\n",
+        "macedo_tables.py");
     EXPECT_NE(text.find("**Table II**"), std::string::npos) << text;
     EXPECT_EQ(text.find("**Table I**"), std::string::npos) << "no bunnies-falling-N runs, no Table I";
     // One line per N, its dynamic triangles the refitted copies' (N times one sphere's).
     std::map<int, double> refit;
-    for (const auto& r : json::parse(resultsIn)) {
+    for (const auto& r : resultsOf(dir)) {
         const std::string scene = r.at("scene");
         refit[std::stoi(scene.substr(scene.rfind('-') + 1))] = r.at("counters").at("bvh_refit_triangles").get<double>();
     }
