@@ -60,12 +60,17 @@ std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::v
     std::vector<float> kernel(2 * radius + 1);
     for (int k = -radius; k <= radius; ++k) kernel[k + radius] = std::exp(-0.5f * k * k / (sigma * sigma));
     const std::vector<glm::vec3> input = reflection;
+    // The range kernel's colours, once per texel rather than once per window it falls in.
+    std::vector<glm::vec3> range;
+    if (rangeSigma > 0.0f) {
+        range.resize(input.size());
+        for (std::size_t i = 0; i < input.size(); ++i) range[i] = compressed(input[i]);
+    }
     std::vector<std::size_t> blurredPerRow(height, 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
                 if (!band[at(x, y)] || source[at(x, y)] == ReflectionSource::None) continue;
-                const glm::vec3 centre = compressed(input[at(x, y)]);
                 glm::vec3 sum(0.0f);
                 float weight = 0.0f;
                 for (int dy = -radius; dy <= radius; ++dy) {
@@ -76,7 +81,7 @@ std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::v
                         if (nx < 0 || nx >= width || source[at(nx, ny)] == ReflectionSource::None) continue;
                         float w = kernel[dx + radius] * kernel[dy + radius];
                         if (rangeSigma > 0.0f) {
-                            const glm::vec3 d = compressed(input[at(nx, ny)]) - centre;
+                            const glm::vec3 d = range[at(nx, ny)] - range[at(x, y)];
                             w *= std::exp(-0.5f * glm::dot(d, d) / (rangeSigma * rangeSigma));
                         }
                         sum += w * input[at(nx, ny)];
