@@ -55,6 +55,7 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
 
 ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                        TracedEffects effects, RayCone footprint) const {
+    if (!settings_.rayCones) footprint = {};  // point-sampled textures (texture_filter = "none"), at every depth
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
     // Work on the side the ray arrives from.

@@ -133,7 +133,6 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
 }
 
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
-    if (!ssr_) ssr_ = std::make_unique<SsrPass>();
     Rasterizer& rasterizer = context.rasterizer();
     if (frame.width != warmWidth_ || frame.height != warmHeight_) {
         // New targets cost page faults and allocations the steady state does not pay.
@@ -159,7 +158,6 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
     const WhittedTracer tracer(rays, tracerSettings_);
     const Camera& camera = frame.camera;
-    auto footprint = [&](const GBufferSurface& s) { return tracerSettings_.rayCones ? s.footprint() : RayCone{}; };
     result.image = Image(frame.width, frame.height);
     std::vector<ReflectiveTexel> texels(n);
     std::vector<glm::vec3> reflection(n, glm::vec3(0.0f));
@@ -185,7 +183,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
             // Refractive: ray traced whole, as SSR does not refract.
             ++pixelsTraced;
             ShadingParts parts =
-                tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, true, true}, footprint(surface));
+                tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, true, true}, surface.footprint());
             if (!rayTracedShadows_) parts.local = litLocal;
             result.image.at(x, y) = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
             return;
@@ -197,7 +195,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         if (traceFallback) ++fallbackRays;
         // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
         ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, traceFallback, refractive[i] != 0},
-                                               footprint(surface));
+                                               surface.footprint());
         if (!rayTracedShadows_) parts.local = litLocal;
         if (!parts.composes) {
             result.image.at(x, y) = glm::vec4(parts.local, 1.0f);
@@ -215,7 +213,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
                 const GBufferSurface hitSurface(g, j, camera);
                 const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
                 // The camera ray's cone continued along the mirror ray to the hit.
-                const RayCone cone = footprint(surface).at(glm::distance(surface.hit().position, hitSurface.hit().position));
+                const RayCone cone = surface.footprint().at(glm::distance(surface.hit().position, hitSurface.hit().position));
                 ssrM = tracer.shadeParts(hitSurface.hit(), mirror, 1, parts.reflectivity, st, {}, cone).composed(tracerSettings_.blend);
             }
         }

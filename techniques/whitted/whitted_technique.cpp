@@ -61,12 +61,11 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     const WhittedTracer tracer(rays, settings_);
-    if (twoTermLenses_ && (!twoTerm_ || &twoTerm_->scene() != &context.scene())) twoTerm_ = std::make_unique<TwoTermTracer>(context.scene());
     result.image = Image(frame.width, frame.height);
     const int n = supersample_;
     const float aspect = frame.aspect();
     // A sub-pixel's cone when supersampled.
-    const RayCone cone = settings_.rayCones ? pixelCone(frame.camera, frame.height * n) : RayCone{};
+    const RayCone cone = pixelCone(frame.camera, frame.height * n);
     // Two-term mode: the pixels the model shaded and the rays spent on them (the paper's comparison).
     std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
     const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
