@@ -11,8 +11,8 @@ double FrameResult::totalMilliseconds() const {
 }
 
 RayScene& SceneContext::rayScene(double time) {
-    if (!rays_) rays_ = std::make_unique<RayScene>(scene_, time);
-    rays_->setTime(time);
+    if (!rays_) rays_ = std::make_unique<RayScene>(scene_, time);  // built at `time`: nothing to update yet
+    else rays_->setTime(time);
     return *rays_;
 }
 

@@ -71,6 +71,10 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
 
 void HeuristicRtTechnique::prepare(SceneContext& context) {
     context.rayScene(0.0);
+    // Object-space bounds once per scene: finding them scans every vertex.
+    const Scene& scene = context.scene();
+    localBounds_.clear();
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
     // Lavapipe compiles shaders at the first draw.
     RasterRequest warmUp;
     warmUp.camera = context.scene().camera;
@@ -144,12 +148,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     const GBuffer& g = raster_.gbuffer;
     clock.lap("rast");
 
-    // heur: the selection, then the heuristic mask. Object-space bounds once per scene: finding
-    // them scans every vertex.
-    if (localBounds_.size() != scene.objects.size()) {
-        localBounds_.clear();
-        for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
-    }
+    // heur: the selection, then the heuristic mask.
     const Selection selection = selectObjects(
         scene, frame, visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : visiblePixelsFromIds(g, scene.objects.size()));
     const std::size_t pixels = g.pixelCount();
@@ -174,8 +173,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         if (pixelEffects_[i] == 0) return;
         const GBufferSurface surface(g, i, frame.camera);
         const TracedEffects effects = tracedEffects(pixelEffects_[i]);
-        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects,
-                                           tracer_.rayCones ? surface.footprint() : RayCone{});
+        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects, surface.footprint());
         if (!effects.shadows) {
             // Shadows not selected: the P-buffer's (shadow-mapped) local colour, recovered from its
             // composition with the sky terms the rasterizer used.

@@ -163,7 +163,7 @@ void LayeredEmPass::record(VkCommandBuffer cb, const FrameTargets& t) {
         const LensDraw& d = draws_[i];
         LensDrawConstants c{};
         c.viewProj = t.projection * t.view;
-        c.cameraPosition = glm::vec4(t.camera.position, occlusionTolerance_);
+        c.cameraPosition = glm::vec4(t.camera.position, kOcclusionTolerance);
         c.maps = glm::ivec4(static_cast<int>(d.em->layers.size()), d.em->viewpoints[d.blend.a].maps.empty() ? 1 : d.em->viewpoints[d.blend.a].maps[0].size,
                             r.texelsA, r.texelsB);
         c.blend = glm::vec4(d.blend.weightA, d.blend.weightB, 0.0f, 0.0f);

@@ -33,8 +33,6 @@ public:
 
     // The systems of the next recorded frame (the pointers must stay valid until finish()).
     void setDraws(std::vector<LensDraw> draws) { draws_ = std::move(draws); }
-    // The G-buffer occlusion test's tolerance, relative to the fragment's distance from the eye.
-    void setOcclusionTolerance(float relative) { occlusionTolerance_ = relative; }
 
     std::string name() const override { return "lens_draw"; }
     void record(VkCommandBuffer cb, const FrameTargets& targets) override;
@@ -49,7 +47,8 @@ private:
 
     std::shared_ptr<VulkanDevice> device_;
     std::vector<LensDraw> draws_;
-    float occlusionTolerance_ = 2e-3f;
+    // The G-buffer occlusion test's tolerance, relative to the fragment's distance from the eye.
+    static constexpr float kOcclusionTolerance = 2e-3f;
     DescriptorSet descriptors_;
     UniquePipelineLayout layout_;
     UniquePipeline pipeline_;

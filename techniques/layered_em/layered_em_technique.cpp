@@ -95,14 +95,12 @@ void LayeredEmTechnique::prepare(SceneContext& context) {
         }
         ems_.push_back(std::move(*em));
     }
-    preparedScene_ = &scene;
     if (!pass_) pass_ = std::make_unique<LayeredEmPass>();
     FrameRequest warmUp{scene.camera, 0.0, 64, 36};
     context.rasterizer().render(rasterRequest(warmUp), raster_);
 }
 
 FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest& frame) {
-    if (preparedScene_ != &context.scene()) prepare(context);
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     if (frame.width != warmWidth_ || frame.height != warmHeight_) {

@@ -40,7 +40,6 @@ private:
     bool blendViewpoints_ = true;
     bool useCache_ = true;
     ShadowSettings shadowSettings_;
-    const Scene* preparedScene_ = nullptr;
     std::vector<std::unique_ptr<System>> systems_;
     std::vector<LayeredEm> ems_;
     std::unique_ptr<LayeredEmPass> pass_;
