@@ -17,8 +17,8 @@ void deformMesh(const Deformation& d, const Mesh& rest, double time, DeformedVer
     out.positions.resize(n);
     out.normals.resize(n);
     out.tangents.resize(rest.tangents.size());
-    const double k = 2.0 * 3.14159265358979323846 / static_cast<double>(d.wavelength);
-    const double omegaT = k * static_cast<double>(d.speed) * time;
+    const double k = d.wavenumber();
+    const double omegaT = d.angularFrequency() * time;
     for (std::size_t i = 0; i < n; ++i) {
         const glm::vec3 p = rest.positions[i];
         const double s = k * static_cast<double>(glm::dot(p, d.direction)) - omegaT + static_cast<double>(d.phaseRadians);

@@ -5,6 +5,7 @@
 // with propagation direction d and displacement axis a (unit, perpendicular). deformMesh() is the
 // one function that computes deformed vertices: the rasterizer's vertex upload and the Embree scene
 // both call it, so rasterization and ray tracing see the same surface.
+#include <numbers>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -24,6 +25,8 @@ struct Deformation {
     glm::vec3 axis{0.0f, 1.0f, 0.0f};       // displacement, unit, perpendicular to direction
 
     bool active() const { return amplitude != 0.0f; }
+    double wavenumber() const { return 2.0 * std::numbers::pi / static_cast<double>(wavelength); }  // k
+    double angularFrequency() const { return wavenumber() * static_cast<double>(speed); }          // w = k v
     // Object-space bounds of the deformed mesh at any time, from its rest bounds.
     Aabb envelope(const Aabb& rest) const;
 };

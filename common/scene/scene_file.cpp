@@ -218,10 +218,13 @@ private:
             if (auto c = t.table("copies")) copies = readCopies(*c, o, names);
             else copies.push_back(std::move(o));
             t.rejectUnknownKeys();
-            for (SceneObject& copy : copies) {
-                for (const Mesh& m : meshes) {  // every copy owns its meshes: a deforming copy rewrites them
+            // Every copy owns its meshes (a deforming copy rewrites them); the last takes the loaded
+            // meshes rather than a copy of them.
+            for (std::size_t k = 0; k < copies.size(); ++k) {
+                SceneObject& copy = copies[k];
+                for (Mesh& m : meshes) {
                     copy.meshes.push_back(static_cast<std::uint32_t>(scene_.meshes.size()));
-                    scene_.meshes.push_back(m);
+                    scene_.meshes.push_back(k + 1 == copies.size() ? std::move(m) : m);
                 }
                 objectIds_[copy.name] = scene_.objects.size();
                 scene_.objects.push_back(std::move(copy));
@@ -255,8 +258,7 @@ private:
                 c.animation.times[i] += k * timeStep;
             }
             // Late by k * time_step: sin(k_w x - w (t - k dt)) = sin(k_w x - w t + w k dt).
-            const double omega = 2.0 * 3.14159265358979323846 / c.deformation.wavelength * c.deformation.speed;
-            c.deformation.phaseRadians += static_cast<float>(omega * k * timeStep);
+            c.deformation.phaseRadians += static_cast<float>(c.deformation.angularFrequency() * k * timeStep);
             copies.push_back(std::move(c));
         }
         return copies;
