@@ -29,7 +29,8 @@ MetricReport computeMetrics(const Image& test, const Image& reference, const Met
     report.options = options;
 
     const cv::Mat3f displayTest = metricRgb(test, ValueSpace::Display), displayReference = metricRgb(reference, ValueSpace::Display);
-    const bool linear = options.errorSpace == ValueSpace::Linear;
+    // Linear-light copies only for the error metrics that read them.
+    const bool linear = options.errorSpace == ValueSpace::Linear && options.selection.error();
     const cv::Mat3f errorTest = linear ? metricRgb(test, ValueSpace::Linear) : displayTest;
     const cv::Mat3f errorReference = linear ? metricRgb(reference, ValueSpace::Linear) : displayReference;
 

@@ -93,11 +93,9 @@ def baseline_summaries(seqs, baseline_scene):
     return {(k[1], k[4]): sequence_summary(rows) for k, rows in seqs.items() if k[0] == baseline_scene}
 
 
-def summary_rows(records, baseline_scene=BASELINE_SCENE):
+def summary_rows(seqs, baseline, baseline_scene):
     """One row per sequence outside the baseline scene: (key, its summary, the baseline's or None)."""
-    seqs = sequences(records)
-    base = baseline_summaries(seqs, baseline_scene)
-    return [(k, sequence_summary(rows), base.get((k[1], k[4]))) for k, rows in sorted(seqs.items()) if k[0] != baseline_scene]
+    return [(k, sequence_summary(rows), baseline.get((k[1], k[4]))) for k, rows in sorted(seqs.items()) if k[0] != baseline_scene]
 
 
 def along_path_by_technique(seqs, out_dir, name, title, baseline):
@@ -201,7 +199,7 @@ def write_section(records, out_dir, baseline_scene=BASELINE_SCENE):
         name = "failures-%s-%s-%s" % (os.path.basename(scene).replace(".toml", ""), res, path)
         title = "%s at %s along %s: per technique and frame" % (scene, res, path)
         figures.append(((scene, res, path), along_path_by_technique(group, out_dir, name, title, baseline)))
-    rows = summary_rows(records, baseline_scene)
+    rows = summary_rows(seqs, baseline, baseline_scene)
     intro = ("Along every camera path, each technique setting's worst frame against its median: the worst-frame SSIM, the "
              "frame-time spike (largest frame time over the median) and the temporal error, beside the same setting's median SSIM "
              "and frame time along %s's path (the baseline). The worst-frame SSIM opens that frame in the viewer." % baseline_scene)

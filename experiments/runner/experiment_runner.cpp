@@ -113,6 +113,7 @@ struct ActiveScene {
     std::unique_ptr<Scene> scene;
     std::unique_ptr<SceneContext> context;
     std::map<std::string, std::unique_ptr<Technique>> techniques;
+    json stats;  // the scene's size, for tables that list it (Sabino 2012 Table 3)
 
     void load(const ExperimentConfig& config, std::size_t i) {
         if (i == index) return;
@@ -120,6 +121,9 @@ struct ActiveScene {
         context.reset();
         scene = std::make_unique<Scene>(loadSceneFile(config.scenes[i].file));
         context = std::make_unique<SceneContext>(*scene);
+        const SceneStats s = scene->stats();
+        stats = {{"objects", s.objects}, {"vertices", s.vertices}, {"triangles", s.triangles},
+                 {"lights", s.lights}, {"reflective", s.reflectiveObjects}, {"refractive", s.refractiveObjects}};
         index = i;
     }
 
@@ -214,9 +218,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["index"] = run->index;
         record["id"] = run->id;
         record["scene"] = sceneSpec.name;
-        const SceneStats stats = scene.stats();  // for tables that list scene sizes (Sabino 2012 Table 3)
-        record["scene_stats"] = {{"objects", stats.objects}, {"vertices", stats.vertices}, {"triangles", stats.triangles},
-                                 {"lights", stats.lights}, {"reflective", stats.reflectiveObjects}, {"refractive", stats.refractiveObjects}};
+        record["scene_stats"] = active.stats;
         record["view"] = run->cameraPath.empty() ? "camera" : run->cameraPath;
         record["frame"] = run->frame;
         record["time"] = view.time;
