@@ -5,7 +5,8 @@
 #   ./setup.sh            install, configure, build (into ./build)
 #   BUILD_DIR=dir ./setup.sh   build elsewhere
 #
-# Every issue that needs a new package adds it to PACKAGES below, and nowhere else.
+# Every issue that needs a new package adds it to PACKAGES below, and nowhere else (npm is the one
+# exception, checked by command: see below).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")"
 
@@ -57,8 +58,11 @@ else
   echo "setup: all ${#PACKAGES[@]} packages present"
 fi
 
-# The browser test's npm packages, as locked in tests/browser/package-lock.json.
-npm ci --prefix tests/browser --prefer-offline --no-audit --no-fund --loglevel=error
+# The browser test's npm packages, as locked in tests/browser/package-lock.json; npm ci deletes and
+# reinstalls them, so only when the lock file is newer than what is installed.
+if [ ! tests/browser/node_modules/.package-lock.json -nt tests/browser/package-lock.json ]; then
+  npm ci --prefix tests/browser --prefer-offline --no-audit --no-fund --loglevel=error
+fi
 
 BUILD_DIR=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
