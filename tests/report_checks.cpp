@@ -1,4 +1,5 @@
 #include "report_checks.h"
+#include "test_support.h"
 
 #include <cstdio>
 #include <fstream>
@@ -16,10 +17,7 @@ std::string formatNumber(const char* spec, double v) {
     return text;
 }
 
-std::string readReportPage(const fs::path& reportDir) {
-    std::ifstream in(reportDir / "index.html");
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
+std::string readReportPage(const fs::path& reportDir) { return readTextFile(reportDir / "index.html"); }
 
 std::size_t expectReportLinksResolve(const fs::path& reportDir) {
     const std::string page = readReportPage(reportDir);

@@ -14,6 +14,7 @@
 
 #include "cli_runner.h"
 #include "report_checks.h"
+#include "runner_checks.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "techniques/technique.h"
@@ -66,11 +67,6 @@ fs::path writeConfig(const TempDir& dir, const std::string& text, const std::str
     return p;
 }
 
-std::vector<json> results(const fs::path& out) {
-    std::ifstream in(out / "results.json");
-    return json::parse(in).get<std::vector<json>>();
-}
-
 // A record without what legitimately differs between two runs of the same experiment: timings
 // and whether the reference came from the cache.
 json comparable(json r) {
@@ -82,17 +78,9 @@ json comparable(json r) {
 }
 
 void expectSameResults(const fs::path& a, const fs::path& b) {
-    auto ra = results(a), rb = results(b);
+    auto ra = test::readResults(a), rb = test::readResults(b);
     ASSERT_EQ(ra.size(), rb.size());
     for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_EQ(comparable(ra[i]), comparable(rb[i])) << ra[i].at("id");
-}
-
-RunnerOptions options(const fs::path& out, const fs::path& cache) {
-    RunnerOptions o;
-    o.outDir = out;
-    o.cacheDir = cache;
-    o.quiet = true;
-    return o;
 }
 
 TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
@@ -101,13 +89,13 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     const fs::path cache = dir.path() / "cache";
 
     // Rows: scenes x frames x techniques x parameter sets.
-    RunnerSummary first = runExperiment(config, options(dir.path() / "a", cache));
+    RunnerSummary first = runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache));
     EXPECT_TRUE(first.complete);
     EXPECT_EQ(first.runsRendered, 20u);
     // One per distinct camera and size: orbit's frame 0 is the scene camera of whitted-classic,
     // and the cache keys on the camera, not on the view's name.
     EXPECT_EQ(first.referencesRendered, 3u);
-    auto rows = results(dir.path() / "a");
+    auto rows = test::readResults(dir.path() / "a");
     ASSERT_EQ(rows.size(), 20u);
     std::string csv;
     {
@@ -126,18 +114,18 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     EXPECT_LT(rows[0].at("metrics").at("masked").at("ssim").get<double>(), rows[2].at("metrics").at("masked").at("ssim").get<double>());
 
     // The same experiment again: every reference from the cache, identical metrics.
-    RunnerSummary second = runExperiment(config, options(dir.path() / "b", cache));
+    RunnerSummary second = runExperiment(config, test::quietRunnerOptions(dir.path() / "b", cache));
     EXPECT_EQ(second.referencesRendered, 0u);
     EXPECT_EQ(second.referenceCacheHits, 20u);
     expectSameResults(dir.path() / "a", dir.path() / "b");
 
     // Interrupted after 7 runs, then resumed: the same result set as the uninterrupted run.
-    RunnerOptions stop = options(dir.path() / "c", cache);
+    RunnerOptions stop = test::quietRunnerOptions(dir.path() / "c", cache);
     stop.maxRuns = 7;
     RunnerSummary part = runExperiment(config, stop);
     EXPECT_FALSE(part.complete);
-    EXPECT_EQ(results(dir.path() / "c").size(), 7u);
-    RunnerOptions resume = options(dir.path() / "c", cache);
+    EXPECT_EQ(test::readResults(dir.path() / "c").size(), 7u);
+    RunnerOptions resume = test::quietRunnerOptions(dir.path() / "c", cache);
     resume.resume = true;
     RunnerSummary rest = runExperiment(config, resume);
     EXPECT_TRUE(rest.complete);
@@ -148,7 +136,7 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     // Three shards merged: the same result set as the unsharded run.
     std::vector<fs::path> shards;
     for (int i = 0; i < 3; ++i) {
-        RunnerOptions s = options(dir.path() / ("shard" + std::to_string(i)), cache);
+        RunnerOptions s = test::quietRunnerOptions(dir.path() / ("shard" + std::to_string(i)), cache);
         s.shardIndex = i;
         s.shardCount = 3;
         EXPECT_TRUE(runExperiment(config, s).complete);
@@ -159,7 +147,7 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     EXPECT_THROW(mergeShards({shards[0], shards[1]}, dir.path() / "merged2"), InputError);  // shard 2 missing
 
     // An output folder is never overwritten without --resume.
-    EXPECT_THROW(runExperiment(config, options(dir.path() / "a", cache)), InputError);
+    EXPECT_THROW(runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache)), InputError);
 
     // The report: every link and image of index.html resolves to a file, every figure has content.
     const fs::path report = dir.path() / "report";
@@ -212,7 +200,7 @@ TEST(ExperimentRunner, KilledMidRunLeavesWholeFilesAndResumesToTheSameResults) {
         std::ifstream in(e.path());
         EXPECT_NO_THROW(json::parse(in)) << e.path();
     }
-    EXPECT_GE(results(killed).size() + 1, before);  // at most the run in progress is missing
+    EXPECT_GE(test::readResults(killed).size() + 1, before);  // at most the run in progress is missing
 
     // Resumed, and an uninterrupted run to compare with, through the same program (the program's
     // hash is part of the reference cache key).
@@ -232,10 +220,10 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
                          "\"\nresolutions = [[24, 16]]\n[[techniques]]\nname = \"whitted\"\n";
     const ExperimentConfig c = loadExperimentConfig(writeConfig(dir, config));
     const fs::path cache = dir.path() / "cache";
-    EXPECT_EQ(runExperiment(c, options(dir.path() / "a", cache)).referencesRendered, 1u);
-    EXPECT_EQ(runExperiment(c, options(dir.path() / "b", cache)).referencesRendered, 0u);
+    EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "a", cache)).referencesRendered, 1u);
+    EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "b", cache)).referencesRendered, 0u);
     std::ofstream(dir.path() / "scene.toml", std::ios::app) << "\n# an edit\n";
-    EXPECT_EQ(runExperiment(c, options(dir.path() / "c", cache)).referencesRendered, 1u);
+    EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "c", cache)).referencesRendered, 1u);
 }
 
 TEST(ExperimentRunner, ConfigChoosesTheMetricsAndTheImagesKept) {
@@ -256,9 +244,9 @@ name = "heuristic_rt"
 )";
     auto run = [&](const std::string& name, const std::string& choice) {
         const fs::path out = dir.path() / name;
-        RunnerOptions o = options(out, dir.path() / "cache");
+        RunnerOptions o = test::quietRunnerOptions(out, dir.path() / "cache");
         EXPECT_TRUE(runExperiment(loadExperimentConfig(writeConfig(dir, "[experiment]\n" + choice + body, name + ".toml")), o).complete);
-        return results(out);
+        return test::readResults(out);
     };
     const auto everything = run("all", "");
     const auto ssimTemporal = run("ssim-temporal", "metrics = [\"ssim\", \"temporal\"]\nkeep = []\n");
@@ -307,7 +295,7 @@ name = "heuristic_rt"
 
 TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
     // quick.toml needs no assets; stability.toml and paper.toml need the paper scenes' models.
-    const fs::path configs = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "experiments" / "configs";
+    const fs::path configs = test::sourceDir() / "experiments" / "configs";
     const ExperimentConfig quick = loadExperimentConfig(configs / "quick.toml");
     EXPECT_GT(planRuns(quick).size(), 10u);
     if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: the configs with paper scenes not checked";

@@ -13,6 +13,7 @@
 #include "cli_runner.h"
 #include "experiments/runner/experiment_runner.h"
 #include "report_checks.h"
+#include "runner_checks.h"
 #include "test_support.h"
 
 namespace hybridlab {
@@ -73,10 +74,7 @@ TEST(FailureReport, SummaryTableHoldsWorstFramesMediansAndTheBaseline) {
     test::TempDir dir;
     const fs::path configFile = dir.path() / "failures.toml";
     test::writeTextFile(configFile, kConfig);
-    RunnerOptions o;
-    o.outDir = dir.path() / "results";
-    o.cacheDir = dir.path() / "cache";
-    o.quiet = true;
+    const RunnerOptions o = test::quietRunnerOptions(dir.path() / "results", dir.path() / "cache");
     ASSERT_TRUE(runExperiment(loadExperimentConfig(configFile), o).complete);
     const fs::path report = dir.path() / "report";
     const test::CliResult r = test::runHybridlab({"report", o.outDir.string(), "--out", report.string(), "--baseline", "whitted-classic"});
@@ -86,9 +84,8 @@ TEST(FailureReport, SummaryTableHoldsWorstFramesMediansAndTheBaseline) {
     EXPECT_GT(test::expectReportLinksResolve(report), 18u * 4);
     EXPECT_EQ(test::expectFiguresHaveContent(report, "failures-"), 2u * 2);  // SVG + PDF per path
 
-    std::ifstream resultsIn(o.outDir / "results.json"), mdIn(report / "report.md");
-    const std::vector<json> records = json::parse(resultsIn).get<std::vector<json>>();
-    const std::string markdown((std::istreambuf_iterator<char>(mdIn)), {});
+    const std::vector<json> records = test::readResults(o.outDir);
+    const std::string markdown = test::readTextFile(report / "report.md");
     std::map<std::string, std::vector<json>> failure, baseline;
     for (const auto& rec : records) (rec.at("scene") == "whitted-classic" ? baseline : failure)[variant(rec)].push_back(rec);
     ASSERT_EQ(failure.size(), 3u);

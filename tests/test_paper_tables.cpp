@@ -11,6 +11,7 @@
 
 #include "experiments/runner/experiment_runner.h"
 #include "report_checks.h"
+#include "runner_checks.h"
 #include "test_support.h"
 
 namespace hybridlab {
@@ -24,23 +25,16 @@ using nlohmann::json;
 std::string runAndTabulate(const test::TempDir& dir, const std::string& configText, const std::string& script) {
     const fs::path config = dir.path() / "config.toml";
     test::writeTextFile(config, configText);
-    RunnerOptions o;
-    o.outDir = dir.path() / "results";
-    o.cacheDir = dir.path() / "cache";
-    o.quiet = true;
+    const RunnerOptions o = test::quietRunnerOptions(dir.path() / "results", dir.path() / "cache");
     EXPECT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
-    const fs::path path = fs::path(HYBRIDLAB_TEST_FIXTURES).parent_path().parent_path() / "paper_figures" / script;
+    const fs::path path = test::sourceDir() / "paper_figures" / script;
     const fs::path table = dir.path() / "table.md";
     const std::string command = "/usr/bin/python3 '" + path.string() + "' '" + o.outDir.string() + "' --out '" + table.string() + "' > /dev/null";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream in(table);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
+    return test::readTextFile(table);
 }
 
-json resultsOf(const test::TempDir& dir) {
-    std::ifstream in(dir.path() / "results" / "results.json");
-    return json::parse(in);
-}
+std::vector<json> resultsOf(const test::TempDir& dir) { return test::readResults(dir.path() / "results"); }
 
 TEST(PaperTables, SabinoTable3HoldsTheHybridsStagesAndTheGain) {
     test::TempDir dir;

@@ -37,6 +37,13 @@ void writeBinaryFile(const fs::path& path, const std::vector<std::uint8_t>& byte
 
 fs::path fixturesDir() { return fs::path(HYBRIDLAB_TEST_FIXTURES); }
 
+fs::path sourceDir() { return fixturesDir().parent_path().parent_path(); }
+
+std::string readTextFile(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 fs::path builtinSceneFile(const std::string& name) { return scenesDirectory() / (name + ".toml"); }
 
 std::optional<fs::path> assetsFromEnvironment() { return assetsRoot(); }

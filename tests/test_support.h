@@ -30,10 +30,14 @@ private:
 };
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
+// The whole file as text ("" if it cannot be read).
+std::string readTextFile(const std::filesystem::path& path);
 void writeBinaryFile(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
 
 // tests/fixtures in the source tree.
 std::filesystem::path fixturesDir();
+// The source tree's root.
+std::filesystem::path sourceDir();
 // scenes/<name>.toml in the source tree.
 std::filesystem::path builtinSceneFile(const std::string& name);
 // The test-scene assets (HYBRIDLAB_ASSETS), if set and non-empty.
