@@ -17,6 +17,11 @@ WhittedTracer::WhittedTracer(const RayScene& rays, WhittedSettings settings) : r
 glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone) const {
     SurfaceHit hit;
     if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) return skyRadiance(rays_.scene(), ray.direction);
+    return radianceAtHit(ray, hit, depth, importance, stats, cone);
+}
+
+glm::vec3 WhittedTracer::radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats,
+                                       RayCone cone) const {
     glm::vec3 L = shade(hit, ray.direction, depth, importance, stats, cone.at(hit.t));
     // A ray that meets the back of a surface travelled inside its object: Beer-Lambert absorption
     // of thick glass (Hakura & Snyder's G).

@@ -58,6 +58,8 @@ public:
     // `importance` is the ray's weight in the pixel; `cone` its footprint (pixelCone() for camera
     // rays), which filters textures (none: level 0's bilinear lookup).
     glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {}) const;
+    // radiance() for a ray whose first hit the caller has already found.
+    glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {}) const;
 
     // Full Whitted shading of a surface hit seen along unit direction `incoming` (towards the
     // surface): local colour with ray-traced shadows, composed with recursive reflection and

@@ -30,14 +30,15 @@ glm::vec3 TwoTermTracer::environmentRadiance(const WhittedTracer& tracer, const 
 glm::vec3 TwoTermTracer::radiance(const WhittedTracer& tracer, const RayScene& rays, const Ray& ray, RayStats& stats, RayCone cone,
                                   bool* lensPixel) const {
     SurfaceHit first;
-    const int system = rays.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), first) ? systemOfObject_[first.object] : -1;
-    if (system < 0) return tracer.radiance(ray, 0, 1.0f, stats, cone);
+    if (!rays.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), first)) return skyRadiance(rays.scene(), ray.direction);
+    const int system = systemOfObject_[first.object];
+    if (system < 0) return tracer.radianceAtHit(ray, first, 0, 1.0f, stats, cone);
     const LensSystem& lens = *systems_[static_cast<std::size_t>(system)];
     LensRayCounter counter;
     TwoTermPaths paths;
     const bool hit = traceTwoTermPaths(lens.lensRays(), ray, paths_, counter, paths);
     stats.refraction += counter.queries;
-    if (!hit) return tracer.radiance(ray, 0, 1.0f, stats, cone);
+    if (!hit) return tracer.radianceAtHit(ray, first, 0, 1.0f, stats, cone);
     if (lensPixel) *lensPixel = true;
     glm::vec3 sum(0.0f);
     for (const LensPath& p : paths.terms) {
