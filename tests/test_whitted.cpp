@@ -163,6 +163,35 @@ TEST(Whitted, DepthLimitReturnsTheLocalColour) {
     expectNear(trace(b.scene(), {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
 }
 
+TEST(Whitted, ALocalColourTheCallerHasIsComposedAsIsWithoutShadowRays) {
+    // The half-mirror of DepthLimitReturnsTheLocalColour: a hybrid hands shadeParts the lit
+    // G-buffer texel as C; it is composed (0.5 sky + 0.5 C) and not shaded again (no shadow ray).
+    SceneBuilder b;
+    Material m = matte({0.5f, 0.5f, 0.5f});
+    m.reflectivity = 0.5f;
+    b.object("floor", makePlane(), b.material(m), placed({0, 0, 0}, {10, 1, 10}));
+    Light l;
+    l.type = Light::Type::Directional;
+    l.direction = {0, -1, 0};
+    l.intensity = 1.0f;
+    b.light(l);
+    b.scene().sky.color = glm::vec3(0.0f, 0.0f, 1.0f);
+    RayScene rays(b.scene());
+    const WhittedTracer tracer(rays, {});
+    const Ray down{{0, 1, 0}, {0, -1, 0}};
+    SurfaceHit hit;
+    ASSERT_TRUE(rays.intersect(down, 0.0f, kInf, hit));
+    const glm::vec3 given(0.1f, 0.2f, 0.3f);
+    RayStats withGiven, shaded;
+    const ShadingParts parts = tracer.shadeParts(hit, down.direction, 0, 1.0f, withGiven, {}, {}, given);
+    expectNear(parts.local, given, 0.0f, "C as given");
+    expectNear(parts.composed(BlendRule::Design), 0.5f * glm::vec3(0, 0, 1) + 0.5f * given, 1e-6f, "composed with the given C");
+    EXPECT_EQ(withGiven.shadow, 0u);
+    EXPECT_EQ(withGiven.reflection, 1u);
+    expectNear(tracer.shadeParts(hit, down.direction, 0, 1.0f, shaded).local, glm::vec3(0.5f), 1e-6f, "C shaded");
+    EXPECT_EQ(shaded.shadow, 1u);
+}
+
 TEST(Whitted, RayCountsFollowTheRayTree) {
     // One camera ray hitting a Fresnel glass sphere in an empty sky: one reflection and one
     // refraction ray at the first hit, and per light one shadow ray where N.L > 0.
