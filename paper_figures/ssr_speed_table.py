@@ -28,15 +28,19 @@ def key(r):
     return (r["scene"], results.resolution(r), results.view_name(r))
 
 
+def beside_whitted(rows, whitted, label):
+    """The runs labelled `label` with the frame time of the whitted run of their scene, size and view."""
+    for r in rows:
+        if r["label"] == label and key(r) in whitted:
+            yield r, frame(whitted[key(r)])
+
+
 def speed_table(rows, whitted):
     out = ["**Speed against accuracy** (ms, medians over the repeats; ratio = whitted / ssr_fallback)", "",
            "| scene | size | setting | whitted ms | ssr_fallback ms | ratio | SSIM | SSR hit rate | fallback rays | "
            "raster | ssr | ray_trace | seam_blur | composite |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        if r["label"] != "ssr_fallback" or key(r) not in whitted:
-            continue
-        w = frame(whitted[key(r)])
+    for r, w in beside_whitted(rows, whitted, "ssr_fallback"):
         c = r["counters"]
         ssim = results.metric(r, "whole", "ssim")
         out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
@@ -53,10 +57,7 @@ def bound_table(rows, whitted):
            "| scene | size | setting | whitted ms | raster | ssr | refractive trees | trees / whitted | largest speed-up | "
            "whitted / raster |",
            "|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        if r["label"] != "glass-trees" or key(r) not in whitted:
-            continue
-        w = frame(whitted[key(r)])
+    for r, w in beside_whitted(rows, whitted, "glass-trees"):
         raster, ssr, trees = stage(r, "raster"), stage(r, "ssr"), stage(r, "ray_trace")
         out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,

@@ -37,13 +37,12 @@ std::string runAndTabulate(const test::TempDir& dir, const std::string& configTe
 
 std::vector<json> resultsOf(const test::TempDir& dir) { return test::readResults(dir.path() / "results"); }
 
+// The [experiment] table of the tests' configs: one timed frame per run, no warm-up, no optional images.
+const std::string kOneFrameEach = "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n";
+
 TEST(PaperTables, SabinoTable3HoldsTheHybridsStagesAndTheGain) {
     test::TempDir dir;
-    const std::string text = runAndTabulate(dir, R"(
-[experiment]
-warmup_frames = 0
-repeats = 1
-keep = []
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(
 [[scenes]]
 scene = "whitted-classic"
 resolutions = [[48, 27]]
@@ -121,7 +120,7 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
         scenes += "[[scenes]]\nscene = '" + file.string() + "'\nresolutions = [[48, 27]]\n[[scenes.views]]\npath = \"orbit\"\n";
     }
     const std::string text = runAndTabulate(
-        dir, "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n" + scenes + "[[techniques]]\nname = \"ssr_fallback\"\n",
+        dir, kOneFrameEach + scenes + "[[techniques]]\nname = \"ssr_fallback\"\n",
         "macedo_tables.py");
     EXPECT_NE(text.find("**Table II**"), std::string::npos) << text;
     EXPECT_EQ(text.find("**Table I**"), std::string::npos) << "no bunnies-falling-N runs, no Table I";
@@ -147,12 +146,7 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
 // run, the largest speed-up whitted / (raster + ssr + ray_trace).
 TEST(PaperTables, SsrSpeedTableHoldsTheRatiosAndTheBound) {
     test::TempDir dir;
-    const std::string text = runAndTabulate(dir, R"(
-[experiment]
-warmup_frames = 0
-repeats = 1
-metrics = ["ssim"]
-keep = []
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim"]
 [[scenes]]
 scene = "whitted-classic"
 resolutions = [[64, 36]]
