@@ -1,7 +1,8 @@
 // The paper-table scripts of paper_figures/ on small result sets: Sabino 2012 Table 3
 // (sabino_table3.py) must print each scene's size and the medians the records hold, and the gain
 // as their ratio; de Macedo & Rodrigues Tables I-II (macedo_tables.py) a line per N with the
-// dynamic triangles the ray scene updated, and the bvh_update stage's growth with them.
+// dynamic triangles the ray scene updated, and the bvh_update stage's growth with them; issue 7's
+// SSR speed table (ssr_speed_table.py) the ratios to whitted and the refractive trees' bound.
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -36,13 +37,12 @@ std::string runAndTabulate(const test::TempDir& dir, const std::string& configTe
 
 std::vector<json> resultsOf(const test::TempDir& dir) { return test::readResults(dir.path() / "results"); }
 
+// The [experiment] table of the tests' configs: one timed frame per run, no warm-up, no optional images.
+const std::string kOneFrameEach = "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n";
+
 TEST(PaperTables, SabinoTable3HoldsTheHybridsStagesAndTheGain) {
     test::TempDir dir;
-    const std::string text = runAndTabulate(dir, R"(
-[experiment]
-warmup_frames = 0
-repeats = 1
-keep = []
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(
 [[scenes]]
 scene = "whitted-classic"
 resolutions = [[48, 27]]
@@ -120,7 +120,7 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
         scenes += "[[scenes]]\nscene = '" + file.string() + "'\nresolutions = [[48, 27]]\n[[scenes.views]]\npath = \"orbit\"\n";
     }
     const std::string text = runAndTabulate(
-        dir, "[experiment]\nwarmup_frames = 0\nrepeats = 1\nkeep = []\n" + scenes + "[[techniques]]\nname = \"ssr_fallback\"\n",
+        dir, kOneFrameEach + scenes + "[[techniques]]\nname = \"ssr_fallback\"\n",
         "macedo_tables.py");
     EXPECT_NE(text.find("**Table II**"), std::string::npos) << text;
     EXPECT_EQ(text.find("**Table I**"), std::string::npos) << "no bunnies-falling-N runs, no Table I";
@@ -139,6 +139,54 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
         EXPECT_NE(text.find(test::formatNumber("%.1f", triangles / 1e3)), std::string::npos) << text;
     }
     EXPECT_NE(text.find("ms per 1000 dynamic triangles"), std::string::npos) << text;
+}
+
+// Issue 7's speed table (ssr_speed_table.py): per ssr_fallback variant, whitted's and its frame
+// times with their ratio, SSIM, hit rate and fallback rays as the records hold them; per glass-trees
+// run, the largest speed-up whitted / (raster + ssr + ray_trace).
+TEST(PaperTables, SsrSpeedTableHoldsTheRatiosAndTheBound) {
+    test::TempDir dir;
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim"]
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[64, 36]]
+[[techniques]]
+name = "whitted"
+[[techniques]]
+name = "ssr_fallback"
+param_sets = [ { }, { importance_cutoff = 0.01 } ]
+[[techniques]]
+name = "ssr_fallback"
+label = "glass-trees"
+params = { fallback = "none", recursion = "single" }
+)",
+                                             "ssr_speed_table.py");
+    double whitted = 0.0;
+    for (const auto& r : resultsOf(dir))
+        if (r.at("label") == "whitted") whitted = r.at("frame_ms").at("median");
+    ASSERT_GT(whitted, 0.0);
+    std::size_t variants = 0;
+    for (const auto& r : resultsOf(dir)) {
+        const auto stage = [&](const char* name) { return r.at("stages").at(name).at("median").get<double>(); };
+        const double t = r.at("frame_ms").at("median");
+        if (r.at("label") == "ssr_fallback") {
+            ++variants;
+            const std::string setting = r.at("parameters_text").get<std::string>().empty() ? "defaults" : r.at("parameters_text").get<std::string>();
+            const std::string row = "| whitted-classic | 64x36 | " + setting + " | " + test::formatNumber("%.1f", whitted) + " | " +
+                                    test::formatNumber("%.1f", t) + " | " + test::formatNumber("%.2f", whitted / t) + " | " +
+                                    test::formatNumber("%.4f", r.at("metrics").at("whole").at("ssim")) + " | " +
+                                    test::formatNumber("%.3f", r.at("counters").at("ssr_hit_rate")) + " | " +
+                                    std::to_string(static_cast<long>(r.at("counters").at("fallback_rays").get<double>())) + " | ";
+            EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
+        } else if (r.at("label") == "glass-trees") {
+            const double floor = stage("raster") + stage("ssr") + stage("ray_trace");
+            const std::string cells = test::formatNumber("%.1f", stage("ray_trace")) + " | " +
+                                      test::formatNumber("%.2f", stage("ray_trace") / whitted) + " | " +
+                                      test::formatNumber("%.2f", whitted / floor) + " | " + test::formatNumber("%.2f", whitted / stage("raster")) + " |";
+            EXPECT_NE(text.find(cells), std::string::npos) << cells << "\n" << text;
+        }
+    }
+    EXPECT_EQ(variants, 2u);
 }
 
 }  // namespace

@@ -256,5 +256,42 @@ TEST(SsrPass, HiZFindsTheLinearMarchHitsInFewerSteps) {
     EXPECT_LT(hizSteps, 0.5 * linearSteps);
 }
 
+// The march runs on the texels the pyramid pass lists, and the outputs of the others are cleared:
+// a pass reused for a frame that shows less of the mirror keeps nothing of the frame before.
+TEST(SsrPass, AFrameWithFewerMirrorTexelsKeepsNothingOfTheFrameBefore) {
+    Scene scene = test::mirrorFloorScene();
+    RASTERIZER_OR_SKIP(rasterizer, scene);
+    SsrPass pass;
+    RasterRequest request;
+    request.width = kWidth;
+    request.height = kHeight;
+    request.readback = kGBufferObjectId;
+    request.passes = {&pass};
+    auto tracedTexels = [&](const Camera& camera, RasterFrame& frame) {
+        request.camera = camera;
+        rasterizer->render(request, frame);
+        std::size_t traced = 0;
+        for (std::size_t i = 0; i < frame.gbuffer.pixelCount(); ++i) {
+            const SsrPixel& s = pass.result().pixels[i];
+            traced += s.traced();
+            EXPECT_EQ(s.traced(), frame.gbuffer.object(i) == 0) << "texel " << i;  // the floor, object 0
+            if (!s.traced()) {
+                EXPECT_EQ(s.flags, 0u) << "texel " << i;
+                EXPECT_EQ(s.hit, glm::ivec2(-1)) << "texel " << i;
+                EXPECT_EQ(s.confidence, 0.0f) << "texel " << i;
+            }
+        }
+        return traced;
+    };
+    RasterFrame frame;
+    const std::size_t before = tracedTexels(scene.camera, frame);
+    Camera up = scene.camera;  // the same place, looking up: the floor only at the bottom of the image
+    up.orientation = Camera::lookAtOrientation(up.position, up.position + glm::vec3(0.0f, 0.3f, -1.0f));
+    const std::size_t after = tracedTexels(up, frame);
+    EXPECT_GT(before, 0u);
+    EXPECT_GT(after, 0u);
+    EXPECT_LT(after, before / 2);
+}
+
 }  // namespace
 }  // namespace hybridlab

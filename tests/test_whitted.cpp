@@ -142,9 +142,8 @@ TEST(Whitted, OpaqueOccluderCastsAHardShadowAndATransparentOneLetsItsShareThroug
     expectNear(shaded(0.25f, 0.0f), unshadowed * t * t, 1e-6f, "transparent occluder");
 }
 
-TEST(Whitted, DepthLimitReturnsTheLocalColour) {
-    // A half-mirror lit from above reflects the sky. With max_depth 0 the hit returns its local
-    // colour C; with 1, 0.5 sky + 0.5 C.
+// A grey half-mirror floor at y = 0 lit from straight above (its local colour C = 0.5), under a blue sky.
+Scene halfMirrorUnderTheSun() {
     SceneBuilder b;
     Material m = matte({0.5f, 0.5f, 0.5f});
     m.reflectivity = 0.5f;
@@ -155,12 +154,39 @@ TEST(Whitted, DepthLimitReturnsTheLocalColour) {
     l.intensity = 1.0f;
     b.light(l);
     b.scene().sky.color = glm::vec3(0.0f, 0.0f, 1.0f);
+    return b.scene();
+}
+
+TEST(Whitted, DepthLimitReturnsTheLocalColour) {
+    // The half-mirror reflects the sky. With max_depth 0 the hit returns its local colour C; with
+    // 1, 0.5 sky + 0.5 C.
+    const Scene scene = halfMirrorUnderTheSun();
     const glm::vec3 C(0.5f);
     WhittedSettings s;
     s.maxDepth = 0;
-    expectNear(trace(b.scene(), {0, 1, 0}, {0, -1, 0}, s), C, 1e-6f, "depth 0");
+    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), C, 1e-6f, "depth 0");
     s.maxDepth = 1;
-    expectNear(trace(b.scene(), {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
+    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
+}
+
+TEST(Whitted, ALocalColourTheCallerHasIsComposedAsIsWithoutShadowRays) {
+    // The half-mirror again: a hybrid hands shadeParts the lit G-buffer texel as C; it is composed
+    // (0.5 sky + 0.5 C) and not shaded again (no shadow ray).
+    const Scene scene = halfMirrorUnderTheSun();
+    RayScene rays(scene);
+    const WhittedTracer tracer(rays, {});
+    const Ray down{{0, 1, 0}, {0, -1, 0}};
+    SurfaceHit hit;
+    ASSERT_TRUE(rays.intersect(down, 0.0f, kInf, hit));
+    const glm::vec3 given(0.1f, 0.2f, 0.3f);
+    RayStats withGiven, shaded;
+    const ShadingParts parts = tracer.shadeParts(hit, down.direction, 0, 1.0f, withGiven, {}, {}, given);
+    expectNear(parts.local, given, 0.0f, "C as given");
+    expectNear(parts.composed(BlendRule::Design), 0.5f * glm::vec3(0, 0, 1) + 0.5f * given, 1e-6f, "composed with the given C");
+    EXPECT_EQ(withGiven.shadow, 0u);
+    EXPECT_EQ(withGiven.reflection, 1u);
+    expectNear(tracer.shadeParts(hit, down.direction, 0, 1.0f, shaded).local, glm::vec3(0.5f), 1e-6f, "C shaded");
+    EXPECT_EQ(shaded.shadow, 1u);
 }
 
 TEST(Whitted, RayCountsFollowTheRayTree) {

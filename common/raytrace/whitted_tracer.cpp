@@ -59,7 +59,7 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
 }
 
 ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                                       TracedEffects effects, RayCone footprint) const {
+                                       TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local) const {
     if (!settings_.rayCones) footprint = {};  // point-sampled textures (texture_filter = "none"), at every depth
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
@@ -69,8 +69,9 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     glm::vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
 
     ShadingParts parts;
-    parts.local = localColor(hit, n, ng, -incoming, stats, effects.shadows,
-                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal));
+    parts.local = local ? *local
+                                : localColor(hit, n, ng, -incoming, stats, effects.shadows,
+                                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal));
     parts.transparency = 1.0f - m.opacity;
     const float orr = parts.transparency;
     const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;

@@ -3,6 +3,7 @@
 // of DESIGN.md): hard shadows from every light, reflection and refraction to a depth limit, the
 // local colour at the limit, the sky on a miss. The reference technique calls it from camera rays;
 // hybrid techniques call shade() from a G-buffer texel.
+#include <optional>
 #include <vector>
 
 #include "common/raytrace/ray_cone.h"
@@ -68,9 +69,12 @@ public:
     glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {}) const;
 
     // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
-    // everything), so that a hybrid technique can substitute or blend its own.
+    // everything), so that a hybrid technique can substitute or blend its own. `local`: the surface's
+    // local colour C when the caller already has it (a hybrid's lit G-buffer texel, shadowed by the
+    // shadow maps), taken as is rather than shaded again; unset, it is shaded here (with shadow rays
+    // when effects.shadows).
     ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                            TracedEffects effects = {}, RayCone footprint = {}) const;
+                            TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a

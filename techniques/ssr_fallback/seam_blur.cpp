@@ -40,32 +40,31 @@ std::size_t blurReflectionSeams(std::vector<glm::vec3>& reflection, const std::v
                                 int radius, float rangeSigma) {
     if (radius <= 0) return 0;
     auto at = [width](int x, int y) { return static_cast<std::size_t>(y) * width + x; };
-    // The seam: reflecting texels with a reflecting 4-neighbour from another path.
+    // The seam: reflecting texels with a reflecting 4-neighbour from another path. With it, the range
+    // kernel's colours, once per reflecting texel rather than once per window it falls in.
     std::vector<std::uint8_t> seam(source.size(), 0);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const ReflectionSource s = source[at(x, y)];
-            if (s == ReflectionSource::None) continue;
-            auto differs = [&](int nx, int ny) {
-                if (nx < 0 || ny < 0 || nx >= width || ny >= height) return false;
-                const ReflectionSource n = source[at(nx, ny)];
-                return n != ReflectionSource::None && n != s;
-            };
-            seam[at(x, y)] = differs(x + 1, y) || differs(x - 1, y) || differs(x, y + 1) || differs(x, y - 1);
+    std::vector<glm::vec3> range(rangeSigma > 0.0f ? reflection.size() : 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            for (int x = 0; x < width; ++x) {
+                const ReflectionSource s = source[at(x, y)];
+                if (s == ReflectionSource::None) continue;
+                auto differs = [&](int nx, int ny) {
+                    if (nx < 0 || ny < 0 || nx >= width || ny >= height) return false;
+                    const ReflectionSource n = source[at(nx, ny)];
+                    return n != ReflectionSource::None && n != s;
+                };
+                seam[at(x, y)] = differs(x + 1, y) || differs(x - 1, y) || differs(x, y + 1) || differs(x, y - 1);
+                if (!range.empty()) range[at(x, y)] = compressed(reflection[at(x, y)]);
+            }
         }
-    }
+    });
     const std::vector<std::uint8_t> band = dilate(dilate(seam, width, height, radius, true), width, height, radius, false);
 
     const float sigma = 0.5f * static_cast<float>(radius);
     std::vector<float> kernel(2 * radius + 1);
     for (int k = -radius; k <= radius; ++k) kernel[k + radius] = std::exp(-0.5f * k * k / (sigma * sigma));
     const std::vector<glm::vec3> input = reflection;
-    // The range kernel's colours, once per texel rather than once per window it falls in.
-    std::vector<glm::vec3> range;
-    if (rangeSigma > 0.0f) {
-        range.resize(input.size());
-        for (std::size_t i = 0; i < input.size(); ++i) range[i] = compressed(input[i]);
-    }
     std::vector<std::size_t> blurredPerRow(height, 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {

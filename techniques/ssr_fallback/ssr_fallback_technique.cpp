@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
@@ -177,14 +178,15 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
             return;
         }
         const GBufferSurface surface(g, i, camera);
-        const glm::vec3 litLocal(lit.at(x, y));
+        // The lit image's colour is C with shadows from the maps; with ray-traced shadows C is shaded again.
+        const std::optional<glm::vec3> rasterLocal =
+            rayTracedShadows_ ? std::nullopt : std::optional<glm::vec3>(glm::vec3(lit.at(x, y)));
         refractive[i] = optical.z < 1.0f;
         if (refractive[i] && !ssrSettings_.refractive) {
             // Refractive: ray traced whole, as SSR does not refract.
             ++pixelsTraced;
-            ShadingParts parts =
-                tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, true, true}, surface.footprint());
-            if (!rayTracedShadows_) parts.local = litLocal;
+            const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
+                                                         {rayTracedShadows_, true, true}, surface.footprint(), rasterLocal);
             result.image.at(x, y) = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
             return;
         }
@@ -194,9 +196,8 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         if (traceFallback || rayTracedShadows_ || refractive[i]) ++pixelsTraced;
         if (traceFallback) ++fallbackRays;
         // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
-        ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {rayTracedShadows_, traceFallback, refractive[i] != 0},
-                                               surface.footprint());
-        if (!rayTracedShadows_) parts.local = litLocal;
+        const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
+                                                     {rayTracedShadows_, traceFallback, refractive[i] != 0}, surface.footprint(), rasterLocal);
         if (!parts.composes) {
             result.image.at(x, y) = glm::vec4(parts.local, 1.0f);
             return;

@@ -11,15 +11,28 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kPyramidFormat = VK_FORMAT_R32_SFLOAT;
-constexpr std::uint32_t kGroupSize = 8;  // local_size of ssr_trace.comp and ssr_depth_pyramid.comp
+constexpr std::uint32_t kGroupSize = 8;  // local_size of ssr_depth_pyramid.comp (ssr_trace.comp: 64 x 1, dispatched indirectly)
 
 std::uint32_t groups(std::uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
+
+// The march list's header (MarchList in the shaders): the indirect dispatch's group counts, then the
+// number of texels listed.
+struct MarchListHeader {
+    std::uint32_t groups[3];
+    std::uint32_t count;
+};
 
 // Compute-shader writes visible to the compute shaders that follow.
 void computeToComputeBarrier(VkCommandBuffer cb) {
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
     vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
+
+// std140 twin of PyramidUniforms in ssr_depth_pyramid.comp.
+struct PyramidUniforms {
+    glm::mat4 view;
+    glm::vec4 flags;
+};
 
 // std140 twin of SsrUniforms in ssr_trace.comp.
 struct SsrUniforms {
@@ -39,16 +52,15 @@ SsrPass::SsrPass() : device_(VulkanDevice::shared()) {
     descriptors_ = DescriptorSet(device, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                           {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-                                          {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-                                          {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                           {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                           {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                           {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                          {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr}});
+                                          {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                          {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}});
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
     for (std::uint32_t hiz = 0; hiz < 2; ++hiz) pipelines_[hiz] = createComputePipeline(device, "ssr_trace.comp", layout_, {hiz});
     device.requireFormat(kPyramidFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT, "the SSR depth pyramid");
-    pyramidUniforms_ = GpuBuffer(device, sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    pyramidUniforms_ = GpuBuffer(device, sizeof(PyramidUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     nearest_ = createNearestSampler(device, "the SSR sampler");
     uniforms_ = GpuBuffer(device, sizeof(SsrUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
 }
@@ -56,11 +68,14 @@ SsrPass::SsrPass() : device_(VulkanDevice::shared()) {
 void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
     if (color_.valid() && color_.desc().width == width && color_.desc().height == height) return;
     const VulkanDevice& device = *device_;
-    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     color_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, usage});
     hit_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, usage});
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4);
     colorReadback_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+    marchList_ = GpuBuffer(device, sizeof(MarchListHeader) + static_cast<VkDeviceSize>(width) * height * sizeof(std::uint32_t),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           GpuBuffer::Memory::DeviceLocal);
     // The pyramid: levels down to 1 x 1, each half the one below (rounded down).
     std::uint32_t levels = 1;
     while ((std::max(width, height) >> levels) > 0) ++levels;
@@ -72,7 +87,9 @@ void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
                                                  {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                                  {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
                                                  {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                                 {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}},
+                                                 {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                                 {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                                 {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}},
                                         levels);
     if (!pyramidLayout_) {
         pyramidLayout_ = createPipelineLayout(device, {pyramidDescriptors_.layout()}, 0);
@@ -83,7 +100,8 @@ void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
 }
 
 void SsrPass::recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& t) {
-    pyramidUniforms_.write(&t.view, sizeof t.view);
+    const PyramidUniforms uniforms{t.view, glm::vec4(settings_.refractive ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f)};
+    pyramidUniforms_.write(&uniforms, sizeof uniforms);
     // The linear march reads level 0 only.
     const auto levels = settings_.traversal == SsrSettings::Traversal::HiZ ? static_cast<std::uint32_t>(pyramidLevels_.size()) : 1u;
     for (std::uint32_t l = 0; l < levels; ++l) {
@@ -93,6 +111,8 @@ void SsrPass::recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& t) {
         pyramidDescriptors_.writeImage(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pyramidLevels_[l > 0 ? l - 1 : 0], VK_NULL_HANDLE,
                                        VK_IMAGE_LAYOUT_GENERAL, l);
         pyramidDescriptors_.writeImage(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pyramidLevels_[l], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL, l);
+        pyramidDescriptors_.writeImage(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[6], nearest_, VK_IMAGE_LAYOUT_GENERAL, l);
+        pyramidDescriptors_.writeBuffer(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, marchList_.buffer(), l);
     }
     for (std::uint32_t l = 0; l < levels; ++l) {
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pyramidPipelines_[l == 0 ? 1 : 0]);
@@ -115,28 +135,43 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     u.march = glm::vec4(static_cast<float>(settings_.maxSteps), static_cast<float>(settings_.stride), settings_.thickness,
                         settings_.maxDistance);
     u.screen = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), settings_.edgeFade, camera.nearPlane);
-    u.hiz = glm::vec4(static_cast<float>(pyramidLevels_.size() - 1), settings_.refractive ? 1.0f : 0.0f, 0.0f, 0.0f);
+    u.hiz = glm::vec4(static_cast<float>(pyramidLevels_.size() - 1), 0.0f, 0.0f, 0.0f);
     uniforms_.write(&u, sizeof u);
 
     // Rewritten every frame: the targets are recreated when the frame size changes.
     descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.buffer());
-    const std::array<int, 4> gbufferInputs = {0, 1, 6, 7};  // position, normal, optical, object id (GBufferTarget bit indices)
-    for (std::uint32_t i = 0; i < gbufferInputs.size(); ++i)
-        descriptors_.writeImage(1 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[gbufferInputs[i]], nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    descriptors_.writeImage(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[0], nearest_, VK_IMAGE_LAYOUT_GENERAL);  // position
+    descriptors_.writeImage(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[1], nearest_, VK_IMAGE_LAYOUT_GENERAL);  // normal
     descriptors_.writeImage(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     descriptors_.writeImage(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, color_.view(), VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     descriptors_.writeImage(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, hit_.view(), VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     descriptors_.writeImage(8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pyramid_.view(), nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    descriptors_.writeBuffer(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, marchList_.buffer());
 
-    for (const GpuImage* image : {&color_, &hit_, &pyramid_})
+    for (const GpuImage* image : {&color_, &hit_})
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+                        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    transitionImage(cb, pyramid_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    // The texels the march skips read as not traced: colour 0, no hit, no flags.
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    const VkClearColorValue noColor{{0.0f, 0.0f, 0.0f, 0.0f}}, noHit{{-1.0f, -1.0f, 0.0f, 0.0f}};
+    vkCmdClearColorImage(cb, color_.image(), VK_IMAGE_LAYOUT_GENERAL, &noColor, 1, &all);
+    vkCmdClearColorImage(cb, hit_.image(), VK_IMAGE_LAYOUT_GENERAL, &noHit, 1, &all);
+    const MarchListHeader empty{{0, 1, 1}, 0};
+    vkCmdUpdateBuffer(cb, marchList_.buffer(), 0, sizeof empty, &empty);
+    VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0, nullptr);
+
     const bool hiz = settings_.traversal == SsrSettings::Traversal::HiZ;
-    recordDepthPyramid(cb, t);
+    recordDepthPyramid(cb, t);  // also lists the texels to march
+    VkMemoryBarrier listed{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_INDIRECT_COMMAND_READ_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &listed, 0, nullptr, 0, nullptr);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[hiz ? 1 : 0]);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-    vkCmdDispatch(cb, groups(t.width), groups(t.height), 1);
+    vkCmdDispatchIndirect(cb, marchList_.buffer(), 0);
 
     for (const GpuImage* image : {&color_, &hit_})
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,

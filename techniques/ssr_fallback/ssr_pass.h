@@ -98,6 +98,8 @@ private:
     std::array<UniquePipeline, 2> pyramidPipelines_;  // level 0 from the G-buffer, further levels
     GpuBuffer pyramidUniforms_;
     GpuBuffer colorReadback_, hitReadback_;
+    // The texels to march, listed by the pyramid's level 0 (ssr_depth_pyramid.comp), with the indirect dispatch's size.
+    GpuBuffer marchList_;
     SsrResult result_;
 };
 

@@ -8,13 +8,15 @@
 // why the ray failed (the mask the ray-traced fallback reads, the paper's second step). With
 // kHiZ, the ray instead walks the min-depth pyramid (ssr_depth_pyramid.comp) as FidelityFX SSSR
 // does: up a level after a cell the ray crosses wholly in front of its nearest surface, down a
-// level where it may meet it, the thickness test at level 0.
-layout(local_size_x = 8, local_size_y = 8) in;
+// level where it may meet it, the thickness test at level 0. One invocation per texel of the march
+// list that ssr_depth_pyramid.comp wrote (dispatched indirectly); the outputs of the other texels
+// keep their cleared values (colour 0, hit (-1, -1), no flags).
+layout(local_size_x = 64) in;
 
 layout(constant_id = 0) const bool kHiZ = false;
 
 // Bits of ssrHit.z; the failure bits mirror SsrFailure in techniques/ssr_fallback/ssr_pass.h.
-const uint kTraced = 1u;       // a reflective texel (opaque, or any with hiz.y): a ray was marched
+const uint kTraced = 1u;       // a texel of the march list: a ray was marched
 const uint kOffScreen = 2u;    // the ray left the screen (or the view frustum through the near plane)
 const uint kBehind = 4u;       // it passed behind a surface by more than the thickness and found no hit
 const uint kOutOfSteps = 8u;   // it ran out of steps
@@ -28,16 +30,19 @@ layout(std140, set = 0, binding = 0) uniform SsrUniforms {
     vec4 cameraForward;   // xyz
     vec4 march;           // x max steps, y stride (pixels), z thickness (view depth), w max distance (world)
     vec4 screen;          // x width, y height, z edge fade (fraction of the smaller side), w near plane distance
-    vec4 hiz;             // x the pyramid's top level; y 1: refractive texels too (their Fresnel reflection)
+    vec4 hiz;             // x the pyramid's top level
 } u;
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
-layout(set = 0, binding = 3) uniform sampler2D gOptical;
-layout(set = 0, binding = 4) uniform usampler2D gObjectId;
 layout(set = 0, binding = 5) uniform sampler2D litImage;
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D ssrColor;  // rgb the lit image at the hit, a confidence
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D ssrHit;    // xy hit pixel (-1 without), z flag bits, w steps
 layout(set = 0, binding = 8) uniform sampler2D depthPyramid;               // min view depth per cell, by level (linear: level 0 only)
+layout(std430, set = 0, binding = 9) readonly buffer MarchList {
+    uint groups[3];
+    uint count;
+    uint texels[];  // x | y << 16
+} marchList;
 
 const float kSkyDepth = 1e30;
 
@@ -57,16 +62,10 @@ struct March {
 };
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (gl_GlobalInvocationID.x >= marchList.count) return;
+    uint packed = marchList.texels[gl_GlobalInvocationID.x];
+    ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 size = ivec2(u.screen.xy);
-    if (pixel.x >= size.x || pixel.y >= size.y) return;
-    imageStore(ssrColor, pixel, vec4(0.0));
-    imageStore(ssrHit, pixel, vec4(-1.0, -1.0, 0.0, 0.0));
-    if (texelFetch(gObjectId, pixel, 0).r == 0u) return;
-    vec4 optical = texelFetch(gOptical, pixel, 0);  // reflectivity, IOR, opacity, fresnel
-    bool reflective = optical.x > 0.0 || optical.w > 0.5;
-    // SSR does not refract: refractive texels are ray traced, their reflection too unless hiz.y asks for it.
-    if (!reflective || (optical.z < 1.0 && u.hiz.y < 0.5)) return;
 
     vec3 p = texelFetch(gPosition, pixel, 0).xyz;
     vec4 normalAndFacing = texelFetch(gNormal, pixel, 0);

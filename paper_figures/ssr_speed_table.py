@@ -1,0 +1,78 @@
+"""Issue 7's speed against accuracy from a result set of experiments/configs/ssr.toml.
+
+    /usr/bin/python3 paper_figures/ssr_speed_table.py RESULT_DIR [--out FILE.md]
+
+Speed: one line per scene and `ssr_fallback` variant (label `ssr_fallback`): the `whitted` run's
+frame time, the variant's, their ratio (whitted / ssr_fallback: the speed-up), SSIM against the
+reference, the SSR hit rate and the fallback rays, with the variant's stage times (medians over the
+repeats). Bound: one line per run labelled `glass-trees` (SSR on, no fallback, SSR hits not
+recursed: what remains in the `ray_trace` stage is the refractive texels' ray trees, which the
+method always traces): its raster, SSR and ray-trace stages, the trees' share of whitted's frame,
+and the largest speed-up the method could reach if everything else cost nothing,
+whitted / (raster + ssr + ray_trace), beside whitted / raster (the raster stages alone)."""
+import sys
+
+import results
+
+
+def stage(r, name):
+    s = r["stages"].get(name)
+    return s["median"] if s else 0.0
+
+
+def frame(r):
+    return r["frame_ms"]["median"]
+
+
+def key(r):
+    return (r["scene"], results.resolution(r), results.view_name(r))
+
+
+def beside_whitted(rows, whitted, label):
+    """The runs labelled `label` with the frame time of the whitted run of their scene, size and view."""
+    for r in rows:
+        if r["label"] == label and key(r) in whitted:
+            yield r, frame(whitted[key(r)])
+
+
+def speed_table(rows, whitted):
+    out = ["**Speed against accuracy** (ms, medians over the repeats; ratio = whitted / ssr_fallback)", "",
+           "| scene | size | setting | whitted ms | ssr_fallback ms | ratio | SSIM | SSR hit rate | fallback rays | "
+           "raster | ssr | ray_trace | seam_blur | composite |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r, w in beside_whitted(rows, whitted, "ssr_fallback"):
+        c = r["counters"]
+        ssim = results.metric(r, "whole", "ssim")
+        out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
+            r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r), w / frame(r),
+            "%.4f" % ssim if ssim is not None else "-", c.get("ssr_hit_rate", 0.0), int(c.get("fallback_rays", 0)),
+            stage(r, "raster"), stage(r, "ssr"), stage(r, "ray_trace"), stage(r, "seam_blur"), stage(r, "composite")))
+    out.append("")
+    return out
+
+
+def bound_table(rows, whitted):
+    out = ["**Bound**: the refractive texels' ray trees (runs labelled `glass-trees`) and the largest speed-up "
+           "whitted / (raster + ssr + ray_trace)", "",
+           "| scene | size | setting | whitted ms | raster | ssr | refractive trees | trees / whitted | largest speed-up | "
+           "whitted / raster |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for r, w in beside_whitted(rows, whitted, "glass-trees"):
+        raster, ssr, trees = stage(r, "raster"), stage(r, "ssr"), stage(r, "ray_trace")
+        out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
+            r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,
+            w / (raster + ssr + trees), w / raster))
+    out.append("")
+    return out
+
+
+def main():
+    a, rows = results.table_script(__doc__, "ssr_speed_table")
+    whitted = {key(r): r for r in rows if r["label"] == "whitted"}
+    if not whitted:
+        sys.exit("ssr_speed_table: %s has no whitted runs to compare with" % a.result_dir)
+    results.write_table(speed_table(rows, whitted) + bound_table(rows, whitted), a.out)
+
+
+if __name__ == "__main__":
+    main()
