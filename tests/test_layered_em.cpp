@@ -88,7 +88,7 @@ TEST(LayeredEmPass, GpuDrawIsTheRenderingMatrixTimesTheEm) {
     RASTERIZER_OR_SKIP(rasterizer, f.scene);
     const int size = 8;
     const LayeredEm em = randomLayeredEm(1, size, false, 7);
-    const LensDrawGeometry g = lensDrawGeometry(f.lens, em.layers, f.scene);
+    const LensDrawGeometry g = lensDrawGeometry(f.lens, em.layers, f.scene, f.scene.camera, f.width, f.height, size);
     const Image gpu = drawOnGpu(*rasterizer, f.scene, g, em, {}, f.width, f.height);
 
     // A x per term: rows of the rendering matrix (em_inference.h) for every covered pixel, times F G.
@@ -96,8 +96,11 @@ TEST(LayeredEmPass, GpuDrawIsTheRenderingMatrixTimesTheEm) {
     std::vector<glm::vec3> ax(raster.triangle.size(), glm::vec3(0.0f));
     const std::vector<glm::vec4> none(raster.triangle.size(), glm::vec4(0.0f));
     const std::vector<float> ones(raster.triangle.size(), 1.0f);
+    std::size_t coarseReads = 0;  // taps beyond level 0: the MIP chain's levels and their blend are exercised
     for (int t = 0; t < kPathTerms; ++t) {
-        const EmObservation o = lensObservation(raster, g.triangles, g.directions[t][0], none, ones, size);
+        const EmObservation o = lensObservation(raster, g.triangles, g.indices[t][0], none, ones, size);
+        for (const CubeMapLookup& l : o.lookups)
+            for (const CubeMapTap& tap : l.taps) coarseReads += tap.weight > 0.1f && tap.texel >= cubeMapLevelOffset(size, 1);
         const auto a = renderingMatrix(o, size);
         for (int c = 0; c < 3; ++c) {
             Eigen::VectorXd x(static_cast<Eigen::Index>(em.viewpoints[0].maps[0].texels.size()));
@@ -127,6 +130,7 @@ TEST(LayeredEmPass, GpuDrawIsTheRenderingMatrixTimesTheEm) {
         }
     }
     EXPECT_GT(both, 1500u);
+    EXPECT_GT(coarseReads, 100u);
     EXPECT_LE(onlyOne, covered / 100) << "the GPU covers the pixels the CPU rasteriser covers";
     // The lookup is continuous inside a face but not across faces (no filtering across them): a pixel
     // whose index lies within float rounding of a face edge may read the other face.
@@ -139,7 +143,7 @@ TEST(LayeredEmPass, GpuCompositesLayersSkyAndViewpointsAsItsCpuTwin) {
     LensFrame f;
     RASTERIZER_OR_SKIP(rasterizer, f.scene);
     const LayeredEm em = randomLayeredEm(3, 6, true, 9);
-    const LensDrawGeometry g = lensDrawGeometry(f.lens, em.layers, f.scene);
+    const LensDrawGeometry g = lensDrawGeometry(f.lens, em.layers, f.scene, f.scene.camera, f.width, f.height, 6);
     const ViewpointBlend blend{0, 1, 0.7f, 0.3f};
     const Image gpu = drawOnGpu(*rasterizer, f.scene, g, em, blend, f.width, f.height);
     const std::vector<glm::vec4> cpu = drawLensOnCpu(g, em, blend, f.scene.camera, f.width, f.height);

@@ -196,8 +196,8 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
                 std::vector<glm::vec4> b;
                 std::vector<float> confidence;
                 acc[l * kPathTerms + static_cast<std::size_t>(term)].finish(b, confidence);
-                auto dirs = vertexTextureDirections(lens, static_cast<PathTerm>(term), em.layers[l].shell);
-                perLayer[l].push_back(lensObservation(raster, lens.triangles, dirs, b, confidence, size));
+                const LayerTextureIndex index = vertexTextureIndex(lens, static_cast<PathTerm>(term), em.layers[l].shell, camera, w, h, size);
+                perLayer[l].push_back(lensObservation(raster, lens.triangles, index, b, confidence, size));
             }
         }
         if (settings.directImages) {

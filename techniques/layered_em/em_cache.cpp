@@ -11,7 +11,7 @@
 namespace hybridlab {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '1', '\0', '\0'};
+constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '2', '\0', '\0'};
 
 class Writer {
 public:
@@ -79,7 +79,7 @@ std::string layeredEmCacheKey(const Scene& scene, const LensSystemInfo& system, 
     }
     for (double v : {double{s.records.confidenceAngleDegrees}, double{s.tessellation.tauPixels}, double{s.tessellation.maxAngleDegrees},
                      double{s.viewpoints.stepDegrees}, double{s.viewpoints.radius}, double{s.viewpoints.height}, s.maxRelativeRms,
-                     s.inference.smoothness, s.inference.tolerance, s.inference.observedWeight, double{s.directMissingDistance}}) {
+                     s.inference.smoothness, s.inference.pyramid, s.inference.damping, s.inference.tolerance, s.inference.observedWeight, double{s.directMissingDistance}}) {
         h.add(v);
     }
     h.add(std::string_view(s.viewpoints.cameraPath));

@@ -33,30 +33,81 @@ CubeMapCoordinate cubeMapCoordinate(glm::vec3 d) {
     return c;
 }
 
-CubeMapLookup cubeMapLookup(glm::vec3 direction, int size) {
-    const CubeMapCoordinate c = cubeMapCoordinate(direction);
-    const float fs = static_cast<float>(size);
+int cubeMapLevels(int size) {
+    int levels = 1;
+    while ((size >> levels) >= 1) ++levels;
+    return levels;
+}
+
+std::size_t cubeMapLevelOffset(int size, int level) {
+    std::size_t offset = 0;
+    for (int k = 0; k < level; ++k) {
+        const std::size_t side = static_cast<std::size_t>(cubeMapLevelSize(size, k));
+        offset += 6u * side * side;
+    }
+    return offset;
+}
+
+CubeMapTexel cubeMapTexelAt(std::uint32_t texel, int size) {
+    CubeMapTexel t;
+    while (t.level + 1 < cubeMapLevels(size) && texel >= cubeMapLevelOffset(size, t.level + 1)) ++t.level;
+    const int side = cubeMapLevelSize(size, t.level);
+    const int rest = static_cast<int>(texel - cubeMapLevelOffset(size, t.level));
+    t.face = rest / (side * side);
+    t.row = rest % (side * side) / side;
+    t.column = rest % side;
+    return t;
+}
+
+std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size) {
+    const int side = cubeMapLevelSize(size, t.level);
+    return static_cast<std::uint32_t>(cubeMapLevelOffset(size, t.level)) + static_cast<std::uint32_t>((t.face * side + t.row) * side + t.column);
+}
+
+float cubeMapLod(float radiansPerPixel, int size) {
+    const float texelsPerPixel = radiansPerPixel * static_cast<float>(size) * 0.5f;
+    return texelsPerPixel > 1.0f ? std::log2(texelsPerPixel) : 0.0f;
+}
+
+namespace {
+
+// Bilinear taps of one level (twin of cubeLevelTaps in layered_em.frag), each weight times `scale`.
+void levelTaps(const CubeMapCoordinate& c, int size, int level, float scale, CubeMapTap* taps) {
+    const int side = cubeMapLevelSize(size, level);
+    const float fs = static_cast<float>(side);
     const float u = std::clamp(c.st.x * fs - 0.5f, 0.0f, fs - 1.0f), v = std::clamp(c.st.y * fs - 0.5f, 0.0f, fs - 1.0f);
-    const int i0 = std::min(static_cast<int>(u), size - 1), j0 = std::min(static_cast<int>(v), size - 1);
-    const int i1 = std::min(i0 + 1, size - 1), j1 = std::min(j0 + 1, size - 1);
+    const int i0 = std::min(static_cast<int>(u), side - 1), j0 = std::min(static_cast<int>(v), side - 1);
+    const int i1 = std::min(i0 + 1, side - 1), j1 = std::min(j0 + 1, side - 1);
     const float fu = u - static_cast<float>(i0), fv = v - static_cast<float>(j0);
-    const std::uint32_t base = static_cast<std::uint32_t>(c.face * size * size);
-    auto texel = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * size + i); };
+    const std::uint32_t base = static_cast<std::uint32_t>(cubeMapLevelOffset(size, level)) + static_cast<std::uint32_t>(c.face * side * side);
+    auto texel = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * side + i); };
+    taps[0] = {texel(i0, j0), scale * (1.0f - fu) * (1.0f - fv)};
+    taps[1] = {texel(i1, j0), scale * fu * (1.0f - fv)};
+    taps[2] = {texel(i0, j1), scale * (1.0f - fu) * fv};
+    taps[3] = {texel(i1, j1), scale * fu * fv};
+}
+
+}  // namespace
+
+CubeMapLookup cubeMapLookup(glm::vec3 direction, int size, float lod) {
+    const CubeMapCoordinate c = cubeMapCoordinate(direction);
+    const int last = cubeMapLevels(size) - 1;
+    lod = std::clamp(lod, 0.0f, static_cast<float>(last));
+    const int level = std::min(static_cast<int>(lod), last);
+    const float f = lod - static_cast<float>(level);
     CubeMapLookup l;
-    l.taps[0] = {texel(i0, j0), (1.0f - fu) * (1.0f - fv)};
-    l.taps[1] = {texel(i1, j0), fu * (1.0f - fv)};
-    l.taps[2] = {texel(i0, j1), (1.0f - fu) * fv};
-    l.taps[3] = {texel(i1, j1), fu * fv};
+    levelTaps(c, size, level, 1.0f - f, l.taps.data());
+    levelTaps(c, size, std::min(level + 1, last), f, l.taps.data() + 4);
     return l;
 }
 
 glm::vec3 cubeMapTexelDirection(std::uint32_t texel, int size) {
-    const int perFace = size * size;
-    const int face = static_cast<int>(texel) / perFace, rest = static_cast<int>(texel) % perFace;
-    const float s = (static_cast<float>(rest % size) + 0.5f) / static_cast<float>(size) * 2.0f - 1.0f;
-    const float t = (static_cast<float>(rest / size) + 0.5f) / static_cast<float>(size) * 2.0f - 1.0f;
+    const CubeMapTexel c = cubeMapTexelAt(texel, size);
+    const float side = static_cast<float>(cubeMapLevelSize(size, c.level));
+    const float s = (static_cast<float>(c.column) + 0.5f) / side * 2.0f - 1.0f;
+    const float t = (static_cast<float>(c.row) + 0.5f) / side * 2.0f - 1.0f;
     glm::vec3 d;
-    switch (face) {
+    switch (c.face) {
     case 0: d = {1.0f, -t, -s}; break;
     case 1: d = {-1.0f, -t, s}; break;
     case 2: d = {s, 1.0f, t}; break;
@@ -67,14 +118,15 @@ glm::vec3 cubeMapTexelDirection(std::uint32_t texel, int size) {
     return glm::normalize(d);
 }
 
-Image cubeMapCross(const LayerCubeMap& map) {
-    const int n = map.size;
+Image cubeMapCross(const LayerCubeMap& map, int level) {
+    const int n = cubeMapLevelSize(map.size, level);
+    const std::size_t first = cubeMapLevelOffset(map.size, level);
     Image out(4 * n, 3 * n);
     // Face origins in face units: +X, -X, +Y, -Y, +Z, -Z.
     const int cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};
     for (int f = 0; f < 6; ++f) {
         for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) out.at(cell[f][0] * n + i, cell[f][1] * n + j) = map.texels[static_cast<std::size_t>((f * n + j) * n + i)];
+            for (int i = 0; i < n; ++i) out.at(cell[f][0] * n + i, cell[f][1] * n + j) = map.texels[first + static_cast<std::size_t>((f * n + j) * n + i)];
         }
     }
     return out;

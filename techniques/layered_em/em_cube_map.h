@@ -1,9 +1,12 @@
 #pragma once
 // One EM layer's texture: a cube map with alpha (faces +X, -X, +Y, -Y, +Z, -Z in the OpenGL
-// convention), premultiplied RGBA, and THE lookup that both the rendering matrix (em_inference.h)
-// and the renderer use: which texels a cube-map index reads and with what weights. The renderer's
-// GPU pass must reproduce cubeMapLookup exactly (the same face choice, texel-centre convention,
-// bilinear weights and clamp at face edges, then texelFetch), so that A x is what it draws.
+// convention) and its whole MIP map (Hakura & Snyder 2001 §4.3 infer "entire MIPMAPs"),
+// premultiplied RGBA, and THE lookup that both the rendering matrix (em_inference.h) and the
+// renderer use: which texels a cube-map index and level of detail read and with what weights
+// (trilinear: bilinear in the two nearest levels). The renderer's GPU pass must reproduce
+// cubeMapLookup exactly (the same face choice, texel-centre convention, bilinear weights and clamp
+// at face edges, level blend, then texelFetch), so that A x is what it draws.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,12 +24,29 @@ struct CubeMapTap {
     float weight = 0.0f;
 };
 
-// Bilinear taps of one cube-map lookup (four; weights sum to 1).
+// Taps of one cube-map lookup: four bilinear taps in each of two adjacent levels (weights sum to 1;
+// the second level's are zero when the lookup reads one level).
 struct CubeMapLookup {
-    std::array<CubeMapTap, 4> taps{};
+    std::array<CubeMapTap, 8> taps{};
 };
 
-inline std::size_t cubeMapTexelCount(int size) { return 6u * static_cast<std::size_t>(size) * static_cast<std::size_t>(size); }
+// The MIP chain of a cube map with `size` texels a face side: level k has max(1, size >> k) a side,
+// down to one texel a face; texels are stored level after level, each level face after face.
+int cubeMapLevels(int size);
+inline int cubeMapLevelSize(int size, int level) { return std::max(1, size >> level); }
+std::size_t cubeMapLevelOffset(int size, int level);  // the level's first texel
+inline std::size_t cubeMapTexelCount(int size) { return cubeMapLevelOffset(size, cubeMapLevels(size)); }  // the whole chain
+
+struct CubeMapTexel {
+    int level = 0, face = 0, column = 0, row = 0;
+};
+CubeMapTexel cubeMapTexelAt(std::uint32_t texel, int size);
+std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size);
+
+// The level of detail of a lookup whose index turns by `radiansPerPixel` from one pixel to the
+// next: log2 of the pixel's footprint in level-0 texels (a level-0 texel spans 2 / size radians at
+// a face's centre), at least 0. One rule for the renderer's per-vertex levels and the direct images.
+float cubeMapLod(float radiansPerPixel, int size);
 
 // Face and face coordinates (s, t in [0, 1]) of an unnormalised direction (OpenGL table 3.19).
 struct CubeMapCoordinate {
@@ -35,11 +55,12 @@ struct CubeMapCoordinate {
 };
 CubeMapCoordinate cubeMapCoordinate(glm::vec3 direction);
 
-// The lookup: bilinear filtering of the level-0 texels around the coordinate, texel centres at
-// (i + 0.5) / size, clamped to the face (no filtering across faces).
-CubeMapLookup cubeMapLookup(glm::vec3 direction, int size);
+// The lookup: bilinear filtering of a level's texels around the coordinate, texel centres at
+// (i + 0.5) / side, clamped to the face (no filtering across faces), in levels floor(lod) and the
+// next, blended by lod's fraction (lod clamped to the chain).
+CubeMapLookup cubeMapLookup(glm::vec3 direction, int size, float lod = 0.0f);
 
-// The direction through the centre of a texel (unit).
+// The direction through the centre of a texel of any level (unit).
 glm::vec3 cubeMapTexelDirection(std::uint32_t texel, int size);
 
 struct LayerCubeMap {
@@ -52,11 +73,10 @@ struct LayerCubeMap {
         for (const CubeMapTap& t : l.taps) v += t.weight * texels[t.texel];
         return v;
     }
-    glm::vec4 sample(glm::vec3 direction) const { return sample(cubeMapLookup(direction, size)); }
 };
 
-// The six faces as a 4 x 3 horizontal cross (-X +Z +X -Z in the middle row, +Y above and -Y below
-// +Z), premultiplied RGBA; for looking at inferred EMs.
-Image cubeMapCross(const LayerCubeMap& map);
+// The six faces of a level as a 4 x 3 horizontal cross (-X +Z +X -Z in the middle row, +Y above
+// and -Y below +Z), premultiplied RGBA; for looking at inferred EMs.
+Image cubeMapCross(const LayerCubeMap& map, int level = 0);
 
 }  // namespace hybridlab

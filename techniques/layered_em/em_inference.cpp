@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include <Eigen/IterativeLinearSolvers>
 
 namespace hybridlab {
@@ -19,13 +21,12 @@ void addRow(EmObservation& o, const CubeMapLookup& l, glm::vec4 target, float co
 
 }  // namespace
 
-EmObservation lensObservation(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
-                              const std::vector<glm::vec3>& vertexDirections, const std::vector<glm::vec4>& targets,
-                              const std::vector<float>& confidence, int size) {
+EmObservation lensObservation(const LensRaster& raster, const std::vector<glm::uvec3>& triangles, const LayerTextureIndex& index,
+                              const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size) {
     EmObservation o;
     for (std::size_t i = 0; i < raster.triangle.size(); ++i) {
         if (!raster.covered(i) || confidence[i] <= 0.0f) continue;
-        addRow(o, pixelCubeMapLookup(raster, i, triangles, vertexDirections, size), targets[i], confidence[i],
+        addRow(o, pixelCubeMapLookup(raster, i, triangles, index, size), targets[i], confidence[i],
                static_cast<std::uint32_t>(i));
     }
     return o;
@@ -35,13 +36,18 @@ EmObservation directObservation(const Camera& camera, int width, int height, con
                                 const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size) {
     EmObservation o;
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    auto index = [&](int x, int y) {
+        const Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
+        return glm::normalize(shellTextureDirection(shell, ray.origin, ray.direction));
+    };
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
             if (confidence[i] <= 0.0f) continue;
-            Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
-            addRow(o, cubeMapLookup(shellTextureDirection(shell, ray.origin, ray.direction), size), targets[i], confidence[i],
-                   static_cast<std::uint32_t>(i));
+            const glm::vec3 d = index(x, y);
+            const float rate = std::max(std::acos(std::clamp(glm::dot(d, index(x + 1, y)), -1.0f, 1.0f)),
+                                        std::acos(std::clamp(glm::dot(d, index(x, y + 1)), -1.0f, 1.0f)));
+            addRow(o, cubeMapLookup(d, size, cubeMapLod(rate, size)), targets[i], confidence[i], static_cast<std::uint32_t>(i));
         }
     }
     return o;
@@ -59,11 +65,11 @@ SparseRows renderingMatrix(const EmObservation& observation, int size) {
     return a;
 }
 
-std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
-                                 const std::vector<glm::vec3>& vertexDirections, const LayerCubeMap& em) {
+std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm::uvec3>& triangles, const LayerTextureIndex& index,
+                                 const LayerCubeMap& em) {
     std::vector<glm::vec4> image(raster.triangle.size(), glm::vec4(0.0f));
     for (std::size_t i = 0; i < image.size(); ++i) {
-        if (raster.covered(i)) image[i] = em.sample(pixelCubeMapLookup(raster, i, triangles, vertexDirections, em.size));
+        if (raster.covered(i)) image[i] = em.sample(pixelCubeMapLookup(raster, i, triangles, index, em.size));
     }
     return image;
 }
@@ -75,8 +81,9 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
     result.em = LayerCubeMap(size);
     result.observed.assign(static_cast<std::size_t>(texels), false);
     std::vector<double> observedWeight(static_cast<std::size_t>(texels), 0.0);
+    std::vector<glm::dvec4> splat(static_cast<std::size_t>(texels), glm::dvec4(0.0));  // weighted sum of the targets reading a texel
 
-    // Stack the confidence-weighted rows of every observation, then the smoothness rows.
+    // Stack the confidence-weighted rows of every observation, then the regularising rows.
     std::vector<Eigen::Triplet<double>> entries;
     std::vector<glm::dvec4> rhs;
     Eigen::Index row = 0;
@@ -87,25 +94,53 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
                 if (t.weight == 0.0f) continue;
                 entries.emplace_back(row, static_cast<Eigen::Index>(t.texel), c * t.weight);
                 observedWeight[t.texel] += c * t.weight;
+                splat[t.texel] += c * static_cast<double>(t.weight) * glm::dvec4(o.targets[r]);
             }
             rhs.push_back(c * glm::dvec4(o.targets[r]));
         }
     }
     result.rows = static_cast<std::size_t>(row);
+    // Smoothness between neighbouring texels of a level-0 face; the pyramid carries it to the coarser
+    // levels (smoothness there would pull them away from the mean of what they cover).
     const double s = std::sqrt(settings.smoothness);
-    const int perFace = size * size;
-    for (int f = 0; f < 6; ++f) {
-        for (int j = 0; j < size; ++j) {
-            for (int i = 0; i < size; ++i) {
-                const int t = f * perFace + j * size + i;
-                for (int n : {i + 1 < size ? t + 1 : -1, j + 1 < size ? t + size : -1}) {
-                    if (n < 0) continue;
-                    entries.emplace_back(row, t, s);
-                    entries.emplace_back(row, n, -s);
-                    rhs.push_back(glm::dvec4(0.0));
-                    ++row;
-                }
-            }
+    auto addPair = [&](Eigen::Index a, Eigen::Index b, double weight) {
+        entries.emplace_back(row, a, weight);
+        entries.emplace_back(row, b, -weight);
+        rhs.push_back(glm::dvec4(0.0));
+        ++row;
+    };
+    for (std::uint32_t t = 0; t < static_cast<std::uint32_t>(cubeMapLevelOffset(size, 1)); ++t) {
+        const CubeMapTexel c = cubeMapTexelAt(t, size);
+        if (c.column + 1 < size) addPair(t, t + 1, s);
+        if (c.row + 1 < size) addPair(t, t + static_cast<std::uint32_t>(size), s);
+    }
+    // Damping towards the splat (the weighted mean of the targets that read the texel): a texel that
+    // rows touch only with small bilinear weights would otherwise take extreme values (alpha far
+    // outside [0, 1], negative colours) to fix other texels' residuals, and "over" amplifies them.
+    const double d = std::sqrt(settings.damping);
+    for (Eigen::Index t = 0; t < texels && d > 0.0; ++t) {
+        const double w = observedWeight[static_cast<std::size_t>(t)];
+        if (w <= 0.0) continue;
+        entries.emplace_back(row, t, d);
+        rhs.push_back(d * splat[static_cast<std::size_t>(t)] / w);
+        ++row;
+    }
+    // The pyramid: each texel of level k >= 1 against the mean of the level k - 1 texels it covers.
+    const double p = std::sqrt(settings.pyramid);
+    for (int level = 1; level < cubeMapLevels(size); ++level) {
+        const int fine = cubeMapLevelSize(size, level - 1), coarse = cubeMapLevelSize(size, level);
+        std::vector<std::vector<std::uint32_t>> children(6u * static_cast<std::size_t>(coarse * coarse));
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < fine; ++j)
+                for (int i = 0; i < fine; ++i)
+                    children[static_cast<std::size_t>((f * coarse + j * coarse / fine) * coarse + i * coarse / fine)].push_back(
+                        cubeMapTexelIndex({level - 1, f, i, j}, size));
+        const Eigen::Index first = static_cast<Eigen::Index>(cubeMapLevelOffset(size, level));
+        for (std::size_t parent = 0; parent < children.size(); ++parent) {
+            entries.emplace_back(row, first + static_cast<Eigen::Index>(parent), p);
+            for (std::uint32_t c : children[parent]) entries.emplace_back(row, c, -p / static_cast<double>(children[parent].size()));
+            rhs.push_back(glm::dvec4(0.0));
+            ++row;
         }
     }
     SparseRows a(row, texels);
@@ -122,6 +157,10 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         result.relativeResidual = std::max(result.relativeResidual, solver.error());
         for (Eigen::Index t = 0; t < texels; ++t) result.em.texels[static_cast<std::size_t>(t)][channel] = static_cast<float>(x[t]);
     }
+    // What a texture can hold: premultiplied colour is not negative and alpha is a coverage in
+    // [0, 1]; "over" with alpha outside it subtracts the layers behind (the projection of the
+    // damped solution onto that set).
+    for (glm::vec4& t : result.em.texels) t = glm::vec4(glm::max(glm::vec3(t), glm::vec3(0.0f)), std::clamp(t.a, 0.0f, 1.0f));
     for (std::size_t t = 0; t < result.observed.size(); ++t) {
         result.observed[t] = observedWeight[t] >= settings.observedWeight;
         result.observedTexels += result.observed[t] ? 1 : 0;

@@ -1,9 +1,14 @@
 #pragma once
-// EM inference (Hakura & Snyder 2001 §4.3): the layer cube map x that, applied by the renderer,
-// best matches the ray tracer's layer images in the confidence-weighted least-squares sense,
-// A x = b over every observation at once (both terms, several nearby viewpoints, direct images of
-// the environment), solved by conjugate gradient (Eigen's least-squares CG) with a small smoothness
-// term for texels no image observes and a stopping rule on the relative residual.
+// EM inference (Hakura & Snyder 2001 §4.3): the layer cube map x, its whole MIP chain ("entire
+// MIPMAPs are inferred", Figure 7), that, applied by the renderer, best matches the ray tracer's
+// layer images in the confidence-weighted least-squares sense, A x = b over every observation at
+// once (both terms, several nearby viewpoints, direct images of the environment), solved by
+// conjugate gradient (Eigen's least-squares CG) with a small smoothness term for texels no image
+// observes, a small pyramid term tying each texel to the mean of the finer texels it covers (so
+// the levels no image reads agree with those it does), a small damping of each observed texel
+// towards the mean of the targets that read it (Tikhonov regularisation: the plain least-squares
+// solution swings weakly observed texels far outside [0, 1]), and a stopping rule on the relative
+// residual; the solution is then clamped to what a texture holds (alpha in [0, 1], colour >= 0).
 #include <cstdint>
 #include <vector>
 
@@ -27,12 +32,11 @@ struct EmObservation {
 
 // A lens image of one term: a row for every covered pixel whose confidence is positive.
 // `targets` and `confidence` are per pixel of the raster.
-EmObservation lensObservation(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
-                              const std::vector<glm::vec3>& vertexDirections, const std::vector<glm::vec4>& targets,
-                              const std::vector<float>& confidence, int size);
+EmObservation lensObservation(const LensRaster& raster, const std::vector<glm::uvec3>& triangles, const LayerTextureIndex& index,
+                              const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size);
 
 // A direct image of the environment without the lens (§4.3): the pixel's own camera ray indexes
-// the shell.
+// the shell, at the level of detail of the angle between neighbouring pixels' indices.
 EmObservation directObservation(const Camera& camera, int width, int height, const Shell& shell,
                                 const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size);
 
@@ -40,12 +44,14 @@ EmObservation directObservation(const Camera& camera, int width, int height, con
 Eigen::SparseMatrix<double, Eigen::RowMajor> renderingMatrix(const EmObservation& observation, int size);
 
 // What the renderer draws for one term and layer with `em` (per pixel; zero where uncovered).
-std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm::uvec3>& triangles,
-                                 const std::vector<glm::vec3>& vertexDirections, const LayerCubeMap& em);
+std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm::uvec3>& triangles, const LayerTextureIndex& index,
+                                 const LayerCubeMap& em);
 
 struct EmInferenceSettings {
     int size = 32;                    // texels a cube face side
-    double smoothness = 1e-3;         // weight of (x_i - x_j)^2 between neighbouring texels of a face
+    double smoothness = 1e-3;         // weight of (x_i - x_j)^2 between neighbouring texels of a level-0 face
+    double pyramid = 1e-2;            // weight of (x_parent - mean of its finer texels)^2
+    double damping = 0.3;             // weight of (x_i - the mean of the targets that read texel i)^2
     double tolerance = 1e-6;          // stop at this relative residual (of the normal equations)
     int maxIterations = 1000;
     double observedWeight = 0.25;     // a texel is observed when its confidence-weighted lookup weights
@@ -54,7 +60,7 @@ struct EmInferenceSettings {
 
 struct EmInferenceResult {
     LayerCubeMap em;
-    std::vector<bool> observed;       // per texel: read with at least observedWeight in all
+    std::vector<bool> observed;       // per texel of the chain: read with at least observedWeight in all
     std::size_t observedTexels = 0;
     int iterations = 0;               // the largest over the four channels
     double relativeResidual = 0.0;    // the largest over the four channels

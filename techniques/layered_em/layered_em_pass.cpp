@@ -23,7 +23,7 @@ struct GpuLensVertex {
     glm::vec4 direction[kPathTerms * kMaxDrawnLayers];
 };
 
-// Twin of Lensthe push constants of layered_em_common.glsl.
+// Twin of the push constants of layered_em_common.glsl.
 struct LensDrawConstants {
     glm::mat4 viewProj;
     glm::vec4 cameraPosition;
@@ -102,8 +102,8 @@ void LayeredEmPass::upload() {
             for (int t = 0; t < kPathTerms; ++t) {
                 out.weight[t] = glm::vec4(g.weights[t][i], 0.0f);
                 out.sky[t] = glm::vec4(g.skyWeights[t][i], 0.0f);
-                for (std::size_t l = 0; l < g.directions[t].size(); ++l)
-                    out.direction[static_cast<std::size_t>(t) * kMaxDrawnLayers + l] = glm::vec4(g.directions[t][l][i], 0.0f);
+                for (std::size_t l = 0; l < g.indices[t].size(); ++l)
+                    out.direction[static_cast<std::size_t>(t) * kMaxDrawnLayers + l] = glm::vec4(g.indices[t][l].directions[i], g.indices[t][l].lods[i]);
             }
             vertexOut[vertex++] = out;
         }

@@ -129,7 +129,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
         vertices += lens.vertices.size();
         triangles += lens.triangles.size();
         t0 = Clock::now();
-        geometry.push_back(lensDrawGeometry(lens, ems_[s].layers, context.scene()));
+        geometry.push_back(lensDrawGeometry(lens, ems_[s].layers, context.scene(), frame.camera, frame.width, frame.height, bake_.inference.size));
         draws.push_back({&geometry.back(), &ems_[s], blendViewpoints(ems_[s], frame.camera.position, blendViewpoints_)});
         texCoordMs += since(t0);
     }

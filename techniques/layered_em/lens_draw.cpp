@@ -9,7 +9,8 @@
 
 namespace hybridlab {
 
-LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector<EmLayer>& layers, const Scene& scene) {
+LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector<EmLayer>& layers, const Scene& scene,
+                                  const Camera& camera, int width, int height, int emSize) {
     LensDrawGeometry g;
     g.positions.resize(lens.vertices.size());
     for (std::size_t i = 0; i < lens.vertices.size(); ++i) g.positions[i] = lens.vertices[i].position;
@@ -26,7 +27,7 @@ LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector
             const LensPath& p = lens.vertices[i].paths.terms[term];
             if (g.weights[term][i] != glm::vec3(0.0f)) g.skyWeights[term][i] = g.weights[term][i] * skyRadiance(scene, p.exitDirection);
         }
-        for (const EmLayer& layer : layers) g.directions[term].push_back(vertexTextureDirections(lens, pt, layer.shell));
+        for (const EmLayer& layer : layers) g.indices[term].push_back(vertexTextureIndex(lens, pt, layer.shell, camera, width, height, emSize));
     }
     return g;
 }
@@ -82,7 +83,7 @@ std::vector<glm::vec4> drawLensOnCpu(const LensDrawGeometry& g, const LayeredEm&
             std::array<std::vector<glm::vec4>, kPathTerms> colors;
             for (int t = 0; t < kPathTerms; ++t) {
                 for (std::size_t l = 0; l < layers; ++l)
-                    colors[t].push_back(v.maps[l].sample(pixelCubeMapLookup(raster, p, g.triangles, g.directions[t][l], v.maps[l].size)));
+                    colors[t].push_back(v.maps[l].sample(pixelCubeMapLookup(raster, p, g.triangles, g.indices[t][l], v.maps[l].size)));
             }
             c += w * compositeLensTerms(colors, weights, sky);
         }

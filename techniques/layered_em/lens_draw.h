@@ -2,7 +2,7 @@
 // What the layered-EM renderer draws for one lens system in one frame (Hakura & Snyder 2001 §5):
 // the tessellated lens's front-facing triangles with, per vertex, F G of each term, F G times the
 // sky in the term's exit direction (rays that leave to the sky meet no layer: the sky is behind
-// the last layer), and per term and layer the cube-map index; which two viewpoint samples are
+// the last layer), and per term and layer the cube-map index and level of detail; which two viewpoint samples are
 // blended and how; and the CPU twin of the GPU pass (layered_em.frag), built on rasterizeLens and
 // pixelCubeMapLookup as the rendering matrix is, so that A x is what the GPU draws.
 #include <array>
@@ -27,11 +27,13 @@ struct LensDrawGeometry {
     std::vector<glm::uvec3> triangles;  // front-facing from the viewpoint only (back faces culled, as rasterizeLens)
     std::array<std::vector<glm::vec3>, kPathTerms> weights;                    // F G
     std::array<std::vector<glm::vec3>, kPathTerms> skyWeights;                 // F G * sky(exit direction)
-    std::array<std::vector<std::vector<glm::vec3>>, kPathTerms> directions;    // [term][layer][vertex]
+    std::array<std::vector<LayerTextureIndex>, kPathTerms> indices;           // [term][layer]: cube-map index and level per vertex
 };
 
-// Texture-coordinate generation (§5): the per-vertex attributes of a tessellated lens.
-LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector<EmLayer>& layers, const Scene& scene);
+// Texture-coordinate generation (§5): the per-vertex attributes of a tessellated lens drawn from
+// `camera` into a width x height image with cube maps of `emSize` texels a face side.
+LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector<EmLayer>& layers, const Scene& scene,
+                                  const Camera& camera, int width, int height, int emSize);
 
 // The viewpoint samples whose images are blended, by their distance to the current view (§6).
 struct ViewpointBlend {

@@ -92,16 +92,48 @@ std::vector<glm::vec3> vertexPathWeights(const TessellatedLens& lens, PathTerm t
     return out;
 }
 
-glm::vec3 interpolateAtPixel(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles,
-                             const std::vector<glm::vec3>& attribute) {
-    const glm::uvec3& t = triangles[static_cast<std::size_t>(raster.triangle[pixel])];
-    const glm::vec3& b = raster.barycentric[pixel];
-    return b[0] * attribute[t[0]] + b[1] * attribute[t[1]] + b[2] * attribute[t[2]];
+std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
+                                     const Camera& camera, int width, int height, int size) {
+    const std::size_t n = lens.vertices.size();
+    const glm::mat4 viewProj = viewProjection(camera, width, height);
+    std::vector<glm::vec2> screen(n);
+    for (std::size_t i = 0; i < n; ++i) screen[i] = projectToPixels(viewProj, width, height, lens.vertices[i].position);
+    std::vector<float> rate(n, 0.0f);  // radians per pixel
+    auto path = [&](std::uint32_t i) -> const LensPath* {
+        const LensVertex& v = lens.vertices[i];
+        const LensPath& p = v.paths.terms[static_cast<int>(term)];
+        return v.traced && p.exists ? &p : nullptr;
+    };
+    for (const glm::uvec3& t : lens.triangles) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+            const LensPath *pa = path(a), *pb = path(b);
+            if (!pa || !pb || !pa->sameTopology(*pb)) continue;
+            const float pixels = glm::length(screen[a] - screen[b]);
+            if (!(pixels > 1e-3f)) continue;
+            const float cosine = glm::dot(glm::normalize(directions[a]), glm::normalize(directions[b]));
+            const float r = std::acos(std::clamp(cosine, -1.0f, 1.0f)) / pixels;
+            rate[a] = std::max(rate[a], r);
+            rate[b] = std::max(rate[b], r);
+        }
+    }
+    std::vector<float> lods(n);
+    for (std::size_t i = 0; i < n; ++i) lods[i] = cubeMapLod(rate[i], size);
+    return lods;
+}
+
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const Camera& camera,
+                                     int width, int height, int size) {
+    LayerTextureIndex index;
+    index.directions = vertexTextureDirections(lens, term, shell);
+    index.lods = vertexTextureLods(lens, term, index.directions, camera, width, height, size);
+    return index;
 }
 
 CubeMapLookup pixelCubeMapLookup(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles,
-                                 const std::vector<glm::vec3>& vertexDirections, int size) {
-    return cubeMapLookup(interpolateAtPixel(raster, pixel, triangles, vertexDirections), size);
+                                 const LayerTextureIndex& index, int size) {
+    return cubeMapLookup(interpolateAtPixel(raster, pixel, triangles, index.directions), size,
+                         interpolateAtPixel(raster, pixel, triangles, index.lods));
 }
 
 }  // namespace hybridlab

@@ -32,16 +32,38 @@ LensRaster rasterizeLens(const std::vector<glm::vec3>& positions, const std::vec
 // their normal: their F G weight is zero, so what they index does not show.
 std::vector<glm::vec3> vertexTextureDirections(const TessellatedLens& lens, PathTerm term, const Shell& shell);
 
+// The per-vertex level of detail of those lookups (cubeMapLod) for a width x height image from
+// `camera`: over the tessellation's edges whose two paths have the same topology, the angle between
+// the vertices' texture directions over the edge's length on screen, the largest at each vertex
+// (as hardware takes the larger screen derivative). Edges across a topology change (a silhouette, a
+// switch between reflection and refraction) are discontinuities, not minification, and are left
+// out. Interpolated across triangles like every attribute, so the renderer and the rendering
+// matrix read the same levels.
+std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
+                                     const Camera& camera, int width, int height, int size);
+
+// One term and layer's per-vertex texture index: what the renderer interpolates and looks up.
+struct LayerTextureIndex {
+    std::vector<glm::vec3> directions;
+    std::vector<float> lods;
+};
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const Camera& camera,
+                                     int width, int height, int size);
+
 // Per-vertex F G of one term (what the renderer multiplies the layer lookups by).
 std::vector<glm::vec3> vertexPathWeights(const TessellatedLens& lens, PathTerm term);
 
-// THE per-pixel lookup: the texels and weights a covered pixel reads, from the per-vertex texture
-// directions interpolated at the pixel.
-CubeMapLookup pixelCubeMapLookup(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles,
-                                 const std::vector<glm::vec3>& vertexDirections, int size);
-
 // A per-vertex attribute interpolated at a covered pixel.
-glm::vec3 interpolateAtPixel(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles,
-                             const std::vector<glm::vec3>& attribute);
+template <typename T>
+T interpolateAtPixel(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles, const std::vector<T>& attribute) {
+    const glm::uvec3& t = triangles[static_cast<std::size_t>(raster.triangle[pixel])];
+    const glm::vec3& b = raster.barycentric[pixel];
+    return b[0] * attribute[t[0]] + b[1] * attribute[t[1]] + b[2] * attribute[t[2]];
+}
+
+// THE per-pixel lookup: the texels and weights a covered pixel reads, from the per-vertex texture
+// directions and levels of detail interpolated at the pixel.
+CubeMapLookup pixelCubeMapLookup(const LensRaster& raster, std::size_t pixel, const std::vector<glm::uvec3>& triangles,
+                                 const LayerTextureIndex& index, int size);
 
 }  // namespace hybridlab

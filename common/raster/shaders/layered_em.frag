@@ -1,7 +1,7 @@
 #version 460
 // Layered-EM lens pass, fragment stage (Hakura & Snyder 2001 §4-§5): per term and layer the cube
-// map read at the interpolated index with cubeMapLookup's texels and weights (texel reads, no
-// hardware filtering), layers composited front to back with "over" on premultiplied RGBA, the sky
+// map's MIP chain read at the interpolated index and level of detail with cubeMapLookup's texels
+// and weights (texel reads, no hardware filtering), layers composited front to back with "over" on premultiplied RGBA, the sky
 // behind the last layer, times the interpolated F G, the two terms summed; the two nearest
 // viewpoint samples blended. The twin of compositeLensPixel (techniques/layered_em/lens_draw.cpp).
 // Fragments behind what the G-buffer shows at the pixel are discarded (the lens is occluded).
@@ -11,7 +11,7 @@
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 pathWeight[2];
 layout(location = 3) in vec3 skyWeight[2];
-layout(location = 5) in vec3 direction[2 * kMaxLayers];
+layout(location = 5) in vec4 direction[2 * kMaxLayers];
 
 layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
 
@@ -38,32 +38,58 @@ void cubeCoordinate(vec3 d, out int face, out vec2 st) {
     st = ma > 0.0 ? vec2(0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0)) : vec2(0.5);
 }
 
-// cubeMapLookup: the four texels (from a map's first texel) and bilinear weights around texel
-// centres (i + 0.5) / size, clamped to the face.
+// The MIP chain (em_cube_map.cpp): level k has max(1, size >> k) texels a side.
+int levelSize(int level) { return max(1, pc.maps.y >> level); }
+int levelCount() {
+    int levels = 1;
+    while ((pc.maps.y >> levels) >= 1) ++levels;
+    return levels;
+}
+int levelOffset(int level) {
+    int offset = 0;
+    for (int k = 0; k < level; ++k) offset += 6 * levelSize(k) * levelSize(k);
+    return offset;
+}
+
+// cubeMapLookup: in levels floor(lod) and the next, the four texels (from a map's first texel) and
+// bilinear weights around texel centres (i + 0.5) / side, clamped to the face, each level's weights
+// times its share of lod.
 struct Taps {
-    ivec4 texel;
-    vec4 weight;
+    ivec4 texel[2];
+    vec4 weight[2];
 };
-Taps cubeLookup(vec3 d) {
-    int size = pc.maps.y;
+void levelTaps(int face, vec2 st, int level, float scale, out ivec4 texel, out vec4 weight) {
+    int side = levelSize(level);
+    float fs = float(side);
+    float u = clamp(st.x * fs - 0.5, 0.0, fs - 1.0), v = clamp(st.y * fs - 0.5, 0.0, fs - 1.0);
+    int i0 = min(int(u), side - 1), j0 = min(int(v), side - 1);
+    int i1 = min(i0 + 1, side - 1), j1 = min(j0 + 1, side - 1);
+    float fu = u - float(i0), fv = v - float(j0);
+    int b = levelOffset(level) + face * side * side;
+    texel = ivec4(b + j0 * side + i0, b + j0 * side + i1, b + j1 * side + i0, b + j1 * side + i1);
+    weight = scale * vec4((1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv);
+}
+Taps cubeLookup(vec4 index) {
     int face;
     vec2 st;
-    cubeCoordinate(d, face, st);
-    float fs = float(size);
-    float u = clamp(st.x * fs - 0.5, 0.0, fs - 1.0), v = clamp(st.y * fs - 0.5, 0.0, fs - 1.0);
-    int i0 = min(int(u), size - 1), j0 = min(int(v), size - 1);
-    int i1 = min(i0 + 1, size - 1), j1 = min(j0 + 1, size - 1);
-    float fu = u - float(i0), fv = v - float(j0);
-    int b = face * size * size;
+    cubeCoordinate(index.xyz, face, st);
+    int last = levelCount() - 1;
+    float lod = clamp(index.w, 0.0, float(last));
+    int level = min(int(lod), last);
+    float f = lod - float(level);
     Taps t;
-    t.texel = ivec4(b + j0 * size + i0, b + j0 * size + i1, b + j1 * size + i0, b + j1 * size + i1);
-    t.weight = vec4((1.0 - fu) * (1.0 - fv), fu * (1.0 - fv), (1.0 - fu) * fv, fu * fv);
+    levelTaps(face, st, level, 1.0 - f, t.texel[0], t.weight[0]);
+    levelTaps(face, st, min(level + 1, last), f, t.texel[1], t.weight[1]);
     return t;
 }
 
 vec4 fetch(int base, Taps t) {
-    return t.weight.x * texels[base + t.texel.x] + t.weight.y * texels[base + t.texel.y] + t.weight.z * texels[base + t.texel.z] +
-           t.weight.w * texels[base + t.texel.w];
+    vec4 c = vec4(0.0);
+    for (int k = 0; k < 2; ++k) {
+        c += t.weight[k].x * texels[base + t.texel[k].x] + t.weight[k].y * texels[base + t.texel[k].y] +
+             t.weight[k].z * texels[base + t.texel[k].z] + t.weight[k].w * texels[base + t.texel[k].w];
+    }
+    return c;
 }
 
 void main() {
@@ -74,7 +100,7 @@ void main() {
     }
     // Per term, both viewpoint samples' layers over one another; the two samples share the shells,
     // so each layer's lookup (texels and weights) serves both.
-    int layerTexels = 6 * pc.maps.y * pc.maps.y;
+    int layerTexels = levelOffset(levelCount());
     bool blend = pc.blend.y > 0.0;
     vec3 c = vec3(0.0);
     for (int t = 0; t < 2; ++t) {

@@ -9,7 +9,7 @@
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 pathWeight[2];     // F G of each term
 layout(location = 3) out vec3 skyWeight[2];      // F G times the sky in the term's exit direction
-layout(location = 5) out vec3 direction[2 * kMaxLayers];  // [term * kMaxLayers + layer]: the cube-map index
+layout(location = 5) out vec4 direction[2 * kMaxLayers];  // [term * kMaxLayers + layer]: the cube-map index, w its level of detail
 
 void main() {
     LensVertex v = vertices[gl_VertexIndex];
@@ -17,7 +17,7 @@ void main() {
     for (int t = 0; t < 2; ++t) {
         pathWeight[t] = v.weight[t].xyz;
         skyWeight[t] = v.sky[t].xyz;
-        for (int l = 0; l < kMaxLayers; ++l) direction[t * kMaxLayers + l] = v.direction[t * kMaxLayers + l].xyz;
+        for (int l = 0; l < kMaxLayers; ++l) direction[t * kMaxLayers + l] = v.direction[t * kMaxLayers + l];
     }
     gl_Position = pc.viewProj * vec4(v.position.xyz, 1.0);
 }
