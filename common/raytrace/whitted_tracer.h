@@ -48,6 +48,14 @@ struct ShadingParts {
     }
 };
 
+// What the rasterizer's environment mapping puts in place of reflection and refraction at a surface
+// (common/raster/shaders/deferred_lighting.frag): the sky in the reflected and refracted directions
+// (total internal reflection's refraction is the reflection).
+struct EnvironmentTerms {
+    glm::vec3 reflected{0.0f};
+    glm::vec3 refracted{0.0f};
+};
+
 class WhittedTracer {
 public:
     WhittedTracer(const RayScene& rays, WhittedSettings settings);
@@ -68,9 +76,10 @@ public:
     glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {}) const;
 
     // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
-    // everything), so that a hybrid technique can substitute or blend its own.
+    // everything), so that a hybrid technique can substitute or blend its own. An effect not traced
+    // takes its environment term; `environment`, when given, receives both (where parts.composes).
     ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                            TracedEffects effects = {}, RayCone footprint = {}) const;
+                            TracedEffects effects = {}, RayCone footprint = {}, EnvironmentTerms* environment = nullptr) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a
