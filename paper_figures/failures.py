@@ -138,10 +138,6 @@ def along_path_by_technique(seqs, out_dir, name, title, baseline):
     return save(fig, out_dir, name)
 
 
-def fmt(v, spec):
-    return "-" if v is None else spec % v
-
-
 def worst_cell(w, spec):
     return "-" if w is None else (spec + " (%d)") % (w[0], w[1]["frame"])
 
@@ -155,11 +151,11 @@ def row_cells(key, s, b):
     """The summary row's cells as text (Markdown and HTML share them); the worst SSIM cell is
     returned separately with its run so that it can link to the viewer."""
     scene, res, path, technique, variant = key
-    cells = [scene, path, res, technique, variant, str(s["frames"]), worst_cell(s["worst_ssim"], "%.4f"), fmt(s["median_ssim"], "%.4f"),
+    cells = [scene, path, res, technique, variant, str(s["frames"]), worst_cell(s["worst_ssim"], "%.4f"), rs.fmt(s["median_ssim"], "%.4f"),
              worst_cell(s["worst_masked_ssim"], "%.4f"), worst_cell(s["worst_flip"], "%.4f"),
-             "%s / %s" % (fmt(s["temporal_mean"], "%.5f"), fmt(s["temporal_worst"], "%.5f")), fmt(s["median_ms"], "%.1f"),
-             fmt(s["spike"], "%.2f")]
-    cells += [fmt(b["median_ssim"], "%.4f"), fmt(b["median_ms"], "%.1f"), fmt(b["spike"], "%.2f")] if b else ["-", "-", "-"]
+             "%s / %s" % (rs.fmt(s["temporal_mean"], "%.5f"), rs.fmt(s["temporal_worst"], "%.5f")), rs.fmt(s["median_ms"], "%.1f"),
+             rs.fmt(s["spike"], "%.2f")]
+    cells += [rs.fmt(b["median_ssim"], "%.4f"), rs.fmt(b["median_ms"], "%.1f"), rs.fmt(b["spike"], "%.2f")] if b else ["-", "-", "-"]
     return cells
 
 

@@ -21,20 +21,11 @@ STAGES = [("vertex_ray_tracing", "ray tracing at vertices"), ("texture_coordinat
           ("tessellation", "tessellation"), ("other", "other (incl. rendering)")]
 
 
-def fmt(x, digits=3):
-    return "-" if x is None else ("%.*f" % (digits, x))
-
-
 def find(rows, label, scene, view, frame, size=None):
     """The run of a label at a view (at `size`, "WxH", or the smallest size there)."""
     rs = [r for r in rows if r["label"] == label and r["scene"] == scene and r["view"] == view and r["frame"] == frame
           and (size is None or results.resolution(r) == size)]
     return min(rs, key=lambda r: r["width"] * r["height"]) if rs else None
-
-
-def stage(r, name):
-    s = r["stages"].get(name)
-    return s["median"] if s else None
 
 
 def lens_metric(r, name):
@@ -50,28 +41,28 @@ def results_table(rows, size):
            "|---|" + "---|" * (1 + len(labels))]
     runs = [ref] + [find(rows, l, scene, "camera", -1, size) for l in labels]
 
-    def line(name, fn, digits=2):
-        out.append("| %s | %s |" % (name, " | ".join(fmt(fn(r), digits) if r else "-" for r in runs)))
+    def line(name, fn, spec="%.2f"):
+        out.append("| %s | %s |" % (name, " | ".join(results.fmt(fn(r), spec) if r else "-" for r in runs)))
 
     for key, name in STAGES:
-        line(name, lambda r, k=key: stage(r, k) if r is not ref else None, 1)
-    line("trace (ray tracing every pixel)", lambda r: stage(r, "trace") if r is ref else None, 1)
-    line("**total**", lambda r: r["frame_ms"]["median"], 1)
+        line(name, lambda r, k=key: results.stage(r, k) if r is not ref else None, "%.1f")
+    line("trace (ray tracing every pixel)", lambda r: results.stage(r, "trace") if r is ref else None, "%.1f")
+    line("**total**", lambda r: r["frame_ms"]["median"], "%.1f")
     line("rays (lens pixels for ray tracing)",
-         lambda r: r["counters"].get("rays_lens_pixels") if r is ref else r["counters"].get("rays_total"), 0)
-    line("rays (whole image)", lambda r: r["counters"].get("rays_total"), 0)
+         lambda r: r["counters"].get("rays_lens_pixels") if r is ref else r["counters"].get("rays_total"), "%.0f")
+    line("rays (whole image)", lambda r: r["counters"].get("rays_total"), "%.0f")
     out.append("| triangle intersection tests | %s |" % " | ".join(["not counted (Embree)"] * len(runs)))
-    line("vertices after tessellation", lambda r: r["counters"].get("vertices") if r is not ref else None, 0)
-    line("triangles after tessellation", lambda r: r["counters"].get("triangles") if r is not ref else None, 0)
-    line("lens pixels", lambda r: r["counters"].get("lens_pixels"), 0)
-    line("SSIM (lens pixels)", lambda r: lens_metric(r, "ssim") if r is not ref else None, 4)
-    line("FLIP (lens pixels)", lambda r: lens_metric(r, "flip") if r is not ref else None, 4)
+    line("vertices after tessellation", lambda r: r["counters"].get("vertices") if r is not ref else None, "%.0f")
+    line("triangles after tessellation", lambda r: r["counters"].get("triangles") if r is not ref else None, "%.0f")
+    line("lens pixels", lambda r: r["counters"].get("lens_pixels"), "%.0f")
+    line("SSIM (lens pixels)", lambda r: lens_metric(r, "ssim") if r is not ref else None, "%.4f")
+    line("FLIP (lens pixels)", lambda r: lens_metric(r, "flip") if r is not ref else None, "%.4f")
     if ref:
         t0 = ref["frame_ms"]["median"]
         rays0 = ref["counters"].get("rays_lens_pixels")
-        line("**time reduction** (paper 25-45x)", lambda r: t0 / r["frame_ms"]["median"] if r is not ref else None, 1)
+        line("**time reduction** (paper 25-45x)", lambda r: t0 / r["frame_ms"]["median"] if r is not ref else None, "%.1f")
         line("**ray reduction** (paper 6-10.8x)",
-             lambda r: rays0 / r["counters"]["rays_total"] if r is not ref and rays0 and r["counters"].get("rays_total") else None, 1)
+             lambda r: rays0 / r["counters"]["rays_total"] if r is not ref and rays0 and r["counters"].get("rays_total") else None, "%.1f")
     return out + [""]
 
 
@@ -84,7 +75,7 @@ def figure8(rows):
         cells = []
         for label in ("lem-tau3", "lem-single"):
             r = find(rows, label, scene, view, frame)
-            cells.append("%s / %s" % (fmt(lens_metric(r, "ssim"), 4), fmt(lens_metric(r, "flip"), 4)) if r else "-")
+            cells.append("%s / %s" % (results.fmt(lens_metric(r, "ssim"), "%.4f"), results.fmt(lens_metric(r, "flip"), "%.4f")) if r else "-")
         out.append("| %s | %s |" % (name, " | ".join(cells)))
     out += ["", "Temporal error along the circling path (mean |(T_k - T_k-1) - (R_k - R_k-1)|, whole image; viewpoint samples every 8 frames):", ""]
     series = {}
@@ -99,9 +90,9 @@ def figure8(rows):
         for label, s in series.items():
             vals = [s.get(f) for f in frames]
             present = [v for v in vals if v is not None]
-            out.append("| %s | %s | %s | %s |" % (label, " | ".join(fmt(v, 4) for v in vals),
-                                                   fmt(statistics.mean(present), 4) if present else "-",
-                                                   fmt(max(present), 4) if present else "-"))
+            out.append("| %s | %s | %s | %s |" % (label, " | ".join(results.fmt(v, "%.4f") for v in vals),
+                                                   results.fmt(statistics.mean(present), "%.4f") if present else "-",
+                                                   results.fmt(max(present), "%.4f") if present else "-"))
     return out + [""]
 
 
@@ -117,9 +108,9 @@ def figure9(rows):
             r = find(rows, label, scene, view, frame)
             if r:
                 means[label].append(lens_metric(r, "flip"))
-            cells.append("%s / %s" % (fmt(lens_metric(r, "flip"), 4), fmt(lens_metric(r, "ssim"), 4)) if r else "-")
+            cells.append("%s / %s" % (results.fmt(lens_metric(r, "flip"), "%.4f"), results.fmt(lens_metric(r, "ssim"), "%.4f")) if r else "-")
         out.append("| %s@%d | %s |" % (view, frame, " | ".join(cells)))
-    out.append("| mean FLIP | %s |" % " | ".join(fmt(statistics.mean(v), 4) if v else "-" for v in means.values()))
+    out.append("| mean FLIP | %s |" % " | ".join(results.fmt(statistics.mean(v), "%.4f") if v else "-" for v in means.values()))
     return out + [""]
 
 

@@ -19,11 +19,6 @@ import results
 FAMILIES = [("I", "bunnies-falling", "rigid Stanford bunnies"), ("II", "teapots-deforming", "deformable Utah teapots")]
 
 
-def stage(r, name):
-    s = r["stages"].get(name)
-    return s["median"] if s else 0.0
-
-
 def spread(values):
     """mean +/- sample standard deviation (0 for one value)."""
     return statistics.mean(values), (statistics.stdev(values) if len(values) > 1 else 0.0)
@@ -49,7 +44,7 @@ def table(rows, number, family, what):
     for (variant, n), rs in sorted(lines.items()):
         rs.sort(key=lambda r: r["frame"])
         frame = [r["frame_ms"]["median"] for r in rs]
-        bvh = [stage(r, "bvh_update") for r in rs]
+        bvh = [results.stage(r, "bvh_update", 0.0) for r in rs]
         ssim = [results.metric(r, "whole", "ssim") for r in rs]
         flip = [results.metric(r, "whole", "flip") for r in rs]
         c = rs[0]["counters"]

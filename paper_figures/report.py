@@ -108,14 +108,6 @@ def along_path(records, out_dir, key, title):
     return save(fig, out_dir, "path-" + key)
 
 
-def fmt(v, spec):
-    return "" if v is None else spec % v
-
-
-def rel(out_dir, result_dir, path):
-    return os.path.relpath(os.path.join(result_dir, path), out_dir)
-
-
 TABLE_SCRIPT = """<script>
 // Click a column header to sort the table by it (numbers numerically).
 document.querySelectorAll('table.sortable th').forEach((th, i) => th.addEventListener('click', () => {
@@ -133,28 +125,28 @@ def runs_table(records, out_dir, result_dir):
             "SSIM refl./refr.", "FLIP refl./refr.", "temporal", "maps"]
     rows = []
     for r in records:
-        img = rel(out_dir, result_dir, r["images"]["png"])
+        img = rs.result_link(out_dir, result_dir, r["images"]["png"])
         maps = ""
         if r["images"].get("maps"):
-            maps = " ".join('<a href="%s">%s</a>' % (html.escape(rel(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
+            maps = " ".join('<a href="%s">%s</a>' % (html.escape(rs.result_link(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
                             for m in ("diff", "ssim", "flip"))
         cells = [
             '<td data-v="%d"><a href="%s" title="open in the viewer">%d</a></td>' % (r["index"], html.escape(viewer.link(r["id"])), r["index"]),
             '<td><a href="%s"><img src="%s" width="96" loading="lazy" alt="%s"></a> <a href="%s">exr</a> <a href="%s">ref</a></td>'
-            % (html.escape(img), html.escape(img), html.escape(r["id"]), html.escape(rel(out_dir, result_dir, r["images"]["exr"])),
-               html.escape(rel(out_dir, result_dir, r["reference"]["png"]))),
+            % (html.escape(img), html.escape(img), html.escape(r["id"]), html.escape(rs.result_link(out_dir, result_dir, r["images"]["exr"])),
+               html.escape(rs.result_link(out_dir, result_dir, r["reference"]["png"]))),
             "<td>%s</td>" % html.escape(r["scene"]),
             "<td>%s</td>" % html.escape(rs.view_name(r)),
             "<td>%s</td>" % rs.resolution(r),
             "<td>%s</td>" % html.escape(r["label"]),
             "<td>%s</td>" % html.escape(r["parameters_text"]),
             "<td>%.2f</td>" % r["frame_ms"]["median"],
-            "<td>%s</td>" % fmt(rs.metric(r, "whole", "ssim"), "%.4f"),
-            "<td>%s</td>" % fmt(rs.metric(r, "whole", "flip"), "%.4f"),
-            "<td>%s</td>" % fmt(rs.metric(r, "whole", "psnr"), "%.2f"),
-            "<td>%s</td>" % fmt(rs.metric(r, "masked", "ssim"), "%.4f"),
-            "<td>%s</td>" % fmt(rs.metric(r, "masked", "flip"), "%.4f"),
-            "<td>%s</td>" % fmt(r.get("temporal_error"), "%.5f"),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "ssim"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "flip"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "psnr"), "%.2f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "ssim"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "flip"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(r.get("temporal_error"), "%.5f", missing=""),
             "<td>%s</td>" % maps,
         ]
         rows.append("<tr>" + "".join(cells) + "</tr>")
@@ -176,8 +168,8 @@ def markdown_summary(records):
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items()):
             lines.append("| %s | %d | %.2f | %s | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
-                                                         fmt(rs.mean_known(rs.metric(r, "whole", "ssim") for r in vs), "%.4f"),
-                                                         fmt(rs.mean_known(rs.metric(r, "whole", "flip") for r in vs), "%.4f")))
+                                                         rs.fmt(rs.mean_known(rs.metric(r, "whole", "ssim") for r in vs), "%.4f", missing=""),
+                                                         rs.fmt(rs.mean_known(rs.metric(r, "whole", "flip") for r in vs), "%.4f", missing="")))
         lines.append("| reference (whitted) | | %.2f | 1 | 0 |" % statistics.median(r["reference"]["frame_ms"] for r in rows))
     return "\n".join(lines)
 
@@ -222,8 +214,8 @@ def main():
             "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
             "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
-            % (html.escape(title), html.escape(title), len(records), html.escape(rel(a.out, a.result_dir, "results.csv")),
-               html.escape(rel(a.out, a.result_dir, "results.json")),
+            % (html.escape(title), html.escape(title), len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
+               html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
                ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
                "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
                TABLE_SCRIPT))

@@ -38,6 +38,22 @@ def metric(r, region, name):
     return m.get(name)
 
 
+def fmt(value, spec="%.3f", missing="-"):
+    """A table cell: `value` formatted by `spec`, or `missing` where the run has no such value."""
+    return missing if value is None else spec % value
+
+
+def stage(r, name, missing=None):
+    """The median time (ms) of a record's stage `name`; `missing` if the technique has no such stage."""
+    s = r["stages"].get(name)
+    return s["median"] if s else missing
+
+
+def result_link(out_dir, result_dir, path):
+    """A result set's file (`path` relative to `result_dir`, as the records name them) as a link from `out_dir`."""
+    return os.path.relpath(os.path.join(result_dir, path), out_dir)
+
+
 def pareto_front(points, higher_is_better):
     """Points (time, value, payload) not dominated by a faster-and-better one, sorted by time."""
     front = []

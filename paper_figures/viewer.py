@@ -7,6 +7,7 @@ fetch()) from file:// pages, so the modules are joined here into one classic scr
 in its own function scope, and the manifest is written both as manifest.json and as manifest.js (a
 classic script that sets window.HYBRIDLAB_MANIFEST)."""
 import base64
+import functools
 import json
 import os
 import re
@@ -70,7 +71,7 @@ def colour_table(name):
 
 def run_entry(r, out_dir, result_dir):
     """One run as the viewer reads it: paths relative to the report folder, medians in ms."""
-    rel = lambda p: os.path.relpath(os.path.join(result_dir, p), out_dir)  # noqa: E731
+    rel = functools.partial(rs.result_link, out_dir, result_dir)
     maps = {}
     if r["images"].get("maps"):
         for name, m in r["metrics"].get("maps", {}).items():

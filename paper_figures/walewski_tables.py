@@ -17,17 +17,8 @@ import results
 LABELS = {"heuristic": "heuristic", "no_heuristic": "no-heuristic", "rt_only": "rt_only", "whitted": "whitted"}
 
 
-def stage(r, name):
-    s = r["stages"].get(name)
-    return s["median"] if s else 0.0
-
-
 def by_label(rows, label):
     return [r for r in rows if r["label"] == label]
-
-
-def fmt(x, digits=3):
-    return "-" if x is None else ("%.*f" % (digits, x))
 
 
 def table5(rows, scenes):
@@ -40,7 +31,7 @@ def table5(rows, scenes):
         return fn(rs[0]) if rs else None
 
     def line(name, vals):
-        out.append("| %s | %s |" % (name, " | ".join(v if isinstance(v, str) else fmt(v) for v in vals)))
+        out.append("| %s | %s |" % (name, " | ".join(v if isinstance(v, str) else results.fmt(v) for v in vals)))
 
     def quality(r):
         return "%.4f / %.4f" % (results.metric(r, "whole", "ssim"), results.metric(r, "whole", "flip"))
@@ -51,7 +42,7 @@ def table5(rows, scenes):
         h = "heuristic_rt" + (" [%s]" % v if v else "")
         line("FRAME %s" % h, [cell(s, LABELS["heuristic"], frame, v) for s in scenes])
         for st in ("rast", "heur", "rayt", "blend"):
-            line("&nbsp;&nbsp;%s" % st.upper(), [cell(s, LABELS["heuristic"], lambda r: stage(r, st), v) for s in scenes])
+            line("&nbsp;&nbsp;%s" % st.upper(), [cell(s, LABELS["heuristic"], lambda r: results.stage(r, st, 0.0), v) for s in scenes])
         line("&nbsp;&nbsp;objects selected / visible", [cell(s, LABELS["heuristic"], lambda r: "%d / %d" % (
             r["counters"].get("objects_selected", 0), r["counters"].get("objects_visible", 0)), v) for s in scenes])
         line("&nbsp;&nbsp;SSIM / FLIP", [cell(s, LABELS["heuristic"], quality, v) or "-" for s in scenes])

@@ -1,6 +1,7 @@
 #pragma once
 // Per-scene state that techniques share: the scene, and the ray-tracing scene and the rasterizer
-// built on first use (DESIGN.md: the RayScene is built once per scene).
+// built on first use (DESIGN.md: the RayScene is built once per scene), and the deformed vertices
+// they share.
 #include <memory>
 
 #include "common/raster/rasterizer.h"
@@ -11,7 +12,7 @@ namespace hybridlab {
 
 class SceneContext {
 public:
-    explicit SceneContext(const Scene& scene) : scene_(scene) {}
+    explicit SceneContext(const Scene& scene) : scene_(scene), deformedMeshes_(scene) {}
 
     const Scene& scene() const { return scene_; }
 
@@ -24,6 +25,8 @@ public:
 
 private:
     const Scene& scene_;
+    // Shared by the ray scene and the rasterizer: a hybrid frame deforms each object once.
+    DeformedMeshCache deformedMeshes_;
     std::unique_ptr<RayScene> rays_;
     std::unique_ptr<Rasterizer> rasterizer_;
 };

@@ -11,13 +11,13 @@ double FrameResult::totalMilliseconds() const {
 }
 
 RayScene& SceneContext::rayScene(double time) {
-    if (!rays_) rays_ = std::make_unique<RayScene>(scene_, time);  // built at `time`: nothing to update yet
+    if (!rays_) rays_ = std::make_unique<RayScene>(scene_, time, &deformedMeshes_);  // built at `time`: nothing to update yet
     else rays_->setTime(time);
     return *rays_;
 }
 
 Rasterizer& SceneContext::rasterizer() {
-    if (!rasterizer_) rasterizer_ = std::make_unique<Rasterizer>(scene_);
+    if (!rasterizer_) rasterizer_ = std::make_unique<Rasterizer>(scene_, &deformedMeshes_);
     return *rasterizer_;
 }
 

@@ -1,7 +1,8 @@
 // The per-vertex deformation (deformation.h): positions follow the travelling wave's formula, the
 // analytic normals match the normals of the deformed surface itself (area-weighted face normals of
 // a fine grid), tangents stay perpendicular to the normals, and the envelope holds every vertex;
-// the scene file's `deform` block reads into it with precise errors.
+// the scene file's `deform` block reads into it with precise errors; the cache the rasterizer and
+// the ray scene share deforms once a frame.
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -10,6 +11,7 @@
 
 #include "common/core/input_error.h"
 #include "common/scene/deformation.h"
+#include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene_file.h"
 #include "tests/test_support.h"
 
@@ -98,6 +100,38 @@ TEST(Deformation, PositionsNormalsTangentsAndEnvelope) {
     DeformedVertices later;
     deformMesh(d, rest, t + d.wavelength / d.speed, later);
     EXPECT_NEAR(later.positions[12345].y, out.positions[12345].y, 1e-4);
+}
+
+// The vertices both consumers take (deformed_mesh_cache.h): deformMesh's at the asked time, computed
+// once for the pair of them, and again when a consumer asks a second time (its next frame).
+TEST(Deformation, MeshCacheDeformsOncePerFrame) {
+    Scene scene;
+    scene.meshes = {grid(11), grid(5)};
+    scene.objects.resize(2);
+    scene.objects[1].meshes = {0, 1};
+    scene.objects[1].deformation = wave();
+    DeformedMeshCache cache(scene);
+    auto expectDeformedAt = [&](const std::vector<DeformedVertices>& got, double time) {
+        ASSERT_EQ(got.size(), 2u);
+        for (std::size_t k = 0; k < 2; ++k) {
+            DeformedVertices want;
+            deformMesh(scene.objects[1].deformation, scene.meshes[k], time, want);
+            EXPECT_EQ(got[k].positions, want.positions);
+            EXPECT_EQ(got[k].normals, want.normals);
+            EXPECT_EQ(got[k].tangents, want.tangents);
+        }
+    };
+    expectDeformedAt(cache.vertices(1, 0.5, DeformedMeshCache::kRasterizer), 0.5);
+    EXPECT_EQ(cache.deformations(), 1u);
+    expectDeformedAt(cache.vertices(1, 0.5, DeformedMeshCache::kRayScene), 0.5);
+    EXPECT_EQ(cache.deformations(), 1u) << "the second consumer takes the first one's";
+    expectDeformedAt(cache.vertices(1, 0.5, DeformedMeshCache::kRayScene), 0.5);
+    EXPECT_EQ(cache.deformations(), 2u) << "a repeated frame pays its deformation";
+    expectDeformedAt(cache.vertices(1, 0.5, DeformedMeshCache::kRasterizer), 0.5);
+    EXPECT_EQ(cache.deformations(), 2u);
+    expectDeformedAt(cache.vertices(1, 1.25, DeformedMeshCache::kRasterizer), 1.25);
+    expectDeformedAt(cache.vertices(1, 0.5, DeformedMeshCache::kRayScene), 0.5);
+    EXPECT_EQ(cache.deformations(), 4u) << "another time is another deformation";
 }
 
 std::string sceneWithDeform(const std::string& deform) {

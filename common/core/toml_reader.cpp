@@ -23,13 +23,13 @@ const char* typeName(const toml::node& n) {
     }
 }
 
-std::string join(const std::vector<std::string>& items) {
+}  // namespace
+
+std::string commaSeparated(const std::vector<std::string>& items) {
     std::string s;
     for (std::size_t i = 0; i < items.size(); ++i) s += (i ? ", " : "") + items[i];
     return s;
 }
-
-}  // namespace
 
 TomlDocument::TomlDocument(const fs::path& file) : file_(file) {
     if (!fs::exists(file)) throw InputError(file.string() + ": file not found");
@@ -85,7 +85,7 @@ std::string TomlTable::choice(const std::string& key, const std::string& fallbac
     std::string v = string(key, fallback);
     for (const auto& c : choices)
         if (c == v) return v;
-    fail(key, "'" + v + "' is not one of: " + join(choices));
+    fail(key, "'" + v + "' is not one of: " + commaSeparated(choices));
 }
 
 double TomlTable::parseNumber(const std::string& key, const toml::node& n) const {
@@ -182,7 +182,7 @@ std::vector<std::string> TomlTable::choiceArray(const std::string& key, const st
     if (!has(key)) return fallback;
     std::vector<std::string> values = stringArray(key);
     for (const auto& v : values)
-        if (std::find(choices.begin(), choices.end(), v) == choices.end()) fail(key, "'" + v + "' is not one of: " + join(choices));
+        if (std::find(choices.begin(), choices.end(), v) == choices.end()) fail(key, "'" + v + "' is not one of: " + commaSeparated(choices));
     return values;
 }
 
@@ -252,7 +252,7 @@ void TomlTable::rejectUnknownKeys() const {
         std::vector<std::string> known(valid.begin(), valid.end());
         const auto& src = k.source().begin.line ? k.source() : v.source();
         throw InputError::at(file_, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column),
-                             keyPath(name) + ": unknown key" + (known.empty() ? std::string() : " (expected one of: " + join(known) + ")"));
+                             keyPath(name) + ": unknown key" + (known.empty() ? std::string() : " (expected one of: " + commaSeparated(known) + ")"));
     }
 }
 

@@ -17,6 +17,9 @@
 
 namespace hybridlab {
 
+// "a, b, c": how the messages list choices and known keys.
+std::string commaSeparated(const std::vector<std::string>& items);
+
 class TomlTable;
 
 // Parses a file; a syntax error becomes an InputError at its position.

@@ -61,8 +61,10 @@ bool GpuScene::castsShadow(const Material& m) {
     return (t.r + t.g + t.b) / 3.0f < 0.5f;
 }
 
-GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
+GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, DeformedMeshCache* deformedMeshes)
     : device_(std::move(device)), scene_(scene), textures_(*device_, scene) {
+    if (!deformedMeshes) ownDeformedMeshes_ = std::make_unique<DeformedMeshCache>(scene);
+    deformedMeshes_ = deformedMeshes ? deformedMeshes : ownDeformedMeshes_.get();
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
     std::vector<std::int32_t> meshFirstIndex(scene.meshes.size());
@@ -137,28 +139,34 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene)
 bool GpuScene::setTime(double time) {
     bool moved = !timeSet_;
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {
-        if (timeSet_ && !scene_.objects[o].isDynamic()) continue;
-        if (scene_.objects[o].isDeforming()) writeDeformedVertices(o, time);
-        const glm::mat4 model = scene_.objects[o].worldMatrix(time);
-        const ObjectData data{model, glm::mat4(normalMatrix(model))};
-        for (std::size_t d = objectDraws_[o].first; d < objectDraws_[o].second; ++d) {
-            drawRecords_.write(&data, sizeof data, d * recordStride_ + offsetof(DrawRecord, object));
-            worldBounds_[d] = draws_[d].localBounds.transformed(model);
-        }
-        moved = true;
+        const SceneObject& object = scene_.objects[o];
+        if (object.isDeforming()) writeDeformedVertices(o, time);
+        // Deforming objects' local bounds are their envelopes: only a moving object's placement changes.
+        if (!timeSet_ || object.isAnimated()) writePlacement(o, time);
+        moved |= object.isDynamic();
     }
     timeSet_ = true;
     return moved;
 }
 
+void GpuScene::writePlacement(std::size_t object, double time) {
+    const glm::mat4 model = scene_.objects[object].worldMatrix(time);
+    const ObjectData data{model, glm::mat4(normalMatrix(model))};
+    for (std::size_t d = objectDraws_[object].first; d < objectDraws_[object].second; ++d) {
+        drawRecords_.write(&data, sizeof data, d * recordStride_ + offsetof(DrawRecord, object));
+        worldBounds_[d] = draws_[d].localBounds.transformed(model);
+    }
+}
+
 void GpuScene::writeDeformedVertices(std::size_t object, double time) {
+    const std::vector<std::uint32_t>& meshes = scene_.objects[object].meshes;
+    const std::vector<DeformedVertices>& deformed = deformedMeshes_->vertices(object, time, DeformedMeshCache::kRasterizer);
     std::vector<Vertex> packed;
-    for (std::uint32_t mesh : scene_.objects[object].meshes) {
-        const Mesh& m = scene_.meshes[mesh];
-        deformMesh(scene_.objects[object].deformation, m, time, deformed_);
+    for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const Mesh& m = scene_.meshes[meshes[k]];
         packed.resize(m.positions.size());
-        for (std::size_t v = 0; v < packed.size(); ++v) packed[v] = packVertex(m, v, &deformed_);
-        vertices_.write(packed.data(), packed.size() * sizeof(Vertex), static_cast<VkDeviceSize>(meshVertexOffset_[mesh]) * sizeof(Vertex));
+        for (std::size_t v = 0; v < packed.size(); ++v) packed[v] = packVertex(m, v, &deformed[k]);
+        vertices_.write(packed.data(), packed.size() * sizeof(Vertex), static_cast<VkDeviceSize>(meshVertexOffset_[meshes[k]]) * sizeof(Vertex));
     }
 }
 

@@ -12,6 +12,7 @@
 #include "common/raster/gpu_buffer.h"
 #include "common/raster/pipelines.h"
 #include "common/raster/scene_textures.h"
+#include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"
 
 namespace hybridlab {
@@ -38,15 +39,18 @@ struct MeshDraw {
 
 class GpuScene {
 public:
-    GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene);
+    // Deformed vertices come from `deformedMeshes` when given (shared with the ray scene, see
+    // deformed_mesh_cache.h; it must outlive this), else from a cache of its own.
+    GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, DeformedMeshCache* deformedMeshes = nullptr);
 
     const Scene& scene() const { return scene_; }
     const VulkanDevice& device() const { return *device_; }
 
-    // Moves animated objects to `time` and rewrites deforming objects' vertices (deformMesh, the
-    // function the ray tracer uses too); true when anything moved (first call included). Dynamic
-    // objects are rewritten at an unchanged time too, as RayScene::setTime re-commits them: a
-    // repeated frame of an animation costs what a new one does.
+    // Moves animated objects to `time` and rewrites deforming objects' vertices (from the
+    // DeformedMeshCache, which the ray scene can share); true when anything moved (first call
+    // included). Dynamic objects are rewritten at an unchanged time too, as RayScene::setTime
+    // re-commits them: a repeated frame of an animation costs what a new one does. Objects that
+    // deform in place keep the draw records of their first placement.
     bool setTime(double time);
 
     // Set 0 of the geometry passes: the draw's object and material (binding 0, a dynamic uniform
@@ -82,6 +86,8 @@ public:
 
 private:
     void writeDeformedVertices(std::size_t object, double time);
+    // The object's model matrix into its draw records, and their world bounds.
+    void writePlacement(std::size_t object, double time);
 
     std::shared_ptr<VulkanDevice> device_;
     const Scene& scene_;
@@ -95,7 +101,8 @@ private:
     std::vector<Aabb> worldBounds_;
     std::vector<std::pair<std::size_t, std::size_t>> objectDraws_;
     std::vector<std::int32_t> meshVertexOffset_;  // per mesh: its first vertex in vertices_
-    DeformedVertices deformed_;                   // scratch of writeDeformedVertices
+    std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
+    DeformedMeshCache* deformedMeshes_ = nullptr;
     bool timeSet_ = false;
 };
 

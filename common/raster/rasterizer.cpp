@@ -39,8 +39,8 @@ struct Rasterizer::Impl {
     UniqueQueryPool occlusion;
     double uploadMs = 0.0;
 
-    Impl(std::shared_ptr<VulkanDevice> d, const Scene& s)
-        : device(std::move(d)), scene(device, s), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, kMaxGpuStages) {
+    Impl(std::shared_ptr<VulkanDevice> d, const Scene& s, DeformedMeshCache* deformedMeshes)
+        : device(std::move(d)), scene(device, s, deformedMeshes), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, kMaxGpuStages) {
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         VkCommandPool p;
@@ -60,9 +60,9 @@ struct Rasterizer::Impl {
     }
 };
 
-Rasterizer::Rasterizer(const Scene& scene) {
+Rasterizer::Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes) {
     const auto start = Clock::now();
-    impl_ = std::make_unique<Impl>(VulkanDevice::shared(), scene);
+    impl_ = std::make_unique<Impl>(VulkanDevice::shared(), scene, deformedMeshes);
     impl_->uploadMs = millisecondsSince(start);
 }
 

@@ -15,7 +15,8 @@
 
 namespace hybridlab {
 
-class RasterFramePass;  // common/raster/frame_pass.h
+class RasterFramePass;     // common/raster/frame_pass.h
+class DeformedMeshCache;   // common/scene/deformed_mesh_cache.h
 
 struct RasterRequest {
     Camera camera;
@@ -59,7 +60,8 @@ class Rasterizer {
 public:
     // Uploads the scene. Throws VulkanUnavailable when there is no usable Vulkan device (the
     // message says why), VulkanError for other failures.
-    explicit Rasterizer(const Scene& scene);
+    // `deformedMeshes`: shared with the ray scene (deformed_mesh_cache.h), or null for a cache of its own.
+    explicit Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes = nullptr);
     ~Rasterizer();
     Rasterizer(const Rasterizer&) = delete;
     Rasterizer& operator=(const Rasterizer&) = delete;

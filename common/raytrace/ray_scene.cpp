@@ -71,12 +71,12 @@ RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const std::vector<g
 }
 
 void RayScene::deformObject(std::size_t object, double time) {
-    const SceneObject& o = scene_.objects[object];
-    std::uint32_t k = 0;
-    for (std::uint32_t mesh : o.meshes) {
-        DeformedVertices& d = deformed_[mesh];
-        deformMesh(o.deformation, scene_.meshes[mesh], time, d);
-        RTCGeometry g = rtcGetGeometry(objectScenes_[object], k++);
+    const std::vector<std::uint32_t>& meshes = scene_.objects[object].meshes;
+    const std::vector<DeformedVertices>& deformed = deformedMeshes_->vertices(object, time, DeformedMeshCache::kRayScene);
+    for (std::uint32_t k = 0; k < meshes.size(); ++k) {
+        DeformedVertices& d = deformed_[meshes[k]];
+        d = deformed[k];
+        RTCGeometry g = rtcGetGeometry(objectScenes_[object], k);
         if (!g) continue;
         auto* v = static_cast<float*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_VERTEX, 0));
         for (std::size_t i = 0; i < d.positions.size(); ++i) v[3 * i] = d.positions[i].x, v[3 * i + 1] = d.positions[i].y, v[3 * i + 2] = d.positions[i].z;
@@ -85,8 +85,10 @@ void RayScene::deformObject(std::size_t object, double time) {
     }
 }
 
-RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time) {
+RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedMeshes) : scene_(scene), time_(time) {
     auto start = std::chrono::steady_clock::now();
+    if (!deformedMeshes) ownDeformedMeshes_ = std::make_unique<DeformedMeshCache>(scene);
+    deformedMeshes_ = deformedMeshes ? deformedMeshes : ownDeformedMeshes_.get();
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("cannot create an Embree device");
     textureMips_.reserve(scene.textures.size());
@@ -147,12 +149,14 @@ RayScene::RayScene(const Scene& scene, double time) : scene_(scene), time_(time)
             } else {
                 rigidMovingTriangles_ += scene.objectTriangleCount(o);
             }
-            std::uint32_t k = 0;
-            for (std::uint32_t mesh : object.meshes) {
+            const std::vector<DeformedVertices>* deformed =
+                deforming ? &deformedMeshes_->vertices(o, time, DeformedMeshCache::kRayScene) : nullptr;
+            for (std::uint32_t k = 0; k < object.meshes.size(); ++k) {
+                const std::uint32_t mesh = object.meshes[k];
                 const Mesh& m = scene.meshes[mesh];
-                if (deforming) deformMesh(object.deformation, m, time, deformed_[mesh]);
+                if (deforming) deformed_[mesh] = (*deformed)[k];
                 RTCGeometry g = makeTriangleGeometry(m, deforming ? deformed_[mesh].positions : m.positions, nullptr, deforming);
-                rtcAttachGeometryByID(s, g, k++);
+                rtcAttachGeometryByID(s, g, k);
                 rtcReleaseGeometry(g);
             }
             rtcCommitScene(s);

@@ -15,6 +15,7 @@
 #include "common/image/mip_chain.h"
 #include "common/raytrace/ray_log.h"
 #include "common/scene/camera.h"
+#include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"
 
 namespace hybridlab {
@@ -50,15 +51,17 @@ struct ShadowRayContext {
 
 class RayScene {
 public:
-    explicit RayScene(const Scene& scene, double time = 0.0);
+    // Deformed vertices come from `deformedMeshes` when given (shared with the rasterizer, see
+    // deformed_mesh_cache.h; it must outlive this), else from a cache of its own.
+    explicit RayScene(const Scene& scene, double time = 0.0, DeformedMeshCache* deformedMeshes = nullptr);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
 
     const Scene& scene() const { return scene_; }
 
-    // Moves animated objects to `time`, deforms and refits deforming ones (deformMesh, the function
-    // the rasterizer uses too), and re-commits the top level (a no-op for static scenes). Also at
+    // Moves animated objects to `time`, deforms and refits deforming ones (their vertices from the
+    // DeformedMeshCache, which the rasterizer can share), and re-commits the top level (a no-op for static scenes). Also at
     // an unchanged time: every frame of an animation pays its update, and so do the repeats that
     // time one frame.
     void setTime(double time);
@@ -116,6 +119,8 @@ private:
     // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
     std::vector<std::vector<glm::vec3>> worldPositions_;
     std::vector<std::vector<glm::vec3>> worldNormals_;
+    std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
+    DeformedMeshCache* deformedMeshes_ = nullptr;
     std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)
     std::size_t rigidMovingTriangles_ = 0, deformingTriangles_ = 0, triangles_ = 0;
     std::vector<MipChain> textureMips_;                // per scene texture

@@ -59,7 +59,8 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
 }
 
 ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                                       TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local) const {
+                                       TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local,
+                                       EnvironmentTerms* environment) const {
     if (!settings_.rayCones) footprint = {};  // point-sampled textures (texture_filter = "none"), at every depth
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
@@ -90,17 +91,24 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     auto worthTracing = [&](float w) { return w > 0.0f && importance * w >= settings_.importanceCutoff; };
 
     const glm::vec3 reflected = reflectDirection(incoming, n);
+    // The sky only where a term is asked for; a term of weight 0 keeps the local colour.
+    EnvironmentTerms sky{parts.local, parts.local};
+    if (weightM > 0.0f && (environment || !effects.reflection)) sky.reflected = skyRadiance(scene, reflected);
+    if (weightR > 0.0f && (environment || !effects.refraction)) sky.refracted = skyRadiance(scene, refracted);
+    if (tir) sky.refracted = sky.reflected;
+    if (environment) *environment = sky;
+
     parts.reflected = parts.refracted = parts.local;
-    if (weightM > 0.0f && !effects.reflection) {
-        parts.reflected = skyRadiance(scene, reflected);
+    if (!effects.reflection) {
+        parts.reflected = sky.reflected;
     } else if (worthTracing(weightM)) {
         ++stats.reflection;
         parts.reflected = radiance({offsetRayOrigin(hit.position, ng), reflected}, depth + 1, importance * weightM, stats, footprint);
     }
     if (tir) {
         parts.refracted = parts.reflected;
-    } else if (weightR > 0.0f && !effects.refraction) {
-        parts.refracted = skyRadiance(scene, refracted);
+    } else if (!effects.refraction) {
+        parts.refracted = sky.refracted;
     } else if (worthTracing(weightR)) {
         ++stats.refraction;
         parts.refracted = radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats, footprint);

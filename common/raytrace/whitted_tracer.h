@@ -49,6 +49,14 @@ struct ShadingParts {
     }
 };
 
+// What the rasterizer's environment mapping puts in place of reflection and refraction at a surface
+// (common/raster/shaders/deferred_lighting.frag): the sky in the reflected and refracted directions
+// (total internal reflection's refraction is the reflection).
+struct EnvironmentTerms {
+    glm::vec3 reflected{0.0f};
+    glm::vec3 refracted{0.0f};
+};
+
 class WhittedTracer {
 public:
     WhittedTracer(const RayScene& rays, WhittedSettings settings);
@@ -72,9 +80,11 @@ public:
     // everything), so that a hybrid technique can substitute or blend its own. `local`: the surface's
     // local colour C when the caller already has it (a hybrid's lit G-buffer texel, shadowed by the
     // shadow maps), taken as is rather than shaded again; unset, it is shaded here (with shadow rays
-    // when effects.shadows).
+    // when effects.shadows). An effect not traced takes its environment term; `environment`, when
+    // given, receives both (where parts.composes).
     ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                            TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt) const;
+                            TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt,
+                            EnvironmentTerms* environment = nullptr) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a

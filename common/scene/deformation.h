@@ -4,7 +4,8 @@
 //   p'(p, t) = p + A sin(k (p . d) - w t + phase) a,   k = 2 pi / wavelength,  w = k * speed,
 // with propagation direction d and displacement axis a (unit, perpendicular). deformMesh() is the
 // one function that computes deformed vertices: the rasterizer's vertex upload and the Embree scene
-// both call it, so rasterization and ray tracing see the same surface.
+// both take them from it (through DeformedMeshCache, deformed_mesh_cache.h), so rasterization and
+// ray tracing see the same surface.
 #include <numbers>
 #include <vector>
 

@@ -1,6 +1,7 @@
 #include "experiments/runner/experiment_config.h"
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -62,17 +63,31 @@ std::vector<ParameterList> expandSweep(const TomlTable& t) {
     return sets;
 }
 
-const std::vector<std::string> kMetricNames = {"ssim", "flip", "rmse", "psnr", "temporal"};
+// The one list of `metrics` names, in the order results list them, each with the flag of the
+// config that records its choice (Config: ExperimentConfig, const or not).
+template <class Config>
+auto metricFlags(Config& c) {
+    return std::array{std::pair{"ssim", &c.metrics.ssim}, std::pair{"flip", &c.metrics.flip}, std::pair{"rmse", &c.metrics.rmse},
+                      std::pair{"psnr", &c.metrics.psnr}, std::pair{"temporal", &c.temporalError}};
+}
+
+std::vector<std::string> allMetricNames() {
+    ExperimentConfig c;
+    std::vector<std::string> names;
+    for (const auto& [name, flag] : metricFlags(c)) names.push_back(name);
+    return names;
+}
+
 const std::vector<std::string> kKeepNames = {"error_maps", "debug_images"};
 
 bool contains(const std::vector<std::string>& list, const std::string& name) { return std::find(list.begin(), list.end(), name) != list.end(); }
 
 // `metrics = [...]` and `keep = [...]` of [experiment].
 void readMetricsAndKeep(const TomlTable& e, ExperimentConfig& c) {
-    const std::vector<std::string> metrics = e.choiceArray("metrics", kMetricNames, kMetricNames);
-    if (metrics.empty()) e.fail("metrics", "an empty list measures nothing (metrics: ssim, flip, rmse, psnr, temporal)");
-    c.metrics = {contains(metrics, "ssim"), contains(metrics, "flip"), contains(metrics, "rmse"), contains(metrics, "psnr")};
-    c.temporalError = contains(metrics, "temporal");
+    const std::vector<std::string> all = allMetricNames();
+    const std::vector<std::string> metrics = e.choiceArray("metrics", all, all);
+    if (metrics.empty()) e.fail("metrics", "an empty list measures nothing (metrics: " + commaSeparated(all) + ")");
+    for (const auto& [name, flag] : metricFlags(c)) *flag = contains(metrics, name);
     const std::vector<std::string> keep = e.choiceArray("keep", kKeepNames, kKeepNames);
     c.keepDebugImages = contains(keep, "debug_images");
     c.keepErrorMaps = contains(keep, "error_maps") && c.metrics.any();
@@ -220,10 +235,9 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
 }
 
 std::vector<std::string> metricNames(const ExperimentConfig& config) {
-    const MetricSelection& m = config.metrics;
     std::vector<std::string> names;
-    for (const auto& [name, chosen] : {std::pair{"ssim", m.ssim}, {"flip", m.flip}, {"rmse", m.rmse}, {"psnr", m.psnr}, {"temporal", config.temporalError}})
-        if (chosen) names.push_back(name);
+    for (const auto& [name, chosen] : metricFlags(config))
+        if (*chosen) names.push_back(name);
     return names;
 }
 

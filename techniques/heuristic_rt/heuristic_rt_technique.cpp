@@ -173,14 +173,15 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         if (pixelEffects_[i] == 0) return;
         const GBufferSurface surface(g, i, frame.camera);
         const TracedEffects effects = tracedEffects(pixelEffects_[i]);
-        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects, surface.footprint());
+        EnvironmentTerms sky;
+        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects, surface.footprint(), std::nullopt,
+                                           effects.shadows ? nullptr : &sky);
         if (!effects.shadows) {
             // Shadows not selected: the P-buffer's (shadow-mapped) local colour, recovered from its
             // composition with the sky terms the rasterizer used.
-            const ShadingParts sky = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {false, false, false});
-            p.local = sky.composes ? uncomposeLocal(sky.reflectivity, sky.transparency, sky.reflected, sky.refracted,
-                                                    glm::vec3(lighting.at(x, y)), p.local, tracer_.blend)
-                                   : glm::vec3(lighting.at(x, y));
+            p.local = p.composes ? uncomposeLocal(p.reflectivity, p.transparency, sky.reflected, sky.refracted,
+                                                  glm::vec3(lighting.at(x, y)), p.local, tracer_.blend)
+                                 : glm::vec3(lighting.at(x, y));
         }
         parts_[i] = p;
     });

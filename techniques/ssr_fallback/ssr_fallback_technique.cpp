@@ -9,6 +9,7 @@
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
+#include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
 
@@ -53,43 +54,40 @@ bool reflectsOrRefracts(const glm::vec4& optical) { return optical.x > 0.0f || o
 
 TechniqueInfo SsrFallbackTechnique::info() {
     const SsrSettings d;
+    std::vector<ParamSpec> specs = {
+        ParamSpec::boolean("ssr", true, "run SSR (false: every reflective texel takes the fallback)"),
+        ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"),
+        ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
+                          "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
+        ParamSpec::choice("glass", "rt", {"rt", "ssr"},
+                          "refractive texels: ray trace everything, or take their Fresnel reflection from SSR as opaque "
+                          "mirrors do (with the same fallback) and ray trace only the refraction"),
+        ParamSpec::choice("recursion", "rt", {"rt", "single"},
+                          "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
+        ParamSpec::choice("traversal", d.traversal == SsrSettings::Traversal::HiZ ? "hiz" : "linear", {"linear", "hiz"},
+                          "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
+        ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"),
+        ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"),
+        ParamSpec::real("thickness", d.thickness, 0.0, 1e6, "SSR: depth of the slab behind every visible surface (view depth, world units)"),
+        ParamSpec::real("max_distance", d.maxDistance, 0.0, 1e9, "SSR: world length of a reflection ray"),
+        ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
+                        "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
+        ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
+        ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
+                        "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
+                        "smears thin reflected detail)"),
+        ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
+        ParamSpec::integer("pcf_radius", 0, 0, 4, "percentage-closer filtering radius of the shadow maps"),
+    };
+    // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend).
+    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(0.0)) specs.push_back(std::move(s));
     return {"ssr_fallback",
             "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
             "texels SSR fails on, seam blur",
-            {
-                ParamSpec::boolean("ssr", true, "run SSR (false: every reflective texel takes the fallback)"),
-                ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"),
-                ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
-                                  "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
-                ParamSpec::choice("glass", "rt", {"rt", "ssr"},
-                                  "refractive texels: ray trace everything, or take their Fresnel reflection from SSR as opaque "
-                                  "mirrors do (with the same fallback) and ray trace only the refraction"),
-                ParamSpec::choice("recursion", "rt", {"rt", "single"},
-                                  "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
-                ParamSpec::choice("traversal", d.traversal == SsrSettings::Traversal::HiZ ? "hiz" : "linear", {"linear", "hiz"},
-                                  "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
-                ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"),
-                ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"),
-                ParamSpec::real("thickness", d.thickness, 0.0, 1e6, "SSR: depth of the slab behind every visible surface (view depth, world units)"),
-                ParamSpec::real("max_distance", d.maxDistance, 0.0, 1e9, "SSR: world length of a reflection ray"),
-                ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
-                                "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
-                ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
-                ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
-                                "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
-                                "smears thin reflected detail)"),
-                ParamSpec::integer("max_depth", 10, 0, 64, "ray-traced bounces, as the reference"),
-                ParamSpec::real("importance_cutoff", 0.0, 0.0, 1.0,
-                                "ray tracing: do not trace secondary rays whose weight in the pixel is below this (0: the full ray tree, as the reference)"),
-                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
-                ParamSpec::integer("pcf_radius", 0, 0, 4, "percentage-closer filtering radius of the shadow maps"),
-                ParamSpec::choice("blend", "design", {"design", "walewski2019"},
-                                  "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
-            },
-            [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
+            std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
 }
 
-SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
+SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)) {
     ssrOn_ = p.getBool("ssr");
     rayTracedShadows_ = p.getChoice("shadows") == "rt";
     const std::string& f = p.getChoice("fallback");
@@ -106,9 +104,6 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) {
     ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
     shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
     shadowSettings_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
-    tracerSettings_.maxDepth = static_cast<int>(p.getInt("max_depth"));
-    tracerSettings_.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
-    tracerSettings_.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
 }
 
 RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {

@@ -10,18 +10,24 @@
 
 namespace hybridlab {
 
-std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportanceCutoff) {
+std::vector<ParamSpec> WhittedTechnique::recursionParameterSpecs(double defaultImportanceCutoff) {
     return {
         ParamSpec::integer("max_depth", 10, 0, 64, "secondary bounces before the local colour is returned"),
         ParamSpec::real("importance_cutoff", defaultImportanceCutoff, 0.0, 1.0,
                         "do not trace secondary rays whose weight in the pixel is below this (0: full ray tree)"),
-        ParamSpec::integer("supersample", 1, 1, 16, "n x n samples per pixel for display images (metrics use 1)"),
         ParamSpec::choice("blend", "design", {"design", "walewski2019"},
                           "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
-        ParamSpec::boolean("shadows", true, "trace shadow rays (false: every light unshadowed, to compare with raster shadows off)"),
-        ParamSpec::choice("texture_filter", "cones", {"cones", "none"},
-                          "textures filtered over ray cones' footprints (as mip-mapping), or point lookups (as POV-Ray)"),
     };
+}
+
+std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportanceCutoff) {
+    std::vector<ParamSpec> specs = recursionParameterSpecs(defaultImportanceCutoff);
+    specs.push_back(ParamSpec::integer("supersample", 1, 1, 16, "n x n samples per pixel for display images (metrics use 1)"));
+    specs.push_back(
+        ParamSpec::boolean("shadows", true, "trace shadow rays (false: every light unshadowed, to compare with raster shadows off)"));
+    specs.push_back(ParamSpec::choice("texture_filter", "cones", {"cones", "none"},
+                                      "textures filtered over ray cones' footprints (as mip-mapping), or point lookups (as POV-Ray)"));
+    return specs;
 }
 
 TechniqueInfo WhittedTechnique::info() {
@@ -34,11 +40,16 @@ TechniqueInfo WhittedTechnique::info() {
             std::move(specs), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
 }
 
-WhittedSettings WhittedTechnique::tracerSettings(const ParameterSet& p) {
+WhittedSettings WhittedTechnique::recursionSettings(const ParameterSet& p) {
     WhittedSettings s;
     s.maxDepth = static_cast<int>(p.getInt("max_depth"));
     s.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
     s.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+    return s;
+}
+
+WhittedSettings WhittedTechnique::tracerSettings(const ParameterSet& p) {
+    WhittedSettings s = recursionSettings(p);
     s.shadows = p.getBool("shadows");
     s.rayCones = p.getChoice("texture_filter") == "cones";
     return s;

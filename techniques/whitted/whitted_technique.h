@@ -11,10 +11,15 @@ namespace hybridlab {
 class WhittedTechnique : public Technique {
 public:
     static TechniqueInfo info();
-    // The declared parameters, with the importance cut-off's default (0: the full ray tree).
+    // The recursion's parameters (max_depth, importance_cutoff, blend), declared once for every
+    // technique that traces secondary rays, with the importance cut-off's default (0: the full ray tree).
+    static std::vector<ParamSpec> recursionParameterSpecs(double defaultImportanceCutoff);
+    // Tracer settings with those three from `params`, the others WhittedSettings' defaults.
+    static WhittedSettings recursionSettings(const ParameterSet& params);
+    // The declared parameters: the recursion's, supersample, shadows and texture_filter.
     static std::vector<ParamSpec> parameterSpecs(double defaultImportanceCutoff);
-    // The tracer settings from the parameters above that name them (max_depth, importance_cutoff,
-    // blend, shadows); hybrid techniques declare the same ones.
+    // The tracer settings from the parameters above that name them (the recursion's, shadows,
+    // texture_filter); heuristic_rt declares the same ones.
     static WhittedSettings tracerSettings(const ParameterSet& params);
 
     explicit WhittedTechnique(const ParameterSet& params);
