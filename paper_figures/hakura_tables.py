@@ -11,7 +11,8 @@ view between viewpoint samples (circle frame 4) and one above their plane (above
 multi-layer against single-layer, and the temporal error along the circling path. Figure 9 as
 numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
 approach. Times are medians over a run's repeats. Entries are found by label, as the config names
-them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention)."""
+them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-bake320, the bake at the
+display's resolution, where present)."""
 import statistics
 
 import results
@@ -33,7 +34,8 @@ def lens_metric(r, name):
 
 
 def results_table(rows, size):
-    scene, labels = "teapot-lens", ["lem-tau3", "lem-tau5"]
+    scene = "teapot-lens"
+    labels = ["lem-tau3", "lem-tau5"] + [l for l in ("lem-bake320",) if any(r["label"] == l for r in rows)]
     ref = find(rows, REFERENCE, scene, "camera", -1, size)
     out = ["**Results table** (teapot-lens, scene camera, %s; ms, medians over repeats; quality on the lens pixels "
            "against two-term ray tracing)" % size, "",
