@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/image/cube_map_coordinate.h"
+
 namespace hybridlab {
 
 SpotCone spotCone(const Light& light) {
@@ -53,27 +55,9 @@ glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec
 
 glm::vec3 skyRadiance(const Scene& scene, glm::vec3 d) {
     if (!scene.sky.hasCubeMap()) return scene.sky.color;
-    glm::vec3 a = glm::abs(d);
-    int face;
-    float sc, tc, ma;
-    if (a.x >= a.y && a.x >= a.z) {
-        ma = a.x;
-        face = d.x > 0 ? 0 : 1;
-        sc = d.x > 0 ? -d.z : d.z;
-        tc = -d.y;
-    } else if (a.y >= a.z) {
-        ma = a.y;
-        face = d.y > 0 ? 2 : 3;
-        sc = d.x;
-        tc = d.y > 0 ? d.z : -d.z;
-    } else {
-        ma = a.z;
-        face = d.z > 0 ? 4 : 5;
-        sc = d.z > 0 ? d.x : -d.x;
-        tc = -d.y;
-    }
-    const Image& img = scene.textures[scene.sky.cubeFaces[face]].image;
-    float u = 0.5f * (sc / ma + 1.0f), v = 0.5f * (tc / ma + 1.0f);
+    const CubeMapCoordinate c = cubeMapCoordinate(d);
+    const Image& img = scene.textures[scene.sky.cubeFaces[c.face]].image;
+    const float u = c.st.x, v = c.st.y;
     // Clamp to the face instead of wrapping across its edge.
     float x = std::clamp(u * img.width(), 0.5f, img.width() - 0.5f) / img.width();
     float y = std::clamp(v * img.height(), 0.5f, img.height() - 0.5f) / img.height();

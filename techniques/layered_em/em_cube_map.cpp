@@ -7,32 +7,6 @@
 
 namespace hybridlab {
 
-CubeMapCoordinate cubeMapCoordinate(glm::vec3 d) {
-    const glm::vec3 a = glm::abs(d);
-    float sc, tc, ma;
-    int face;
-    if (a.x >= a.y && a.x >= a.z) {
-        face = d.x >= 0.0f ? 0 : 1;
-        ma = a.x;
-        sc = d.x >= 0.0f ? -d.z : d.z;
-        tc = -d.y;
-    } else if (a.y >= a.z) {
-        face = d.y >= 0.0f ? 2 : 3;
-        ma = a.y;
-        sc = d.x;
-        tc = d.y >= 0.0f ? d.z : -d.z;
-    } else {
-        face = d.z >= 0.0f ? 4 : 5;
-        ma = a.z;
-        sc = d.z >= 0.0f ? d.x : -d.x;
-        tc = -d.y;
-    }
-    CubeMapCoordinate c;
-    c.face = face;
-    c.st = ma > 0.0f ? glm::vec2(0.5f * (sc / ma + 1.0f), 0.5f * (tc / ma + 1.0f)) : glm::vec2(0.5f);
-    return c;
-}
-
 int cubeMapLevels(int size) {
     int levels = 1;
     while ((size >> levels) >= 1) ++levels;

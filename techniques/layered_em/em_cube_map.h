@@ -15,6 +15,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "common/image/cube_map_coordinate.h"
 #include "common/image/image.h"
 
 namespace hybridlab {
@@ -47,13 +48,6 @@ std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size);
 // next: log2 of the pixel's footprint in level-0 texels (a level-0 texel spans 2 / size radians at
 // a face's centre), at least 0. One rule for the renderer's per-vertex levels and the direct images.
 float cubeMapLod(float radiansPerPixel, int size);
-
-// Face and face coordinates (s, t in [0, 1]) of an unnormalised direction (OpenGL table 3.19).
-struct CubeMapCoordinate {
-    int face = 0;
-    glm::vec2 st{0.5f};
-};
-CubeMapCoordinate cubeMapCoordinate(glm::vec3 direction);
 
 // The lookup: bilinear filtering of a level's texels around the coordinate, texel centres at
 // (i + 0.5) / side, clamped to the face (no filtering across faces), in levels floor(lod) and the

@@ -73,7 +73,7 @@ vec3 skyRadiance(vec3 d) {
     if (!kSkyCubeMap) return frame.skyColor.rgb;
     int face;
     vec2 uv;
-    skyFaceCoordinates(d, face, uv);
+    cubeMapCoordinate(d, face, uv);
     vec2 size = vec2(textureSize(skyFaces, 0).xy);
     // Clamp to the face instead of wrapping across its edge.
     float x = clamp(uv.x * size.x, 0.5, size.x - 0.5) / size.x;

@@ -6,6 +6,7 @@
 // viewpoint samples blended. The twin of compositeLensPixel (techniques/layered_em/lens_draw.cpp).
 // Fragments behind what the G-buffer shows at the pixel are discarded (the lens is occluded).
 #extension GL_GOOGLE_include_directive : require
+#include "cube_map.glsl"
 #include "layered_em_common.glsl"
 
 layout(location = 0) in vec3 worldPosition;
@@ -14,29 +15,6 @@ layout(location = 3) in vec3 skyWeight[2];
 layout(location = 5) in vec4 direction[2 * kMaxLayers];
 
 layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
-
-// cubeMapCoordinate (em_cube_map.cpp): the face by the major axis, OpenGL's s/t table.
-void cubeCoordinate(vec3 d, out int face, out vec2 st) {
-    vec3 a = abs(d);
-    float sc, tc, ma;
-    if (a.x >= a.y && a.x >= a.z) {
-        face = d.x >= 0.0 ? 0 : 1;
-        ma = a.x;
-        sc = d.x >= 0.0 ? -d.z : d.z;
-        tc = -d.y;
-    } else if (a.y >= a.z) {
-        face = d.y >= 0.0 ? 2 : 3;
-        ma = a.y;
-        sc = d.x;
-        tc = d.y >= 0.0 ? d.z : -d.z;
-    } else {
-        face = d.z >= 0.0 ? 4 : 5;
-        ma = a.z;
-        sc = d.z >= 0.0 ? d.x : -d.x;
-        tc = -d.y;
-    }
-    st = ma > 0.0 ? vec2(0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0)) : vec2(0.5);
-}
 
 // The MIP chain (em_cube_map.cpp): level k has max(1, size >> k) texels a side.
 int levelSize(int level) { return max(1, pc.maps.y >> level); }
@@ -72,7 +50,7 @@ void levelTaps(int face, vec2 st, int level, float scale, out ivec4 texel, out v
 Taps cubeLookup(vec4 index) {
     int face;
     vec2 st;
-    cubeCoordinate(index.xyz, face, st);
+    cubeMapCoordinate(index.xyz, face, st);
     int last = levelCount() - 1;
     float lod = clamp(index.w, 0.0, float(last));
     int level = min(int(lod), last);

@@ -4,6 +4,8 @@
 #ifndef SHADING_GLSL
 #define SHADING_GLSL
 
+#include "cube_map.glsl"
+
 const uint kLightDirectional = 0u;
 const uint kLightPoint = 1u;
 const uint kLightSpot = 2u;
@@ -100,30 +102,6 @@ vec3 compose(float om, float orr, vec3 M, vec3 R, vec3 C, bool walewski) {
     if (!walewski) return cm;
     vec3 cr = orr * R + (1.0 - orr) * (om * M + (1.0 - om) * C);  // Walewski eq. (6)
     return 0.5 * (cm + cr);
-}
-
-// The face selection of skyRadiance(): which cube face (+X, -X, +Y, -Y, +Z, -Z, OpenGL
-// convention) a direction meets, and where on it (u, v in [0, 1], before the edge clamp).
-void skyFaceCoordinates(vec3 d, out int face, out vec2 uv) {
-    vec3 a = abs(d);
-    float sc, tc, ma;
-    if (a.x >= a.y && a.x >= a.z) {
-        ma = a.x;
-        face = d.x > 0.0 ? 0 : 1;
-        sc = d.x > 0.0 ? -d.z : d.z;
-        tc = -d.y;
-    } else if (a.y >= a.z) {
-        ma = a.y;
-        face = d.y > 0.0 ? 2 : 3;
-        sc = d.x;
-        tc = d.y > 0.0 ? d.z : -d.z;
-    } else {
-        ma = a.z;
-        face = d.z > 0.0 ? 4 : 5;
-        sc = d.z > 0.0 ? d.x : -d.x;
-        tc = -d.y;
-    }
-    uv = vec2(0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0));
 }
 
 #endif
