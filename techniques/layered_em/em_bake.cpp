@@ -191,12 +191,13 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             acc[static_cast<std::size_t>(layer) * kPathTerms + r.term].addColor(static_cast<int>(r.pixel) % w, static_cast<int>(r.pixel) / w, glm::vec4(r.radiance, 1.0f));
             lensPoints[static_cast<std::size_t>(layer)].add(r.position);
         });
+        const std::vector<glm::vec2> pixels = lensVertexPixels(lens, camera, w, h);
         for (std::size_t l = 0; l < layerCount; ++l) {
             for (int term = 0; term < kPathTerms; ++term) {
                 std::vector<glm::vec4> b;
                 std::vector<float> confidence;
                 acc[l * kPathTerms + static_cast<std::size_t>(term)].finish(b, confidence);
-                const LayerTextureIndex index = vertexTextureIndex(lens, static_cast<PathTerm>(term), em.layers[l].shell, camera, w, h, size);
+                const LayerTextureIndex index = vertexTextureIndex(lens, static_cast<PathTerm>(term), em.layers[l].shell, pixels, size);
                 perLayer[l].push_back(lensObservation(raster, lens.triangles, index, b, confidence, size));
             }
         }

@@ -36,17 +36,23 @@ EmObservation directObservation(const Camera& camera, int width, int height, con
                                 const std::vector<glm::vec4>& targets, const std::vector<float>& confidence, int size) {
     EmObservation o;
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
-    auto index = [&](int x, int y) {
-        const Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
-        return glm::normalize(shellTextureDirection(shell, ray.origin, ray.direction));
-    };
+    // Each pixel centre's index once, with a row and a column beyond the image for the neighbours.
+    const int gw = width + 1, gh = height + 1;
+    std::vector<glm::vec3> index(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh));
+    for (int y = 0; y < gh; ++y) {
+        for (int x = 0; x < gw; ++x) {
+            const Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
+            index[static_cast<std::size_t>(y * gw + x)] = glm::normalize(shellTextureDirection(shell, ray.origin, ray.direction));
+        }
+    }
+    auto angle = [](glm::vec3 a, glm::vec3 b) { return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)); };
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
             if (confidence[i] <= 0.0f) continue;
-            const glm::vec3 d = index(x, y);
-            const float rate = std::max(std::acos(std::clamp(glm::dot(d, index(x + 1, y)), -1.0f, 1.0f)),
-                                        std::acos(std::clamp(glm::dot(d, index(x, y + 1)), -1.0f, 1.0f)));
+            const std::size_t g = static_cast<std::size_t>(y * gw + x);
+            const glm::vec3 d = index[g];
+            const float rate = std::max(angle(d, index[g + 1]), angle(d, index[g + static_cast<std::size_t>(gw)]));
             addRow(o, cubeMapLookup(d, size, cubeMapLod(rate, size)), targets[i], confidence[i], static_cast<std::uint32_t>(i));
         }
     }
@@ -109,10 +115,14 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         rhs.push_back(glm::dvec4(0.0));
         ++row;
     };
-    for (std::uint32_t t = 0; t < static_cast<std::uint32_t>(cubeMapLevelOffset(size, 1)); ++t) {
-        const CubeMapTexel c = cubeMapTexelAt(t, size);
-        if (c.column + 1 < size) addPair(t, t + 1, s);
-        if (c.row + 1 < size) addPair(t, t + static_cast<std::uint32_t>(size), s);
+    for (int f = 0; f < 6; ++f) {
+        for (int j = 0; j < size; ++j) {
+            for (int i = 0; i < size; ++i) {
+                const Eigen::Index t = (f * size + j) * size + i;  // level 0 starts the chain
+                if (i + 1 < size) addPair(t, t + 1, s);
+                if (j + 1 < size) addPair(t, t + size, s);
+            }
+        }
     }
     // Damping towards the splat (the weighted mean of the targets that read the texel): a texel that
     // rows touch only with small bilinear weights would otherwise take extreme values (alpha far

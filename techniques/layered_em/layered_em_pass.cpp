@@ -29,6 +29,7 @@ struct LensDrawConstants {
     glm::vec4 cameraPosition;
     glm::ivec4 maps;
     glm::vec4 blend;
+    glm::ivec4 chain;
 };
 
 // A host-visible buffer of at least `bytes` (grown, never shrunk).
@@ -164,8 +165,9 @@ void LayeredEmPass::record(VkCommandBuffer cb, const FrameTargets& t) {
         LensDrawConstants c{};
         c.viewProj = t.projection * t.view;
         c.cameraPosition = glm::vec4(t.camera.position, kOcclusionTolerance);
-        c.maps = glm::ivec4(static_cast<int>(d.em->layers.size()), d.em->viewpoints[d.blend.a].maps.empty() ? 1 : d.em->viewpoints[d.blend.a].maps[0].size,
-                            r.texelsA, r.texelsB);
+        const int size = d.em->viewpoints[d.blend.a].maps.empty() ? 1 : d.em->viewpoints[d.blend.a].maps[0].size;
+        c.maps = glm::ivec4(static_cast<int>(d.em->layers.size()), size, r.texelsA, r.texelsB);
+        c.chain = glm::ivec4(cubeMapLevels(size), static_cast<int>(cubeMapTexelCount(size)), 0, 0);
         c.blend = glm::vec4(d.blend.weightA, d.blend.weightB, 0.0f, 0.0f);
         vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c, &c);
         vkCmdDrawIndexed(cb, r.indexCount, 1, r.firstIndex, r.firstVertex, 0);

@@ -19,6 +19,7 @@ LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector
         const glm::vec3 &p0 = g.positions[t[0]], &p1 = g.positions[t[1]], &p2 = g.positions[t[2]];
         if (glm::dot(glm::cross(p1 - p0, p2 - p0), lens.viewpoint - p0) > 0.0f) g.triangles.push_back(t);
     }
+    const std::vector<glm::vec2> pixels = lensVertexPixels(lens, camera, width, height);
     for (int term = 0; term < kPathTerms; ++term) {
         const PathTerm pt = static_cast<PathTerm>(term);
         g.weights[term] = vertexPathWeights(lens, pt);
@@ -27,7 +28,7 @@ LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector
             const LensPath& p = lens.vertices[i].paths.terms[term];
             if (g.weights[term][i] != glm::vec3(0.0f)) g.skyWeights[term][i] = g.weights[term][i] * skyRadiance(scene, p.exitDirection);
         }
-        for (const EmLayer& layer : layers) g.indices[term].push_back(vertexTextureIndex(lens, pt, layer.shell, camera, width, height, emSize));
+        for (const EmLayer& layer : layers) g.indices[term].push_back(vertexTextureIndex(lens, pt, layer.shell, pixels, emSize));
     }
     return g;
 }

@@ -92,12 +92,16 @@ std::vector<glm::vec3> vertexPathWeights(const TessellatedLens& lens, PathTerm t
     return out;
 }
 
-std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
-                                     const Camera& camera, int width, int height, int size) {
-    const std::size_t n = lens.vertices.size();
+std::vector<glm::vec2> lensVertexPixels(const TessellatedLens& lens, const Camera& camera, int width, int height) {
     const glm::mat4 viewProj = viewProjection(camera, width, height);
-    std::vector<glm::vec2> screen(n);
-    for (std::size_t i = 0; i < n; ++i) screen[i] = projectToPixels(viewProj, width, height, lens.vertices[i].position);
+    std::vector<glm::vec2> pixels(lens.vertices.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = projectToPixels(viewProj, width, height, lens.vertices[i].position);
+    return pixels;
+}
+
+std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
+                                     const std::vector<glm::vec2>& pixels, int size) {
+    const std::size_t n = lens.vertices.size();
     std::vector<float> rate(n, 0.0f);  // radians per pixel
     auto path = [&](std::uint32_t i) -> const LensPath* {
         const LensVertex& v = lens.vertices[i];
@@ -109,10 +113,10 @@ std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term,
             const std::uint32_t a = t[k], b = t[(k + 1) % 3];
             const LensPath *pa = path(a), *pb = path(b);
             if (!pa || !pb || !pa->sameTopology(*pb)) continue;
-            const float pixels = glm::length(screen[a] - screen[b]);
-            if (!(pixels > 1e-3f)) continue;
+            const float length = glm::length(pixels[a] - pixels[b]);
+            if (!(length > 1e-3f)) continue;
             const float cosine = glm::dot(glm::normalize(directions[a]), glm::normalize(directions[b]));
-            const float r = std::acos(std::clamp(cosine, -1.0f, 1.0f)) / pixels;
+            const float r = std::acos(std::clamp(cosine, -1.0f, 1.0f)) / length;
             rate[a] = std::max(rate[a], r);
             rate[b] = std::max(rate[b], r);
         }
@@ -122,11 +126,11 @@ std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term,
     return lods;
 }
 
-LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const Camera& camera,
-                                     int width, int height, int size) {
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell,
+                                     const std::vector<glm::vec2>& pixels, int size) {
     LayerTextureIndex index;
     index.directions = vertexTextureDirections(lens, term, shell);
-    index.lods = vertexTextureLods(lens, term, index.directions, camera, width, height, size);
+    index.lods = vertexTextureLods(lens, term, index.directions, pixels, size);
     return index;
 }
 

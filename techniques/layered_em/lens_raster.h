@@ -32,23 +32,27 @@ LensRaster rasterizeLens(const std::vector<glm::vec3>& positions, const std::vec
 // their normal: their F G weight is zero, so what they index does not show.
 std::vector<glm::vec3> vertexTextureDirections(const TessellatedLens& lens, PathTerm term, const Shell& shell);
 
-// The per-vertex level of detail of those lookups (cubeMapLod) for a width x height image from
-// `camera`: over the tessellation's edges whose two paths have the same topology, the angle between
-// the vertices' texture directions over the edge's length on screen, the largest at each vertex
-// (as hardware takes the larger screen derivative). Edges across a topology change (a silhouette, a
-// switch between reflection and refraction) are discontinuities, not minification, and are left
-// out. Interpolated across triangles like every attribute, so the renderer and the rendering
-// matrix read the same levels.
+// Pixel coordinates of the tessellation's vertices in a width x height image from `camera`
+// (projected once a frame, shared by every term and layer).
+std::vector<glm::vec2> lensVertexPixels(const TessellatedLens& lens, const Camera& camera, int width, int height);
+
+// The per-vertex level of detail of those lookups (cubeMapLod) at the vertices' `pixels`: over the
+// tessellation's edges whose two paths have the same topology, the angle between the vertices'
+// texture directions over the edge's length on screen, the largest at each vertex (as hardware
+// takes the larger screen derivative). Edges across a topology change (a silhouette, a switch
+// between reflection and refraction) are discontinuities, not minification, and are left out.
+// Interpolated across triangles like every attribute, so the renderer and the rendering matrix
+// read the same levels.
 std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
-                                     const Camera& camera, int width, int height, int size);
+                                     const std::vector<glm::vec2>& pixels, int size);
 
 // One term and layer's per-vertex texture index: what the renderer interpolates and looks up.
 struct LayerTextureIndex {
     std::vector<glm::vec3> directions;
     std::vector<float> lods;
 };
-LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const Camera& camera,
-                                     int width, int height, int size);
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell,
+                                     const std::vector<glm::vec2>& pixels, int size);
 
 // Per-vertex F G of one term (what the renderer multiplies the layer lookups by).
 std::vector<glm::vec3> vertexPathWeights(const TessellatedLens& lens, PathTerm term);

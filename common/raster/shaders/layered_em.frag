@@ -16,13 +16,9 @@ layout(location = 5) in vec4 direction[2 * kMaxLayers];
 
 layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
 
-// The MIP chain (em_cube_map.cpp): level k has max(1, size >> k) texels a side.
+// The MIP chain (em_cube_map.cpp): level k has max(1, size >> k) texels a side; its length and
+// texel count come with the push constants.
 int levelSize(int level) { return max(1, pc.maps.y >> level); }
-int levelCount() {
-    int levels = 1;
-    while ((pc.maps.y >> levels) >= 1) ++levels;
-    return levels;
-}
 int levelOffset(int level) {
     int offset = 0;
     for (int k = 0; k < level; ++k) offset += 6 * levelSize(k) * levelSize(k);
@@ -51,7 +47,7 @@ Taps cubeLookup(vec4 index) {
     int face;
     vec2 st;
     cubeMapCoordinate(index.xyz, face, st);
-    int last = levelCount() - 1;
+    int last = pc.chain.x - 1;
     float lod = clamp(index.w, 0.0, float(last));
     int level = min(int(lod), last);
     float f = lod - float(level);
@@ -78,7 +74,7 @@ void main() {
     }
     // Per term, both viewpoint samples' layers over one another; the two samples share the shells,
     // so each layer's lookup (texels and weights) serves both.
-    int layerTexels = levelOffset(levelCount());
+    int layerTexels = pc.chain.y;
     bool blend = pc.blend.y > 0.0;
     vec3 c = vec3(0.0);
     for (int t = 0; t < 2; ++t) {

@@ -21,4 +21,5 @@ layout(push_constant) uniform DrawConstants {
     vec4 cameraPosition;  // xyz; w: relative depth tolerance of the G-buffer occlusion test
     ivec4 maps;           // layers, level-0 texels a face side, first texel of viewpoint sample A's maps, of B's
     vec4 blend;           // weights of viewpoint samples A and B
+    ivec4 chain;          // MIP levels of a map, texels of a map's whole chain (cubeMapLevels, cubeMapTexelCount)
 } pc;
