@@ -171,5 +171,38 @@ TEST(EmInference, DampingKeepsAWeaklyObservedTexelNearItsTargets) {
     EXPECT_NEAR(damped.em.texels[1].r, 0.8f, 0.3f);
 }
 
+TEST(EmInference, SolvesOnlyNearWhatTheImagesSeeAndFillsTheRest) {
+    // A uniform environment seen in a small cone: the solve carries a small part of the chain and
+    // the fill carries that colour to every other texel, at every level.
+    const int size = 32;
+    const glm::vec4 colour(0.2f, 0.4f, 0.6f, 1.0f);
+    EmObservation o;
+    for (int y = 0; y < 12; ++y) {
+        for (int x = 0; x < 12; ++x) {
+            o.lookups.push_back(cubeMapLookup(glm::vec3(0.02f * static_cast<float>(x - 6), 0.02f * static_cast<float>(y - 6), 1.0f), size, 0.0f));
+            o.targets.push_back(colour);
+            o.confidence.push_back(1.0f);
+            o.pixels.push_back(static_cast<std::uint32_t>(o.pixels.size()));
+        }
+    }
+    EmInferenceSettings settings;
+    settings.size = size;
+    const EmInferenceResult r = inferLayerEm({o}, settings);
+    EXPECT_GT(r.activeTexels, r.observedTexels);
+    EXPECT_LT(r.activeTexels, cubeMapTexelCount(size) / 20);
+    float worst = 0.0f;
+    for (const glm::vec4& t : r.em.texels) worst = std::max(worst, glm::length(t - colour));
+    EXPECT_LT(worst, 1e-3f);
+}
+
+TEST(EmInference, ConfidenceAngleIsThePapersScaledToTheBakesLines) {
+    EXPECT_FLOAT_EQ(confidenceAngle(0.0f, 480), 5.0f);  // §4.3 at the paper's 640 x 480
+    EXPECT_NEAR(confidenceAngle(0.0f, 180), 13.333f, 1e-3f);
+    EXPECT_FLOAT_EQ(confidenceAngle(7.0f, 180), 7.0f);
+    EXPECT_FLOAT_EQ(rayConfidence(0.0f, 0.1f), 1.0f);
+    EXPECT_NEAR(rayConfidence(0.05f, 0.1f), 0.75f, 1e-6f);
+    EXPECT_FLOAT_EQ(rayConfidence(0.2f, 0.1f), 0.0f);
+}
+
 }  // namespace
 }  // namespace hybridlab

@@ -90,6 +90,14 @@ TEST(LayerShells, PlaneFitAndQuadImpostor) {
     EXPECT_NEAR(glm::dot(away - quad.planePoint, quad.planeNormal), 0.0f, 1e-5f * quad.farDistance);
     EXPECT_GT(glm::dot(away - quad.planePoint, u), 0.99f * quad.farDistance);
     EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), pts), ShellKind::Quad) << "a small patch of the sky";
+
+    // Thin columns on all sides of the origin (a ring seen in a convex mirror) occupy as few
+    // directions, but no plane holds them: rays leaving away from it would be forced onto it.
+    std::vector<glm::vec3> columns;
+    for (float azimuth : {0.3f, 1.6f, 2.9f, 4.2f}) {
+        for (int j = 0; j < 9; ++j) columns.push_back({6.0f * std::cos(azimuth), 0.5f * static_cast<float>(j), 6.0f * std::sin(azimuth) + 2.0f});
+    }
+    EXPECT_NE(chooseShellKind(glm::vec3(0.0f), columns), ShellKind::Quad);
 }
 
 TEST(LayerShells, SphereAndCylinderShells) {

@@ -115,10 +115,11 @@ void run(BakeEmOptions& o) {
         std::printf("  records %llu, lens ray queries %llu, environment ray queries %llu\n",
                     static_cast<unsigned long long>(stats.records), static_cast<unsigned long long>(stats.lensQueries),
                     static_cast<unsigned long long>(stats.environmentQueries));
-        std::printf("  tessellation: %llu vertices, %llu triangles (sum over viewpoints); inference: %llu rows, <= %d CG iterations, "
-                    "relative residual <= %.3g\n",
+        std::printf("  tessellation: %llu vertices, %llu triangles (sum over viewpoints); inference: %llu rows, %llu unknowns, <= %d CG "
+                    "iterations, relative residual <= %.3g\n",
                     static_cast<unsigned long long>(stats.tessellatedVertices), static_cast<unsigned long long>(stats.tessellatedTriangles),
-                    static_cast<unsigned long long>(stats.inferenceRows), stats.maxIterations, stats.maxRelativeResidual);
+                    static_cast<unsigned long long>(stats.inferenceRows),
+                    static_cast<unsigned long long>(stats.inferenceUnknowns), stats.maxIterations, stats.maxRelativeResidual);
         printSummary(scene, em);
         if (!o.images.empty()) writeLayerImages(o.images, em);
     }
@@ -140,6 +141,9 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--width", s.width, "Lens image width (pixels)")->check(CLI::Range(8, 4096));
     cmd->add_option("--height", s.height, "Lens image height (pixels)")->check(CLI::Range(8, 4096));
     cmd->add_option("--supersampling", s.records.supersampling, "n x n incoming rays a pixel")->check(CLI::Range(1, 8));
+    cmd->add_option("--confidence-angle", s.records.confidenceAngleDegrees,
+                    "theta_c of the confidence image (degrees; 0: the paper's 5 at 480 lines, scaled to the lens images' height)")
+        ->check(CLI::Range(0.0, 180.0));
     cmd->add_option("--em-size", s.inference.size, "Cube-map texels a face side")->check(CLI::Range(2, 1024));
     cmd->add_option("--layers", s.layers, "EM layers (0: automatic)")->check(CLI::Range(0, 16));
     cmd->add_option("--max-layers", s.maxLayers, "Most layers the automatic choice takes")->check(CLI::Range(1, 16));

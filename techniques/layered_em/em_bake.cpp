@@ -178,7 +178,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         ViewpointRecords recs = compileOutgoingRecords(system, shading, camera, w, h, settings.records);
         std::vector<std::vector<EmObservation>> perLayer(layerCount);
         std::vector<LayerImageAccumulator> acc;
-        for (std::size_t k = 0; k < layerCount * kPathTerms; ++k) acc.emplace_back(w, h, settings.records.confidenceAngleDegrees);
+        for (std::size_t k = 0; k < layerCount * kPathTerms; ++k) acc.emplace_back(w, h, confidenceAngle(settings.records.confidenceAngleDegrees, h));
         const std::size_t raysPerPixel = static_cast<std::size_t>(n * n) * kPathTerms;
         for (std::size_t id = 0; id < recs.rayExists.size(); ++id) {
             if (!recs.rayExists[id]) continue;
@@ -241,6 +241,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             }
             EmInferenceResult r = inferLayerEm(rows, settings.inference);
             stats.inferenceRows += r.rows;
+            stats.inferenceUnknowns += r.activeTexels;
             stats.maxIterations = std::max(stats.maxIterations, r.iterations);
             stats.maxRelativeResidual = std::max(stats.maxRelativeResidual, r.relativeResidual);
             out.unobservedTexels.push_back(cubeMapTexelCount(size) - r.observedTexels);

@@ -63,7 +63,7 @@ struct LayeredEm {
 struct EmBakeStats {
     std::vector<std::pair<std::string, double>> stageMs;   // in order
     std::uint64_t records = 0, lensQueries = 0, environmentQueries = 0;
-    std::uint64_t tessellatedVertices = 0, tessellatedTriangles = 0, inferenceRows = 0;
+    std::uint64_t tessellatedVertices = 0, tessellatedTriangles = 0, inferenceRows = 0, inferenceUnknowns = 0;
     int maxIterations = 0;
     double maxRelativeResidual = 0.0;
 };

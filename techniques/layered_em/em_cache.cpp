@@ -11,7 +11,7 @@
 namespace hybridlab {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '2', '\0', '\0'};
+constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', '\0', '\0'};  // v3: the solve over the active texels
 
 class Writer {
 public:
@@ -72,7 +72,8 @@ std::string layeredEmCacheKey(const Scene& scene, const LensSystemInfo& system, 
                            std::int64_t{s.records.maxHitsPerRay}, std::int64_t{s.records.continueRays},
                            std::int64_t{s.records.paths.maxInterfaces}, std::int64_t{s.tessellation.maxLevels},
                            std::int64_t{s.viewpoints.frameStride}, std::int64_t{s.viewpoints.maxSamples}, std::int64_t{s.viewpoints.heightSet}, std::int64_t{s.layers},
-                           std::int64_t{s.maxLayers}, std::int64_t{s.inference.size}, std::int64_t{s.inference.maxIterations},
+                           std::int64_t{s.maxLayers}, std::int64_t{s.inference.size}, std::int64_t{s.inference.maxIterations}, std::int64_t{s.inference.ring},
+                           std::int64_t{s.inference.finerLevels},
                            std::int64_t{s.neighbourViewpoints}, std::int64_t{s.directImages},
                            static_cast<std::int64_t>(s.clusterSampleLimit)}) {
         h.add(v);

@@ -80,14 +80,117 @@ std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm
     return image;
 }
 
+namespace {
+
+// The texel of the next coarser level that covers texel c.
+std::uint32_t parentTexel(const CubeMapTexel& c, int size) {
+    const int fine = cubeMapLevelSize(size, c.level), coarse = cubeMapLevelSize(size, c.level + 1);
+    return cubeMapTexelIndex({c.level + 1, c.face, c.column * coarse / fine, c.row * coarse / fine}, size);
+}
+
+// The texels the solve carries (§4.3 infers what the images see; the rest of the cube is filled
+// after): those the rows read, a ring of `ring` texels around them at their level (so smoothness
+// reaches a little past the observations, where nearby views read), their descendants a few
+// levels down and every ancestor (the pyramid rows tie the chain together).
+std::vector<bool> activeTexels(const std::vector<double>& observedWeight, int size, int ring, int finerLevels) {
+    std::vector<bool> active(observedWeight.size(), false);
+    for (std::size_t t = 0; t < observedWeight.size(); ++t) {
+        if (observedWeight[t] <= 0.0) continue;
+        const CubeMapTexel c = cubeMapTexelAt(static_cast<std::uint32_t>(t), size);
+        const int side = cubeMapLevelSize(size, c.level);
+        for (int j = std::max(0, c.row - ring); j <= std::min(side - 1, c.row + ring); ++j)
+            for (int i = std::max(0, c.column - ring); i <= std::min(side - 1, c.column + ring); ++i)
+                active[cubeMapTexelIndex({c.level, c.face, i, j}, size)] = true;
+    }
+    // Descendants first, `finerLevels` levels down (a view up to 2^finerLevels times finer than the
+    // bake's reads below the levels it observed), then ancestors.
+    const int levels = cubeMapLevels(size);
+    std::vector<int> depth(active.size(), -1);  // levels of descendants still to mark below a texel
+    for (std::size_t t = 0; t < active.size(); ++t) depth[t] = active[t] ? finerLevels : -1;
+    for (int level = levels - 1; level >= 1; --level) {
+        const std::size_t first = cubeMapLevelOffset(size, level - 1), last = cubeMapLevelOffset(size, level);
+        for (std::size_t t = first; t < last; ++t) {
+            const int parentDepth = depth[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)];
+            if (parentDepth > 0 && depth[t] < parentDepth - 1) {
+                depth[t] = parentDepth - 1;
+                active[t] = true;
+            }
+        }
+    }
+    for (int level = 0; level + 1 < levels; ++level) {
+        const std::size_t first = cubeMapLevelOffset(size, level), last = cubeMapLevelOffset(size, level + 1);
+        for (std::size_t t = first; t < last; ++t) {
+            if (active[t]) active[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)] = true;
+        }
+    }
+    return active;
+}
+
+// Push-pull fill of the texels the solve did not carry: up the chain each unsolved texel takes the
+// mean of its children that have a value, then down the chain each texel still without one takes
+// its parent's (a face nobody saw takes the mean of the faces that were).
+void fillUnsolved(LayerCubeMap& em, std::vector<bool> has) {
+    const int size = em.size, levels = cubeMapLevels(size);
+    std::vector<glm::dvec4> sum(em.texels.size(), glm::dvec4(0.0));
+    std::vector<int> count(em.texels.size(), 0);
+    for (int level = 0; level + 1 < levels; ++level) {
+        const std::size_t first = cubeMapLevelOffset(size, level), last = cubeMapLevelOffset(size, level + 1);
+        for (std::size_t t = first; t < last; ++t) {
+            if (!has[t]) continue;
+            const std::uint32_t p = parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size);
+            sum[p] += glm::dvec4(em.texels[t]);
+            ++count[p];
+        }
+        for (std::size_t t = last; t < cubeMapLevelOffset(size, level + 2); ++t) {
+            if (has[t] || count[t] == 0) continue;
+            em.texels[t] = glm::vec4(sum[t] / static_cast<double>(count[t]));
+            has[t] = true;
+        }
+    }
+    glm::dvec4 top(0.0);
+    int seen = 0;
+    for (std::size_t t = cubeMapLevelOffset(size, levels - 1); t < em.texels.size(); ++t) {
+        if (has[t]) top += glm::dvec4(em.texels[t]), ++seen;
+    }
+    for (std::size_t t = cubeMapLevelOffset(size, levels - 1); t < em.texels.size(); ++t) {
+        if (!has[t]) em.texels[t] = seen > 0 ? glm::vec4(top / static_cast<double>(seen)) : glm::vec4(0.0f);
+    }
+    for (int level = levels - 2; level >= 0; --level) {
+        for (std::size_t t = cubeMapLevelOffset(size, level); t < cubeMapLevelOffset(size, level + 1); ++t) {
+            if (!has[t]) em.texels[t] = em.texels[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)];
+        }
+    }
+}
+
+}  // namespace
+
 EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings) {
     const int size = settings.size;
-    const Eigen::Index texels = static_cast<Eigen::Index>(cubeMapTexelCount(size));
+    const std::size_t texels = cubeMapTexelCount(size);
     EmInferenceResult result;
     result.em = LayerCubeMap(size);
-    result.observed.assign(static_cast<std::size_t>(texels), false);
-    std::vector<double> observedWeight(static_cast<std::size_t>(texels), 0.0);
-    std::vector<glm::dvec4> splat(static_cast<std::size_t>(texels), glm::dvec4(0.0));  // weighted sum of the targets reading a texel
+    result.observed.assign(texels, false);
+    std::vector<double> observedWeight(texels, 0.0);
+    std::vector<double> normalDiagonal(texels, 0.0);             // diagonal of A^T A over the data rows
+    std::vector<glm::dvec4> splat(texels, glm::dvec4(0.0));      // weighted sum of the targets reading a texel
+    for (const EmObservation& o : observations) {
+        for (std::size_t r = 0; r < o.lookups.size(); ++r) {
+            const double c = o.confidence[r];
+            for (const CubeMapTap& t : o.lookups[r].taps) {
+                if (t.weight == 0.0f) continue;
+                observedWeight[t.texel] += c * t.weight;
+                normalDiagonal[t.texel] += (c * t.weight) * (c * t.weight);
+                splat[t.texel] += c * static_cast<double>(t.weight) * glm::dvec4(o.targets[r]);
+            }
+        }
+    }
+    // The unknowns: the active texels, numbered in chain order.
+    const std::vector<bool> active = activeTexels(observedWeight, size, settings.ring, settings.finerLevels);
+    std::vector<Eigen::Index> column(texels, -1);
+    Eigen::Index unknowns = 0;
+    for (std::size_t t = 0; t < texels; ++t) {
+        if (active[t]) column[t] = unknowns++;
+    }
 
     // Stack the confidence-weighted rows of every observation, then the regularising rows.
     std::vector<Eigen::Triplet<double>> entries;
@@ -97,63 +200,66 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         for (std::size_t r = 0; r < o.lookups.size(); ++r, ++row) {
             const double c = o.confidence[r];
             for (const CubeMapTap& t : o.lookups[r].taps) {
-                if (t.weight == 0.0f) continue;
-                entries.emplace_back(row, static_cast<Eigen::Index>(t.texel), c * t.weight);
-                observedWeight[t.texel] += c * t.weight;
-                splat[t.texel] += c * static_cast<double>(t.weight) * glm::dvec4(o.targets[r]);
+                if (t.weight != 0.0f) entries.emplace_back(row, column[t.texel], c * t.weight);
             }
             rhs.push_back(c * glm::dvec4(o.targets[r]));
         }
     }
     result.rows = static_cast<std::size_t>(row);
-    // Smoothness between neighbouring texels of a level-0 face; the pyramid carries it to the coarser
-    // levels (smoothness there would pull them away from the mean of what they cover).
-    const double s = std::sqrt(settings.smoothness);
-    auto addPair = [&](Eigen::Index a, Eigen::Index b, double weight) {
-        entries.emplace_back(row, a, weight);
-        entries.emplace_back(row, b, -weight);
+    // The regularising weights are relative to the data's mean diagonal of A^T A, so scaling every
+    // confidence alike does not change the solution (the paper multiplies both sides by it).
+    double diagonalSum = 0.0;
+    std::size_t diagonalCount = 0;
+    for (double v : normalDiagonal) {
+        diagonalSum += v;
+        diagonalCount += v > 0.0 ? 1 : 0;
+    }
+    const double meanDiagonal = diagonalCount > 0 ? diagonalSum / static_cast<double>(diagonalCount) : 1.0;
+    // Smoothness between neighbouring active texels of a level-0 face; the pyramid carries it to the
+    // coarser levels (smoothness there would pull them away from the mean of what they cover).
+    const double s = std::sqrt(settings.smoothness * meanDiagonal);
+    auto addPair = [&](std::size_t a, std::size_t b) {
+        if (column[a] < 0 || column[b] < 0) return;
+        entries.emplace_back(row, column[a], s);
+        entries.emplace_back(row, column[b], -s);
         rhs.push_back(glm::dvec4(0.0));
         ++row;
     };
     for (int f = 0; f < 6; ++f) {
         for (int j = 0; j < size; ++j) {
             for (int i = 0; i < size; ++i) {
-                const Eigen::Index t = (f * size + j) * size + i;  // level 0 starts the chain
-                if (i + 1 < size) addPair(t, t + 1, s);
-                if (j + 1 < size) addPair(t, t + size, s);
+                const std::size_t t = static_cast<std::size_t>((f * size + j) * size + i);  // level 0 starts the chain
+                if (!active[t]) continue;
+                if (i + 1 < size) addPair(t, t + 1);
+                if (j + 1 < size) addPair(t, t + static_cast<std::size_t>(size));
             }
         }
     }
     // Damping towards the splat (the weighted mean of the targets that read the texel): a texel that
     // rows touch only with small bilinear weights would otherwise take extreme values (alpha far
     // outside [0, 1], negative colours) to fix other texels' residuals, and "over" amplifies them.
-    const double d = std::sqrt(settings.damping);
-    for (Eigen::Index t = 0; t < texels && d > 0.0; ++t) {
-        const double w = observedWeight[static_cast<std::size_t>(t)];
+    const double d = std::sqrt(settings.damping * meanDiagonal);
+    for (std::size_t t = 0; t < texels && d > 0.0; ++t) {
+        const double w = observedWeight[t];
         if (w <= 0.0) continue;
-        entries.emplace_back(row, t, d);
-        rhs.push_back(d * splat[static_cast<std::size_t>(t)] / w);
+        entries.emplace_back(row, column[t], d);
+        rhs.push_back(d * splat[t] / w);
         ++row;
     }
-    // The pyramid: each texel of level k >= 1 against the mean of the level k - 1 texels it covers.
-    const double p = std::sqrt(settings.pyramid);
-    for (int level = 1; level < cubeMapLevels(size); ++level) {
-        const int fine = cubeMapLevelSize(size, level - 1), coarse = cubeMapLevelSize(size, level);
-        std::vector<std::vector<std::uint32_t>> children(6u * static_cast<std::size_t>(coarse * coarse));
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < fine; ++j)
-                for (int i = 0; i < fine; ++i)
-                    children[static_cast<std::size_t>((f * coarse + j * coarse / fine) * coarse + i * coarse / fine)].push_back(
-                        cubeMapTexelIndex({level - 1, f, i, j}, size));
-        const Eigen::Index first = static_cast<Eigen::Index>(cubeMapLevelOffset(size, level));
-        for (std::size_t parent = 0; parent < children.size(); ++parent) {
-            entries.emplace_back(row, first + static_cast<Eigen::Index>(parent), p);
-            for (std::uint32_t c : children[parent]) entries.emplace_back(row, c, -p / static_cast<double>(children[parent].size()));
-            rhs.push_back(glm::dvec4(0.0));
-            ++row;
-        }
+    // The pyramid: each active texel of level k >= 1 against the mean of its active children.
+    const double p = std::sqrt(settings.pyramid * meanDiagonal);
+    std::vector<std::vector<std::uint32_t>> children(texels);
+    for (std::size_t t = 0; t < cubeMapLevelOffset(size, cubeMapLevels(size) - 1); ++t) {
+        if (active[t]) children[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)].push_back(static_cast<std::uint32_t>(t));
     }
-    SparseRows a(row, texels);
+    for (std::size_t parent = 0; parent < texels; ++parent) {
+        if (children[parent].empty()) continue;
+        entries.emplace_back(row, column[parent], p);
+        for (std::uint32_t c : children[parent]) entries.emplace_back(row, column[c], -p / static_cast<double>(children[parent].size()));
+        rhs.push_back(glm::dvec4(0.0));
+        ++row;
+    }
+    SparseRows a(row, unknowns);
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::LeastSquaresConjugateGradient<SparseRows> solver;
     solver.setTolerance(settings.tolerance);
@@ -165,8 +271,11 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         Eigen::VectorXd x = solver.solve(b);
         result.iterations = std::max(result.iterations, static_cast<int>(solver.iterations()));
         result.relativeResidual = std::max(result.relativeResidual, solver.error());
-        for (Eigen::Index t = 0; t < texels; ++t) result.em.texels[static_cast<std::size_t>(t)][channel] = static_cast<float>(x[t]);
+        for (std::size_t t = 0; t < texels; ++t) {
+            if (active[t]) result.em.texels[t][channel] = static_cast<float>(x[column[t]]);
+        }
     }
+    fillUnsolved(result.em, active);
     // What a texture can hold: premultiplied colour is not negative and alpha is a coverage in
     // [0, 1]; "over" with alpha outside it subtracts the layers behind (the projection of the
     // damped solution onto that set).
@@ -175,6 +284,7 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         result.observed[t] = observedWeight[t] >= settings.observedWeight;
         result.observedTexels += result.observed[t] ? 1 : 0;
     }
+    result.activeTexels = static_cast<std::size_t>(unknowns);
     return result;
 }
 

@@ -3,12 +3,15 @@
 // MIPMAPs are inferred", Figure 7), that, applied by the renderer, best matches the ray tracer's
 // layer images in the confidence-weighted least-squares sense, A x = b over every observation at
 // once (both terms, several nearby viewpoints, direct images of the environment), solved by
-// conjugate gradient (Eigen's least-squares CG) with a small smoothness term for texels no image
-// observes, a small pyramid term tying each texel to the mean of the finer texels it covers (so
-// the levels no image reads agree with those it does), a small damping of each observed texel
-// towards the mean of the targets that read it (Tikhonov regularisation: the plain least-squares
-// solution swings weakly observed texels far outside [0, 1]), and a stopping rule on the relative
-// residual; the solution is then clamped to what a texture holds (alpha in [0, 1], colour >= 0).
+// conjugate gradient (Eigen's least-squares CG) over the texels the images read, a ring around
+// them and their neighbours in the chain (the rest of the cube is filled by push-pull afterwards:
+// solving the whole cube cost up to 20 times more for texels no view reads), with a small
+// smoothness term between neighbouring texels, a small pyramid term tying each texel to the mean
+// of the finer texels it covers (so the levels no image reads agree with those it does), a small
+// damping of each observed texel towards the mean of the targets that read it (Tikhonov
+// regularisation: the plain least-squares solution swings weakly observed texels far outside
+// [0, 1]), all relative to the data's weight, and a stopping rule on the relative residual; the
+// solution is then clamped to what a texture holds (alpha in [0, 1], colour >= 0).
 #include <cstdint>
 #include <vector>
 
@@ -49,11 +52,14 @@ std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm
 
 struct EmInferenceSettings {
     int size = 32;                    // texels a cube face side
+    // Regularising weights, relative to the mean diagonal of the data rows' A^T A.
     double smoothness = 1e-3;         // weight of (x_i - x_j)^2 between neighbouring texels of a level-0 face
     double pyramid = 1e-2;            // weight of (x_parent - mean of its finer texels)^2
     double damping = 0.3;             // weight of (x_i - the mean of the targets that read texel i)^2
     double tolerance = 1e-6;          // stop at this relative residual (of the normal equations)
     int maxIterations = 1000;
+    int ring = 2;                     // texels around the observed ones that the solve carries (the rest are filled)
+    int finerLevels = 2;              // and levels below the observed ones (a display up to 4x finer than the bake)
     double observedWeight = 0.25;     // a texel is observed when its confidence-weighted lookup weights
                                       // over all rows sum to at least this (a quarter of a pixel)
 };
@@ -62,6 +68,7 @@ struct EmInferenceResult {
     LayerCubeMap em;
     std::vector<bool> observed;       // per texel of the chain: read with at least observedWeight in all
     std::size_t observedTexels = 0;
+    std::size_t activeTexels = 0;     // the unknowns of the solve
     int iterations = 0;               // the largest over the four channels
     double relativeResidual = 0.0;    // the largest over the four channels
     std::size_t rows = 0;

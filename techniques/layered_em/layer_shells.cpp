@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace hybridlab {
 namespace {
@@ -109,12 +110,13 @@ Shell fitQuadShell(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, con
     return s;
 }
 
-ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage) {
+ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage, double quadConeDegrees) {
     if (points.empty()) return ShellKind::Sphere;
     // Coverage: occupied cells of a 16 x 32 latitude-longitude grid of directions, weighted by
     // their solid angle.
     constexpr int kRows = 16, kCols = 32;
     std::set<int> cells;
+    glm::dvec3 meanDirection(0.0);
     double mean3 = 0.0, mean2 = 0.0;
     std::vector<double> d3, d2;
     for (const glm::vec3& p : points) {
@@ -125,6 +127,7 @@ ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& poin
         int row = std::min(kRows - 1, static_cast<int>((std::acos(std::clamp(d.y, -1.0f, 1.0f)) / M_PI) * kRows));
         int col = std::min(kCols - 1, static_cast<int>((std::atan2(d.z, d.x) / (2.0 * M_PI) + 0.5) * kCols));
         cells.insert(row * kCols + col);
+        meanDirection += glm::dvec3(d);
         d3.push_back(len);
         d2.push_back(std::hypot(p.x - emOrigin.x, p.z - emOrigin.z));
         mean3 += d3.back();
@@ -136,7 +139,16 @@ ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& poin
         int row = c / kCols;
         covered += (std::cos(row * M_PI / kRows) - std::cos((row + 1) * M_PI / kRows)) / (2.0 * kCols);
     }
-    if (covered < quadCoverage) return ShellKind::Quad;
+    // A plane holds the layer only when the layer lies to one side of the origin: thin objects spread
+    // around it (a ring of columns seen in a convex mirror) cover few directions too, but rays
+    // leaving away from a plane meet it nowhere near what they hit.
+    const glm::dvec3 axis = glm::normalize(meanDirection);
+    double widest = 0.0;
+    for (const glm::vec3& p : points) {
+        const glm::dvec3 d = glm::dvec3(p - emOrigin);
+        if (glm::length(d) > 0.0) widest = std::max(widest, std::acos(std::clamp(glm::dot(glm::normalize(d), axis), -1.0, 1.0)));
+    }
+    if (covered < quadCoverage && widest < glm::radians(quadConeDegrees)) return ShellKind::Quad;
     mean3 /= static_cast<double>(d3.size());
     mean2 /= static_cast<double>(d2.size());
     double var3 = 0.0, var2 = 0.0;

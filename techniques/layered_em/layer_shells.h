@@ -49,9 +49,12 @@ struct OutgoingRay {
 Shell fitQuadShell(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, const std::vector<OutgoingRay>& rays);
 
 // The kind a layer gets from its intersection points (seen from the EM origin): a quad when they
-// cover less than `quadCoverage` of the directions around the origin, a cylinder when their
-// horizontal distance from the vertical axis through the origin varies much less than their
-// distance from the origin (a ring of columns), a sphere otherwise.
-ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage = 0.08);
+// cover less than `quadCoverage` of the directions around the origin and lie within
+// `quadConeDegrees` of their mean direction (a compact, sparsely occupied layer such as the cup
+// seen from the teapot, §6), a cylinder when their horizontal distance from the vertical axis
+// through the origin varies much less than their distance from the origin (a ring of columns), a
+// sphere otherwise.
+ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage = 0.08,
+                          double quadConeDegrees = 50.0);
 
 }  // namespace hybridlab

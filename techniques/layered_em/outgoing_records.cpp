@@ -73,6 +73,8 @@ glm::vec2 subpixelNdc(int x, int y, int k, int n, int width, int height) {
     return {sx / static_cast<float>(width) * 2.0f - 1.0f, sy / static_cast<float>(height) * 2.0f - 1.0f};
 }
 
+float confidenceAngle(float degrees, int height) { return degrees > 0.0f ? degrees : 5.0f * 480.0f / static_cast<float>(height); }
+
 float rayConfidence(float maxAngle, float thetaC) {
     return 1.0f - std::min(maxAngle * maxAngle, thetaC * thetaC) / (thetaC * thetaC);
 }

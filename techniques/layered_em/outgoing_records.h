@@ -29,6 +29,10 @@ glm::vec2 subpixelNdc(int x, int y, int k, int n, int width, int height);
 // outgoing rays of a pixel (radians).
 float rayConfidence(float maxAngle, float thetaC);
 
+// theta_c in degrees for lens images `height` pixels high: `degrees`, or when it is 0 the paper's
+// 5 degrees (a 640 x 480 display, §6) times 480 / height.
+float confidenceAngle(float degrees, int height);
+
 struct OutgoingRecord {
     std::uint32_t pixel = 0;     // y * width + x
     std::uint32_t ray = 0;       // ((pixel * n^2 + subsample) * 2 + term): unique within the viewpoint
@@ -44,7 +48,8 @@ struct RecordSettings {
     int supersampling = 3;           // n x n incoming rays a pixel (§4.1: 3 x 3)
     int maxHitsPerRay = 8;           // intersections recorded along one outgoing ray
     bool continueRays = true;        // §4.1 continuation; false: first hits only, incoming rays stop at occluders
-    float confidenceAngleDegrees = 5.0f;  // theta_c
+    float confidenceAngleDegrees = 0.0f;  // theta_c; 0: the paper's 5 degrees at its 480 lines, scaled to the
+                                          // bake's (confidenceAngle): a pixel's rays spread with its size
     LensPathSettings paths;
 };
 
