@@ -11,8 +11,8 @@ view between viewpoint samples (circle frame 4) and one above their plane (above
 multi-layer against single-layer, and the temporal error along the circling path. Figure 9 as
 numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
 approach. Times are medians over a run's repeats. Entries are found by label, as the config names
-them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-bake320, the bake at the
-display's resolution, where present)."""
+them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-display and
+lem-display-single, the bake at the display's resolution, where present)."""
 import statistics
 
 import results
@@ -35,7 +35,7 @@ def lens_metric(r, name):
 
 def results_table(rows, size):
     scene = "teapot-lens"
-    labels = ["lem-tau3", "lem-tau5"] + [l for l in ("lem-bake320",) if any(r["label"] == l for r in rows)]
+    labels = ["lem-tau3", "lem-tau5"] + [l for l in ("lem-display",) if any(r["label"] == l for r in rows)]
     ref = find(rows, REFERENCE, scene, "camera", -1, size)
     out = ["**Results table** (teapot-lens, scene camera, %s; ms, medians over repeats; quality on the lens pixels "
            "against two-term ray tracing)" % size, "",
@@ -70,18 +70,19 @@ def results_table(rows, size):
 
 def figure8(rows):
     scene = "teapot-lens"
-    out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing)", "",
-           "| view | multi-layer (lem-tau3) | single-layer (lem-single) |", "|---|---|---|"]
+    labels = [l for l in ("lem-tau3", "lem-single", "lem-display", "lem-display-single") if any(r["label"] == l for r in rows)]
+    out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing; -single: one layer, "
+           "nearest viewpoint sample)", "", "| view | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
     for name, view, frame in (("between viewpoint samples (circle@4)", "circle", 4), ("above their plane (above@4)", "above", 4),
                               ("at a viewpoint sample (camera)", "camera", -1)):
         cells = []
-        for label in ("lem-tau3", "lem-single"):
+        for label in labels:
             r = find(rows, label, scene, view, frame)
             cells.append("%s / %s" % (results.fmt(lens_metric(r, "ssim"), "%.4f"), results.fmt(lens_metric(r, "flip"), "%.4f")) if r else "-")
         out.append("| %s | %s |" % (name, " | ".join(cells)))
     out += ["", "Temporal error along the circling path (mean |(T_k - T_k-1) - (R_k - R_k-1)|, whole image; viewpoint samples every 8 frames):", ""]
     series = {}
-    for label in ("lem-tau3", "lem-single"):
+    for label in labels:
         rs = sorted((r for r in rows if r["label"] == label and r["scene"] == scene and r["view"] == "circle"
                      and r.get("temporal_error") is not None), key=lambda r: r["frame"])
         series[label] = {r["frame"]: r["temporal_error"] for r in rs}

@@ -47,9 +47,11 @@ TEST(EmMipChain, LookupBlendsTheTwoNearestLevels) {
             EXPECT_NEAR(map.sample(l).r, std::clamp(lod, 0.0f, 4.0f), 1e-5f) << "lod " << lod;
         }
     }
-    // Level of detail: one level per doubling of the pixel's footprint, none below a texel.
-    EXPECT_FLOAT_EQ(cubeMapLod(2.0f / 16.0f, 16), 0.0f);
-    EXPECT_NEAR(cubeMapLod(8.0f / 16.0f, 16), 2.0f, 1e-6f);
+    // Level of detail: one level per doubling of the pixel's footprint, none below two texels (half
+    // the footprint: a bias of -1).
+    EXPECT_FLOAT_EQ(cubeMapLod(4.0f / 16.0f, 16), 0.0f);
+    EXPECT_NEAR(cubeMapLod(8.0f / 16.0f, 16), 1.0f, 1e-6f);
+    EXPECT_NEAR(cubeMapLod(32.0f / 16.0f, 16), 3.0f, 1e-6f);
     EXPECT_FLOAT_EQ(cubeMapLod(0.01f / 16.0f, 16), 0.0f);
 }
 
@@ -64,7 +66,7 @@ TEST(EmMipChain, VertexLevelsFollowTheScreenRateOfAPlanarMirror) {
     const Scene scene = b.scene();
     const LensSystem system(scene, findLensSystems(scene).at(0));
     const Camera camera = test::lookingAt({0, 0, 4}, {0, 0, 0}, 40.0f);
-    const int width = 96, height = 64, size = 512;
+    const int width = 96, height = 64, size = 1024;
     TessellationSettings ts;
     ts.tauPixels = 4.0f;
     const TessellatedLens lens = tessellateLens(system, buildLensMesh(system), camera, width, height, ts);
@@ -73,7 +75,7 @@ TEST(EmMipChain, VertexLevelsFollowTheScreenRateOfAPlanarMirror) {
     shell.radius = 1000.0f;
     const LayerTextureIndex index = vertexTextureIndex(lens, PathTerm::Reflection, shell, lensVertexPixels(lens, camera, width, height), size);
     const float rate = 2.0f * std::tan(glm::radians(20.0f)) / static_cast<float>(height);
-    const float expected = std::log2(rate * static_cast<float>(size) * 0.5f);
+    const float expected = std::log2(0.5f * rate * static_cast<float>(size) * 0.5f);
     ASSERT_GT(expected, 1.0f);
     std::size_t near = 0;
     for (std::size_t i = 0; i < lens.vertices.size(); ++i) {

@@ -39,8 +39,8 @@ std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size) {
 }
 
 float cubeMapLod(float radiansPerPixel, int size) {
-    const float texelsPerPixel = radiansPerPixel * static_cast<float>(size) * 0.5f;
-    return texelsPerPixel > 1.0f ? std::log2(texelsPerPixel) : 0.0f;
+    const float halfFootprint = 0.5f * radiansPerPixel * static_cast<float>(size) * 0.5f;  // level-0 texels
+    return halfFootprint > 1.0f ? std::log2(halfFootprint) : 0.0f;
 }
 
 namespace {

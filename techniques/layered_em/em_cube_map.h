@@ -45,8 +45,13 @@ CubeMapTexel cubeMapTexelAt(std::uint32_t texel, int size);
 std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size);
 
 // The level of detail of a lookup whose index turns by `radiansPerPixel` from one pixel to the
-// next: log2 of the pixel's footprint in level-0 texels (a level-0 texel spans 2 / size radians at
-// a face's centre), at least 0. One rule for the renderer's per-vertex levels and the direct images.
+// next: log2 of half the pixel's footprint in level-0 texels (a level-0 texel spans 2 / size
+// radians at a face's centre), at least 0. Half, not the whole footprint (a level-of-detail bias
+// of -1): the reference samples each pixel at its centre without a prefilter, and trilinear
+// filtering at the footprint's own level blurs what it resolves (teapot-lens baked at the
+// display's 320x180, lens SSIM at the camera / between samples 0.853 / 0.838 -> 0.866 / 0.859;
+// a quarter aliases the minified cup). One rule for the renderer's per-vertex levels and the
+// direct images.
 float cubeMapLod(float radiansPerPixel, int size);
 
 // The lookup: bilinear filtering of a level's texels around the coordinate, texel centres at

@@ -35,6 +35,8 @@ TechniqueInfo LayeredEmTechnique::info() {
                 ParamSpec::integer("supersampling", d.records.supersampling, 1, 8, "n x n incoming rays a bake pixel"),
                 ParamSpec::real("confidence_angle", d.records.confidenceAngleDegrees, 0.0, 180.0,
                                 "theta_c of the bake's confidence image (degrees, §4.3; 0: the paper's 5 at 480 lines, scaled to the bake's height)"),
+                ParamSpec::integer("neighbour_viewpoints", d.neighbourViewpoints, 0, 16,
+                                   "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"),
                 ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
                 ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
@@ -54,6 +56,7 @@ EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
     s.height = static_cast<int>(p.getInt("bake_height"));
     s.records.supersampling = static_cast<int>(p.getInt("supersampling"));
     s.records.confidenceAngleDegrees = static_cast<float>(p.getFloat("confidence_angle"));
+    s.neighbourViewpoints = static_cast<int>(p.getInt("neighbour_viewpoints"));
     if (!p.getBool("disocclusion_prevention")) s.disablePrevention();
     return s;
 }
