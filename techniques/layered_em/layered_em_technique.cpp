@@ -6,6 +6,7 @@
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
+#include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -19,7 +20,7 @@ struct LayeredEmTechnique::System {
 
 TechniqueInfo LayeredEmTechnique::info() {
     const EmBakeSettings d;
-    return {"layered_em",
+    TechniqueInfo info{"layered_em",
             "Hakura & Snyder 2001: layered inferred environment maps per lens system (baked), per-frame vertex ray tracing with "
             "adaptive tessellation, lens drawn with the EMs on the GPU",
             {
@@ -40,9 +41,10 @@ TechniqueInfo LayeredEmTechnique::info() {
                 ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
                 ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
-                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
             },
             [](const ParameterSet& p) { return std::make_unique<LayeredEmTechnique>(p); }};
+    for (ParamSpec& s : shadowMapParameterSpecs()) info.parameters.push_back(std::move(s));
+    return info;
 }
 
 EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
@@ -66,7 +68,7 @@ LayeredEmTechnique::LayeredEmTechnique(const ParameterSet& p) : bake_(bakeSettin
     frameTessellation_.tauPixels = static_cast<float>(p.getFloat("tau"));
     blendViewpoints_ = p.getBool("viewpoint_blending");
     useCache_ = p.getBool("em_cache");
-    shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
+    shadowSettings_ = shadowMapSettings(p);
 }
 
 LayeredEmTechnique::~LayeredEmTechnique() = default;

@@ -2,30 +2,31 @@
 
 #include <algorithm>
 
+#include "techniques/shared/shadow_parameters.h"
+
 namespace hybridlab {
 
 TechniqueInfo RasterTechnique::info() {
-    return {"raster",
+    TechniqueInfo info{"raster",
             "Rasterization only (headless Vulkan): G-buffer, deferred Blinn-Phong lighting, shadow maps, sky environment mapping",
             {
                 ParamSpec::choice("shadows", "map", {"map", "off"}, "shadow maps with PCF, or every light unshadowed"),
-                ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
-                ParamSpec::integer("pcf_radius", 0, 0, 4,
-                                   "percentage-closer filtering over (2r + 1)^2 bilinearly filtered taps (0: one tap, nearest to hard shadows)"),
                 ParamSpec::boolean("redraw_shadow_maps", false,
                                    "redraw shadow maps every frame (false: only when something moved or the settings changed)"),
                 ParamSpec::choice("blend", "design", {"design", "walewski2019"},
                                   "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
             },
             [](const ParameterSet& p) { return std::make_unique<RasterTechnique>(p); }};
+    const std::vector<ParamSpec> shadowMaps = shadowMapParameterSpecs();
+    info.parameters.insert(info.parameters.begin() + 1, shadowMaps.begin(), shadowMaps.end());  // after "shadows"
+    return info;
 }
 
 RasterTechnique::RasterTechnique(const ParameterSet& p) {
     lighting_.shadows = p.getChoice("shadows") == "map";
     lighting_.environmentMapping = true;
     lighting_.walewskiBlend = p.getChoice("blend") == "walewski2019";
-    shadows_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
-    shadows_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
+    shadows_ = shadowMapSettings(p);
     redrawShadowMaps_ = p.getBool("redraw_shadow_maps");
 }
 

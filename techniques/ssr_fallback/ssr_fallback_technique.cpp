@@ -8,6 +8,7 @@
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
+#include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
 #include "techniques/whitted/whitted_technique.h"
 
@@ -76,9 +77,8 @@ TechniqueInfo SsrFallbackTechnique::info() {
         ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
                         "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
                         "smears thin reflected detail)"),
-        ParamSpec::integer("shadow_resolution", 2048, 64, 8192, "texels per side of each shadow-map layer"),
-        ParamSpec::integer("pcf_radius", 0, 0, 4, "percentage-closer filtering radius of the shadow maps"),
     };
+    for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend).
     for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(0.0)) specs.push_back(std::move(s));
     return {"ssr_fallback",
@@ -102,8 +102,7 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettin
     ssrSettings_.thickness = static_cast<float>(p.getFloat("thickness"));
     ssrSettings_.maxDistance = static_cast<float>(p.getFloat("max_distance"));
     ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
-    shadowSettings_.resolution = static_cast<std::uint32_t>(p.getInt("shadow_resolution"));
-    shadowSettings_.pcfRadius = static_cast<int>(p.getInt("pcf_radius"));
+    shadowSettings_ = shadowMapSettings(p);
 }
 
 RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
