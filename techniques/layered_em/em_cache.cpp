@@ -11,7 +11,7 @@
 namespace hybridlab {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'b', '\0'};  // v3: the solve over the active texels; b: half-footprint levels
+constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'c', '\0'};  // v3: the solve over the active texels; b: half-footprint levels; c: empty fill
 
 class Writer {
 public:

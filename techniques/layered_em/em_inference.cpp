@@ -88,8 +88,8 @@ std::uint32_t parentTexel(const CubeMapTexel& c, int size) {
     return cubeMapTexelIndex({c.level + 1, c.face, c.column * coarse / fine, c.row * coarse / fine}, size);
 }
 
-// The texels the solve carries (§4.3 infers what the images see; the rest of the cube is filled
-// after): those the rows read, a ring of `ring` texels around them at their level (so smoothness
+// The texels the solve carries (§4.3 infers what the images see; the rest of the cube stays empty):
+// those the rows read, a ring of `ring` texels around them at their level (so smoothness
 // reaches a little past the observations, where nearby views read), their descendants a few
 // levels down and every ancestor (the pyramid rows tie the chain together).
 std::vector<bool> activeTexels(const std::vector<double>& observedWeight, int size, int ring, int finerLevels) {
@@ -124,42 +124,6 @@ std::vector<bool> activeTexels(const std::vector<double>& observedWeight, int si
         }
     }
     return active;
-}
-
-// Push-pull fill of the texels the solve did not carry: up the chain each unsolved texel takes the
-// mean of its children that have a value, then down the chain each texel still without one takes
-// its parent's (a face nobody saw takes the mean of the faces that were).
-void fillUnsolved(LayerCubeMap& em, std::vector<bool> has) {
-    const int size = em.size, levels = cubeMapLevels(size);
-    std::vector<glm::dvec4> sum(em.texels.size(), glm::dvec4(0.0));
-    std::vector<int> count(em.texels.size(), 0);
-    for (int level = 0; level + 1 < levels; ++level) {
-        const std::size_t first = cubeMapLevelOffset(size, level), last = cubeMapLevelOffset(size, level + 1);
-        for (std::size_t t = first; t < last; ++t) {
-            if (!has[t]) continue;
-            const std::uint32_t p = parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size);
-            sum[p] += glm::dvec4(em.texels[t]);
-            ++count[p];
-        }
-        for (std::size_t t = last; t < cubeMapLevelOffset(size, level + 2); ++t) {
-            if (has[t] || count[t] == 0) continue;
-            em.texels[t] = glm::vec4(sum[t] / static_cast<double>(count[t]));
-            has[t] = true;
-        }
-    }
-    glm::dvec4 top(0.0);
-    int seen = 0;
-    for (std::size_t t = cubeMapLevelOffset(size, levels - 1); t < em.texels.size(); ++t) {
-        if (has[t]) top += glm::dvec4(em.texels[t]), ++seen;
-    }
-    for (std::size_t t = cubeMapLevelOffset(size, levels - 1); t < em.texels.size(); ++t) {
-        if (!has[t]) em.texels[t] = seen > 0 ? glm::vec4(top / static_cast<double>(seen)) : glm::vec4(0.0f);
-    }
-    for (int level = levels - 2; level >= 0; --level) {
-        for (std::size_t t = cubeMapLevelOffset(size, level); t < cubeMapLevelOffset(size, level + 1); ++t) {
-            if (!has[t]) em.texels[t] = em.texels[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)];
-        }
-    }
 }
 
 }  // namespace
@@ -275,7 +239,6 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
             if (active[t]) result.em.texels[t][channel] = static_cast<float>(x[column[t]]);
         }
     }
-    fillUnsolved(result.em, active);
     // What a texture can hold: premultiplied colour is not negative and alpha is a coverage in
     // [0, 1]; "over" with alpha outside it subtracts the layers behind (the projection of the
     // damped solution onto that set).

@@ -4,8 +4,10 @@
 // layer images in the confidence-weighted least-squares sense, A x = b over every observation at
 // once (both terms, several nearby viewpoints, direct images of the environment), solved by
 // conjugate gradient (Eigen's least-squares CG) over the texels the images read, a ring around
-// them and their neighbours in the chain (the rest of the cube is filled by push-pull afterwards:
-// solving the whole cube cost up to 20 times more for texels no view reads), with a small
+// them and their neighbours in the chain (solving the whole cube cost up to 20 times more for
+// texels no view reads; they stay empty, alpha 0: no image saw anything of the layer there, and
+// filling them from their neighbours drew phantom layers where novel views read them, e.g. the
+// cup's lid seen from above the viewpoint samples, lens SSIM 0.796 -> 0.842), with a small
 // smoothness term between neighbouring texels, a small pyramid term tying each texel to the mean
 // of the finer texels it covers (so the levels no image reads agree with those it does), a small
 // damping of each observed texel towards the mean of the targets that read it (Tikhonov
@@ -59,7 +61,7 @@ struct EmInferenceSettings {
                                       // lens SSIM above the samples' plane 0.782 -> 0.796, same elsewhere)
     double tolerance = 1e-6;          // stop at this relative residual (of the normal equations)
     int maxIterations = 1000;
-    int ring = 2;                     // texels around the observed ones that the solve carries (the rest are filled)
+    int ring = 2;                     // texels around the observed ones that the solve carries (the rest stay empty)
     int finerLevels = 2;              // and levels below the observed ones (a display up to 4x finer than the bake)
     double observedWeight = 0.25;     // a texel is observed when its confidence-weighted lookup weights
                                       // over all rows sum to at least this (a quarter of a pixel)
