@@ -16,6 +16,10 @@ layout(location = 5) in vec4 direction[2 * kMaxLayers];
 
 layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
 
+// The depth test before shading (discard does not disable it): a fragment discarded here is behind
+// what the G-buffer shows, and so is every lens fragment its depth then hides.
+layout(early_fragment_tests) in;
+
 // The MIP chain (em_cube_map.cpp): level k has max(1, size >> k) texels a side; its length and
 // texel count come with the push constants.
 int levelSize(int level) { return max(1, pc.maps.y >> level); }
@@ -60,6 +64,7 @@ Taps cubeLookup(vec4 index) {
 vec4 fetch(int base, Taps t) {
     vec4 c = vec4(0.0);
     for (int k = 0; k < 2; ++k) {
+        if (t.weight[k] == vec4(0.0)) continue;  // a level lod's fraction leaves out (most lookups read one)
         c += t.weight[k].x * texels[base + t.texel[k].x] + t.weight[k].y * texels[base + t.texel[k].y] +
              t.weight[k].z * texels[base + t.texel[k].z] + t.weight[k].w * texels[base + t.texel[k].w];
     }
@@ -80,6 +85,7 @@ void main() {
     for (int t = 0; t < 2; ++t) {
         vec4 a = vec4(0.0), b = vec4(0.0);
         for (int l = 0; l < pc.maps.x; ++l) {
+            if (a.a >= 1.0 && (!blend || b.a >= 1.0)) break;  // opaque: the layers behind add (1 - a.a) * ... = 0
             Taps taps = cubeLookup(direction[t * kMaxLayers + l]);
             a += (1.0 - a.a) * fetch(pc.maps.z + l * layerTexels, taps);
             if (blend) b += (1.0 - b.a) * fetch(pc.maps.w + l * layerTexels, taps);
