@@ -197,6 +197,12 @@ TEST(EmInference, SolvesOnlyNearWhatTheImagesSeeAndLeavesTheRestEmpty) {
     EXPECT_LT(worstSeen, 1e-3f);
     EXPECT_EQ(r.em.texels[cubeMapTexelIndex({0, 1, 16, 16}, size)], glm::vec4(0.0f)) << "-X, never seen";
     EXPECT_EQ(r.em.texels[cubeMapTexelIndex({0, 4, 0, 0}, size)], glm::vec4(0.0f)) << "+Z corner, beyond the ring";
+
+    // A layer no image of the window saw (rows of no pixel): an empty map, nothing to solve.
+    const EmInferenceResult none = inferLayerEm({EmObservation{}}, settings);
+    EXPECT_EQ(none.activeTexels, 0u);
+    EXPECT_EQ(none.rows, 0u);
+    for (const glm::vec4& t : none.em.texels) ASSERT_EQ(t, glm::vec4(0.0f));
 }
 
 TEST(EmInference, ConfidenceAngleIsThePapersScaledToTheBakesLines) {

@@ -223,6 +223,7 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         rhs.push_back(glm::dvec4(0.0));
         ++row;
     }
+    if (unknowns == 0) return result;  // no image saw the layer: it stays empty
     SparseRows a(row, unknowns);
     a.setFromTriplets(entries.begin(), entries.end());
     Eigen::LeastSquaresConjugateGradient<SparseRows> solver;
