@@ -15,11 +15,6 @@ import sys
 import results
 
 
-def stage(r, name):
-    s = r["stages"].get(name)
-    return s["median"] if s else 0.0
-
-
 def frame(r):
     return r["frame_ms"]["median"]
 
@@ -46,7 +41,7 @@ def speed_table(rows, whitted):
         out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r), w / frame(r),
             "%.4f" % ssim if ssim is not None else "-", c.get("ssr_hit_rate", 0.0), int(c.get("fallback_rays", 0)),
-            stage(r, "raster"), stage(r, "ssr"), stage(r, "ray_trace"), stage(r, "seam_blur"), stage(r, "composite")))
+            *(results.stage(r, s, 0.0) for s in ("raster", "ssr", "ray_trace", "seam_blur", "composite"))))
     out.append("")
     return out
 
@@ -58,7 +53,7 @@ def bound_table(rows, whitted):
            "whitted / raster |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     for r, w in beside_whitted(rows, whitted, "glass-trees"):
-        raster, ssr, trees = stage(r, "raster"), stage(r, "ssr"), stage(r, "ray_trace")
+        raster, ssr, trees = results.stage(r, "raster", 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "ray_trace", 0.0)
         out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,
             w / (raster + ssr + trees), w / raster))

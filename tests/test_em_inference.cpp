@@ -56,7 +56,8 @@ struct MirrorSetup {
 TEST(EmInference, RenderingMatrixReproducesTheRenderer) {
     MirrorSetup s;
     const int size = 16;
-    const LayerTextureIndex dirs = vertexTextureIndex(s.lens, PathTerm::Reflection, s.shell, lensVertexPixels(s.lens, s.camera, s.width, s.height), size);
+    const LayerTextureIndex dirs = vertexTextureIndex(s.lens, PathTerm::Reflection, s.shell,
+                                                      textureLodEdges(s.lens, PathTerm::Reflection, lensVertexPixels(s.lens, s.camera, s.width, s.height)), size);
     std::vector<glm::vec4> zero(s.raster.triangle.size(), glm::vec4(0.0f));
     std::vector<float> ones(s.raster.triangle.size(), 1.0f);
     EmObservation o = lensObservation(s.raster, s.lens.triangles, dirs, zero, ones, size);
@@ -104,7 +105,8 @@ TEST(EmInference, RecoversAKnownEnvironment) {
     std::vector<glm::vec4> b;
     std::vector<float> confidence;
     acc.finish(b, confidence);
-    const LayerTextureIndex dirs = vertexTextureIndex(s.lens, PathTerm::Reflection, s.shell, lensVertexPixels(s.lens, s.camera, s.width, s.height), size);
+    const LayerTextureIndex dirs = vertexTextureIndex(s.lens, PathTerm::Reflection, s.shell,
+                                                      textureLodEdges(s.lens, PathTerm::Reflection, lensVertexPixels(s.lens, s.camera, s.width, s.height)), size);
     EmInferenceSettings settings;
     settings.size = size;
     EmInferenceResult r = inferLayerEm({lensObservation(s.raster, s.lens.triangles, dirs, b, confidence, size)}, settings);

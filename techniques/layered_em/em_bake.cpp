@@ -1,6 +1,7 @@
 #include "techniques/layered_em/em_bake.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -192,12 +193,15 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             lensPoints[static_cast<std::size_t>(layer)].add(r.position);
         });
         const std::vector<glm::vec2> pixels = lensVertexPixels(lens, camera, w, h);
+        std::array<std::vector<ScreenEdge>, kPathTerms> edges;
+        for (int term = 0; term < kPathTerms; ++term) edges[static_cast<std::size_t>(term)] = textureLodEdges(lens, static_cast<PathTerm>(term), pixels);
         for (std::size_t l = 0; l < layerCount; ++l) {
             for (int term = 0; term < kPathTerms; ++term) {
                 std::vector<glm::vec4> b;
                 std::vector<float> confidence;
                 acc[l * kPathTerms + static_cast<std::size_t>(term)].finish(b, confidence);
-                const LayerTextureIndex index = vertexTextureIndex(lens, static_cast<PathTerm>(term), em.layers[l].shell, pixels, size);
+                const LayerTextureIndex index =
+                    vertexTextureIndex(lens, static_cast<PathTerm>(term), em.layers[l].shell, edges[static_cast<std::size_t>(term)], size);
                 perLayer[l].push_back(lensObservation(raster, lens.triangles, index, b, confidence, size));
             }
         }

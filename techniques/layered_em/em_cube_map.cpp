@@ -38,6 +38,18 @@ std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size) {
     return static_cast<std::uint32_t>(cubeMapLevelOffset(size, t.level)) + static_cast<std::uint32_t>((t.face * side + t.row) * side + t.column);
 }
 
+std::vector<std::uint32_t> cubeMapParents(int size) {
+    std::vector<std::uint32_t> parents(cubeMapTexelCount(size), kNoParent);
+    for (int level = 0; level + 1 < cubeMapLevels(size); ++level) {
+        const int fine = cubeMapLevelSize(size, level), coarse = cubeMapLevelSize(size, level + 1);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < fine; ++j)
+                for (int i = 0; i < fine; ++i)
+                    parents[cubeMapTexelIndex({level, f, i, j}, size)] = cubeMapTexelIndex({level + 1, f, i * coarse / fine, j * coarse / fine}, size);
+    }
+    return parents;
+}
+
 float cubeMapLod(float radiansPerPixel, int size) {
     const float halfFootprint = 0.5f * radiansPerPixel * static_cast<float>(size) * 0.5f;  // level-0 texels
     return halfFootprint > 1.0f ? std::log2(halfFootprint) : 0.0f;

@@ -44,6 +44,11 @@ struct CubeMapTexel {
 CubeMapTexel cubeMapTexelAt(std::uint32_t texel, int size);
 std::uint32_t cubeMapTexelIndex(const CubeMapTexel& t, int size);
 
+// The chain's tree: per texel, the texel of the next coarser level that covers it (the last
+// level's texels have none: kNoParent).
+inline constexpr std::uint32_t kNoParent = 0xffffffffu;
+std::vector<std::uint32_t> cubeMapParents(int size);
+
 // The level of detail of a lookup whose index turns by `radiansPerPixel` from one pixel to the
 // next: log2 of half the pixel's footprint in level-0 texels (a level-0 texel spans 2 / size
 // radians at a face's centre), at least 0. Half, not the whole footprint (a level-of-detail bias

@@ -82,17 +82,12 @@ std::vector<glm::vec4> drawLayer(const LensRaster& raster, const std::vector<glm
 
 namespace {
 
-// The texel of the next coarser level that covers texel c.
-std::uint32_t parentTexel(const CubeMapTexel& c, int size) {
-    const int fine = cubeMapLevelSize(size, c.level), coarse = cubeMapLevelSize(size, c.level + 1);
-    return cubeMapTexelIndex({c.level + 1, c.face, c.column * coarse / fine, c.row * coarse / fine}, size);
-}
-
 // The texels the solve carries (§4.3 infers what the images see; the rest of the cube stays empty):
 // those the rows read, a ring of `ring` texels around them at their level (so smoothness
 // reaches a little past the observations, where nearby views read), their descendants a few
 // levels down and every ancestor (the pyramid rows tie the chain together).
-std::vector<bool> activeTexels(const std::vector<double>& observedWeight, int size, int ring, int finerLevels) {
+std::vector<bool> activeTexels(const std::vector<double>& observedWeight, const std::vector<std::uint32_t>& parents, int size, int ring,
+                               int finerLevels) {
     std::vector<bool> active(observedWeight.size(), false);
     for (std::size_t t = 0; t < observedWeight.size(); ++t) {
         if (observedWeight[t] <= 0.0) continue;
@@ -103,25 +98,21 @@ std::vector<bool> activeTexels(const std::vector<double>& observedWeight, int si
                 active[cubeMapTexelIndex({c.level, c.face, i, j}, size)] = true;
     }
     // Descendants first, `finerLevels` levels down (a view up to 2^finerLevels times finer than the
-    // bake's reads below the levels it observed), then ancestors.
-    const int levels = cubeMapLevels(size);
+    // bake's reads below the levels it observed), then ancestors. Texels are stored level after
+    // level, so walking them backwards visits every parent before its children, forwards every
+    // child before its parent.
     std::vector<int> depth(active.size(), -1);  // levels of descendants still to mark below a texel
     for (std::size_t t = 0; t < active.size(); ++t) depth[t] = active[t] ? finerLevels : -1;
-    for (int level = levels - 1; level >= 1; --level) {
-        const std::size_t first = cubeMapLevelOffset(size, level - 1), last = cubeMapLevelOffset(size, level);
-        for (std::size_t t = first; t < last; ++t) {
-            const int parentDepth = depth[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)];
-            if (parentDepth > 0 && depth[t] < parentDepth - 1) {
-                depth[t] = parentDepth - 1;
-                active[t] = true;
-            }
+    for (std::size_t t = active.size(); t-- > 0;) {
+        if (parents[t] == kNoParent) continue;
+        const int parentDepth = depth[parents[t]];
+        if (parentDepth > 0 && depth[t] < parentDepth - 1) {
+            depth[t] = parentDepth - 1;
+            active[t] = true;
         }
     }
-    for (int level = 0; level + 1 < levels; ++level) {
-        const std::size_t first = cubeMapLevelOffset(size, level), last = cubeMapLevelOffset(size, level + 1);
-        for (std::size_t t = first; t < last; ++t) {
-            if (active[t]) active[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)] = true;
-        }
+    for (std::size_t t = 0; t < active.size(); ++t) {
+        if (active[t] && parents[t] != kNoParent) active[parents[t]] = true;
     }
     return active;
 }
@@ -149,7 +140,8 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         }
     }
     // The unknowns: the active texels, numbered in chain order.
-    const std::vector<bool> active = activeTexels(observedWeight, size, settings.ring, settings.finerLevels);
+    const std::vector<std::uint32_t> parents = cubeMapParents(size);
+    const std::vector<bool> active = activeTexels(observedWeight, parents, size, settings.ring, settings.finerLevels);
     std::vector<Eigen::Index> column(texels, -1);
     Eigen::Index unknowns = 0;
     for (std::size_t t = 0; t < texels; ++t) {
@@ -213,8 +205,8 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
     // The pyramid: each active texel of level k >= 1 against the mean of its active children.
     const double p = std::sqrt(settings.pyramid * meanDiagonal);
     std::vector<std::vector<std::uint32_t>> children(texels);
-    for (std::size_t t = 0; t < cubeMapLevelOffset(size, cubeMapLevels(size) - 1); ++t) {
-        if (active[t]) children[parentTexel(cubeMapTexelAt(static_cast<std::uint32_t>(t), size), size)].push_back(static_cast<std::uint32_t>(t));
+    for (std::size_t t = 0; t < texels; ++t) {
+        if (active[t] && parents[t] != kNoParent) children[parents[t]].push_back(static_cast<std::uint32_t>(t));
     }
     for (std::size_t parent = 0; parent < texels; ++parent) {
         if (children[parent].empty()) continue;

@@ -28,7 +28,8 @@ LensDrawGeometry lensDrawGeometry(const TessellatedLens& lens, const std::vector
             const LensPath& p = lens.vertices[i].paths.terms[term];
             if (g.weights[term][i] != glm::vec3(0.0f)) g.skyWeights[term][i] = g.weights[term][i] * skyRadiance(scene, p.exitDirection);
         }
-        for (const EmLayer& layer : layers) g.indices[term].push_back(vertexTextureIndex(lens, pt, layer.shell, pixels, emSize));
+        const std::vector<ScreenEdge> edges = textureLodEdges(lens, pt, pixels);
+        for (const EmLayer& layer : layers) g.indices[term].push_back(vertexTextureIndex(lens, pt, layer.shell, edges, emSize));
     }
     return g;
 }

@@ -99,38 +99,45 @@ std::vector<glm::vec2> lensVertexPixels(const TessellatedLens& lens, const Camer
     return pixels;
 }
 
-std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
-                                     const std::vector<glm::vec2>& pixels, int size) {
-    const std::size_t n = lens.vertices.size();
-    std::vector<float> rate(n, 0.0f);  // radians per pixel
+std::vector<ScreenEdge> textureLodEdges(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec2>& pixels) {
     auto path = [&](std::uint32_t i) -> const LensPath* {
         const LensVertex& v = lens.vertices[i];
         const LensPath& p = v.paths.terms[static_cast<int>(term)];
         return v.traced && p.exists ? &p : nullptr;
     };
+    std::vector<ScreenEdge> edges;
+    edges.reserve(3 * lens.triangles.size());
     for (const glm::uvec3& t : lens.triangles) {
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = t[k], b = t[(k + 1) % 3];
             const LensPath *pa = path(a), *pb = path(b);
             if (!pa || !pb || !pa->sameTopology(*pb)) continue;
             const float length = glm::length(pixels[a] - pixels[b]);
-            if (!(length > 1e-3f)) continue;
-            const float cosine = glm::dot(glm::normalize(directions[a]), glm::normalize(directions[b]));
-            const float r = std::acos(std::clamp(cosine, -1.0f, 1.0f)) / length;
-            rate[a] = std::max(rate[a], r);
-            rate[b] = std::max(rate[b], r);
+            if (length > 1e-3f) edges.push_back({a, b, length});
         }
     }
-    std::vector<float> lods(n);
-    for (std::size_t i = 0; i < n; ++i) lods[i] = cubeMapLod(rate[i], size);
+    return edges;
+}
+
+std::vector<float> vertexTextureLods(const std::vector<glm::vec3>& directions, const std::vector<ScreenEdge>& edges, int size) {
+    std::vector<glm::vec3> unit(directions.size());
+    for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = glm::normalize(directions[i]);
+    std::vector<float> rate(directions.size(), 0.0f);  // radians per pixel
+    for (const ScreenEdge& e : edges) {
+        const float r = std::acos(std::clamp(glm::dot(unit[e.a], unit[e.b]), -1.0f, 1.0f)) / e.pixels;
+        rate[e.a] = std::max(rate[e.a], r);
+        rate[e.b] = std::max(rate[e.b], r);
+    }
+    std::vector<float> lods(rate.size());
+    for (std::size_t i = 0; i < lods.size(); ++i) lods[i] = cubeMapLod(rate[i], size);
     return lods;
 }
 
-LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell,
-                                     const std::vector<glm::vec2>& pixels, int size) {
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const std::vector<ScreenEdge>& edges,
+                                     int size) {
     LayerTextureIndex index;
     index.directions = vertexTextureDirections(lens, term, shell);
-    index.lods = vertexTextureLods(lens, term, index.directions, pixels, size);
+    index.lods = vertexTextureLods(index.directions, edges, size);
     return index;
 }
 

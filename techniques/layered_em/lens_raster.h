@@ -36,23 +36,29 @@ std::vector<glm::vec3> vertexTextureDirections(const TessellatedLens& lens, Path
 // (projected once a frame, shared by every term and layer).
 std::vector<glm::vec2> lensVertexPixels(const TessellatedLens& lens, const Camera& camera, int width, int height);
 
-// The per-vertex level of detail of those lookups (cubeMapLod) at the vertices' `pixels`: over the
-// tessellation's edges whose two paths have the same topology, the angle between the vertices'
-// texture directions over the edge's length on screen, the largest at each vertex (as hardware
-// takes the larger screen derivative). Edges across a topology change (a silhouette, a switch
-// between reflection and refraction) are discontinuities, not minification, and are left out.
-// Interpolated across triangles like every attribute, so the renderer and the rendering matrix
-// read the same levels.
-std::vector<float> vertexTextureLods(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec3>& directions,
-                                     const std::vector<glm::vec2>& pixels, int size);
+// The tessellation's edges that carry one term's level of detail, with their length in pixels:
+// both vertices traced, with paths of the term of the same topology, apart on screen. Edges across
+// a topology change (a silhouette, a switch between reflection and refraction) are
+// discontinuities, not minification, and are left out. Per term, shared by every layer.
+struct ScreenEdge {
+    std::uint32_t a = 0, b = 0;
+    float pixels = 0.0f;
+};
+std::vector<ScreenEdge> textureLodEdges(const TessellatedLens& lens, PathTerm term, const std::vector<glm::vec2>& pixels);
+
+// The per-vertex level of detail of a layer's lookups (cubeMapLod): over the term's `edges`, the
+// angle between the vertices' texture directions over the edge's length on screen, the largest at
+// each vertex (as hardware takes the larger screen derivative). Interpolated across triangles like
+// every attribute, so the renderer and the rendering matrix read the same levels.
+std::vector<float> vertexTextureLods(const std::vector<glm::vec3>& directions, const std::vector<ScreenEdge>& edges, int size);
 
 // One term and layer's per-vertex texture index: what the renderer interpolates and looks up.
 struct LayerTextureIndex {
     std::vector<glm::vec3> directions;
     std::vector<float> lods;
 };
-LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell,
-                                     const std::vector<glm::vec2>& pixels, int size);
+LayerTextureIndex vertexTextureIndex(const TessellatedLens& lens, PathTerm term, const Shell& shell, const std::vector<ScreenEdge>& edges,
+                                     int size);
 
 // Per-vertex F G of one term (what the renderer multiplies the layer lookups by).
 std::vector<glm::vec3> vertexPathWeights(const TessellatedLens& lens, PathTerm term);
