@@ -80,6 +80,48 @@ TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
     EXPECT_LT(unobservedWith, unobservedWithout);
 }
 
+// The viewpoint samples circle in one plane, so the cup's reflections never show the top of the
+// column beside it (53 degrees up from the cup); the direct images from the EM origin fill that
+// part of the column's layer, and only what the viewpoints left empty.
+TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
+    REQUIRE_ASSETS();
+    Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
+    auto systems = findLensSystems(scene);
+    ASSERT_EQ(systems[1].name, "cup");
+    EmBakeSettings settings = smallBake();
+    settings.viewpoints.maxSamples = 2;
+    settings.inference.size = 16;
+    EmBakeStats stats;
+    const LayeredEm with = bakeLayeredEm(scene, systems[1], settings, stats);
+    settings.originImages = false;
+    const LayeredEm without = bakeLayeredEm(scene, systems[1], settings, stats);
+    ASSERT_EQ(with.layers.size(), without.layers.size());
+    const std::uint32_t column = static_cast<std::uint32_t>(objectIndex(scene, "column-0"));
+    std::size_t layer = with.layers.size();
+    for (std::size_t l = 0; l < with.layers.size(); ++l)
+        for (std::uint32_t o : with.layers[l].objects)
+            if (o == column) layer = l;
+    ASSERT_LT(layer, with.layers.size());
+    const glm::vec3 columnTop = scene.objects[column].transform.position + glm::vec3(0.0f, 1.5f, 0.0f);
+    const Shell& shell = with.layers[layer].shell;
+    const glm::vec3 index = shellTextureDirection(shell, with.center, glm::normalize(columnTop - with.center));
+    const CubeMapLookup lookup = cubeMapLookup(index, settings.inference.size);
+    const float alphaWith = with.viewpoints[0].maps[layer].sample(lookup).a;
+    const float alphaWithout = without.viewpoints[0].maps[layer].sample(lookup).a;
+    RecordProperty("column_top_alpha_with", std::to_string(alphaWith));
+    RecordProperty("column_top_alpha_without", std::to_string(alphaWithout));
+    EXPECT_GT(alphaWith, 0.9f) << "the origin sees the column's top";
+    EXPECT_LT(alphaWithout, 0.05f) << "no viewpoint sample saw it";
+    std::size_t unobservedWith = 0, unobservedWithout = 0;
+    for (std::size_t v = 0; v < with.viewpoints.size(); ++v) {
+        for (std::size_t l = 0; l < with.layers.size(); ++l) {
+            unobservedWith += with.viewpoints[v].unobservedTexels[l];
+            unobservedWithout += without.viewpoints[v].unobservedTexels[l];
+        }
+    }
+    EXPECT_LT(unobservedWith, unobservedWithout);
+}
+
 TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
     REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
@@ -96,6 +138,9 @@ TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
     const std::string key = layeredEmCacheKey(scene, systems[1], settings);
     EmBakeSettings other = settings;
     other.inference.size = 16;
+    EXPECT_NE(key, layeredEmCacheKey(scene, systems[1], other));
+    other = settings;
+    other.originImages = false;
     EXPECT_NE(key, layeredEmCacheKey(scene, systems[1], other));
     EXPECT_NE(key, layeredEmCacheKey(scene, systems[0], settings));
     EXPECT_EQ(key, layeredEmCacheKey(scene, systems[1], settings));

@@ -25,6 +25,7 @@ struct BakeEmOptions {
     bool force = false;
     bool quiet = false;
     bool noPrevention = false;
+    bool noOriginImages = false;
     float viewHeight = 0.0f;
     EmBakeSettings settings;
 };
@@ -43,6 +44,13 @@ void printSummary(const Scene& scene, const LayeredEm& em) {
                     kindName(layer.shell.kind), layer.meanDistance, unobserved, em.viewpoints.size());
         for (std::uint32_t o : layer.objects) std::printf(" %s", scene.objects[o].name.c_str());
         std::printf("\n");
+        const Shell& s = layer.shell;
+        if (s.kind == ShellKind::Quad)
+            std::printf("       quad at (%.3g, %.3g, %.3g), normal (%.3g, %.3g, %.3g), %.3g x %.3g\n", s.planePoint.x, s.planePoint.y,
+                        s.planePoint.z, s.planeNormal.x, s.planeNormal.y, s.planeNormal.z, s.extentMax.x - s.extentMin.x,
+                        s.extentMax.y - s.extentMin.y);
+        else
+            std::printf("       radius %.4g\n", s.radius);
     }
 }
 
@@ -68,6 +76,7 @@ void run(BakeEmOptions& o) {
         std::erase_if(systems, [&](const LensSystemInfo& s) { return s.name != o.system; });
         if (systems.empty()) throw InputError("--system: scene '" + scene.name + "' has no lens system '" + o.system + "'");
     }
+    if (o.noOriginImages) o.settings.originImages = false;
     if (o.noPrevention) o.settings.disablePrevention();
     if (o.viewHeight != 0.0f) {
         o.settings.viewpoints.height = o.viewHeight;
@@ -155,6 +164,7 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--frame-stride", s.viewpoints.frameStride, "With --camera-path: every n-th frame")->check(CLI::Range(1, 100000));
     cmd->add_option("--max-viewpoints", s.viewpoints.maxSamples, "Only the first n viewpoint samples (0: all)")->check(CLI::Range(0, 100000));
     cmd->add_option("--neighbours", s.neighbourViewpoints, "Viewpoint samples on each side matched at once")->check(CLI::Range(0, 16));
+    cmd->add_flag("--no-origin-images", o->noOriginImages, "Direct images from the viewpoint samples only, not also from the EM origin");
     cmd->add_flag("--no-prevention", o->noPrevention, "No EM disocclusion prevention: first hits only, one viewpoint, no direct images");
     cmd->callback([o] { run(*o); });
 }

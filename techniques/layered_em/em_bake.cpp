@@ -91,6 +91,20 @@ Shell makeShell(glm::vec3 center, const std::vector<glm::vec3>& points, const st
     return s;
 }
 
+// Six 90-degree cameras at `center`, one looking through each cube-map face.
+std::vector<Camera> cubeFaceCameras(glm::vec3 center) {
+    std::vector<Camera> cameras;
+    for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),
+                                 glm::vec3(0, 0, -1)}) {
+        Camera c;
+        c.position = center;
+        c.fovYDegrees = 90.0f;
+        c.orientation = Camera::lookAtOrientation(center, center + axis, axis.y != 0.0f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0));
+        cameras.push_back(c);
+    }
+    return cameras;
+}
+
 }  // namespace
 
 LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const EmBakeSettings& settings, EmBakeStats& stats,
@@ -161,6 +175,18 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
     auto since = [](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     };
+    // Direct images from the EM origin, one a cube face at the maps' resolution, traced once: what
+    // the viewpoint samples never saw of a layer (the top of a column, seen only from above their
+    // plane) is then the environment as the origin sees it, not empty.
+    std::vector<Camera> originCameras;
+    std::vector<ViewpointRecords> originImages;
+    if (settings.directImages && settings.originImages) {
+        originCameras = cubeFaceCameras(em.center);
+        for (const Camera& c : originCameras) {
+            originImages.push_back(compileDirectRecords(system, shading, c, size, size, settings.records));
+            stats.environmentQueries += originImages.back().environmentQueries;
+        }
+    }
     std::map<int, std::vector<std::vector<EmObservation>>> observations;  // viewpoint -> layer -> images
     auto observe = [&](int v) -> const std::vector<std::vector<EmObservation>>& {
         auto it = observations.find(v);
@@ -206,20 +232,25 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             }
         }
         if (settings.directImages) {
-            // Direct images (§4.3): confidence 1 where the direct ray meets a part of the layer no
-            // lens record came near, 0 elsewhere.
+            // Direct images (§4.3), from the viewpoint and from the EM origin: confidence 1 where the
+            // direct ray meets a part of the layer no lens record of this viewpoint came near, 0
+            // elsewhere.
+            auto addDirect = [&](const Camera& cam, int dw, int dh, const ViewpointRecords& direct) {
+                std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(dw * dh), glm::vec4(0.0f)));
+                std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(dw * dh), 0.0f));
+                forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
+                    if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
+                    b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
+                    confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
+                });
+                for (std::size_t l = 0; l < layerCount; ++l) {
+                    perLayer[l].push_back(directObservation(cam, dw, dh, em.layers[l].shell, b[l], confidence[l], size));
+                }
+            };
             ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
             stats.environmentQueries += direct.environmentQueries;
-            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(w * h), glm::vec4(0.0f)));
-            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(w * h), 0.0f));
-            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
-                if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
-                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
-                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
-            });
-            for (std::size_t l = 0; l < layerCount; ++l) {
-                perLayer[l].push_back(directObservation(camera, w, h, em.layers[l].shell, b[l], confidence[l], size));
-            }
+            addDirect(camera, w, h, direct);
+            for (std::size_t f = 0; f < originImages.size(); ++f) addDirect(originCameras[f], size, size, originImages[f]);
         }
         imagesMs += since(t0);
         return observations.emplace(v, std::move(perLayer)).first->second;

@@ -11,7 +11,7 @@
 namespace hybridlab {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'c', '\0'};  // v3: the solve over the active texels; b: half-footprint levels; c: empty fill
+constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'd', '\0'};  // v3: the solve over the active texels; b: half-footprint levels; c: empty fill; d: origin images
 
 class Writer {
 public:
@@ -74,7 +74,7 @@ std::string layeredEmCacheKey(const Scene& scene, const LensSystemInfo& system, 
                            std::int64_t{s.viewpoints.frameStride}, std::int64_t{s.viewpoints.maxSamples}, std::int64_t{s.viewpoints.heightSet}, std::int64_t{s.layers},
                            std::int64_t{s.maxLayers}, std::int64_t{s.inference.size}, std::int64_t{s.inference.maxIterations}, std::int64_t{s.inference.ring},
                            std::int64_t{s.inference.finerLevels},
-                           std::int64_t{s.neighbourViewpoints}, std::int64_t{s.directImages},
+                           std::int64_t{s.neighbourViewpoints}, std::int64_t{s.directImages}, std::int64_t{s.originImages},
                            static_cast<std::int64_t>(s.clusterSampleLimit)}) {
         h.add(v);
     }

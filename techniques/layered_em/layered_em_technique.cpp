@@ -39,6 +39,8 @@ TechniqueInfo LayeredEmTechnique::info() {
                 ParamSpec::integer("neighbour_viewpoints", d.neighbourViewpoints, 0, 16,
                                    "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"),
                 ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
+                ParamSpec::boolean("origin_images", d.originImages,
+                                   "direct images also from the EM origin (six cube faces): what no viewpoint sample saw of a layer is what the origin sees, not empty"),
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
                 ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
             },
@@ -59,6 +61,7 @@ EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
     s.records.supersampling = static_cast<int>(p.getInt("supersampling"));
     s.records.confidenceAngleDegrees = static_cast<float>(p.getFloat("confidence_angle"));
     s.neighbourViewpoints = static_cast<int>(p.getInt("neighbour_viewpoints"));
+    s.originImages = p.getBool("origin_images");
     if (!p.getBool("disocclusion_prevention")) s.disablePrevention();
     return s;
 }
