@@ -7,8 +7,9 @@ vertices, texture-coordinate generation, tessellation, other including rendering
 time, the rays, vertices and triangles after tessellation, SSIM and FLIP on the lens pixels against
 uniformly sampled ray tracing with the two-term model, and the reduction factors in time and rays
 against it (the paper: 25-45x in time, 6-10.8x in rays). Figure 8 as numbers: SSIM and FLIP at a
-view between viewpoint samples (circle frame 4) and one above their plane (above frame 4),
-multi-layer against single-layer, and the temporal error along the circling path. Figure 9 as
+views between viewpoint samples (circle frames 4, 12, 20) and above their plane (above frames
+4, 12, 20), each and their means over each path's frames, multi-layer against single-layer, and
+the temporal error along the circling path. Figure 9 as
 numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
 approach. Times are medians over a run's repeats. Entries are found by label, as the config names
 them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-display and
@@ -73,13 +74,27 @@ def figure8(rows):
     labels = [l for l in ("lem-tau3", "lem-single", "lem-display", "lem-display-single") if any(r["label"] == l for r in rows)]
     out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing; -single: one layer, "
            "nearest viewpoint sample)", "", "| view | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-    for name, view, frame in (("between viewpoint samples (circle@4)", "circle", 4), ("above their plane (above@4)", "above", 4),
-                              ("at a viewpoint sample (camera)", "camera", -1)):
+    def row(name, runs_of):
         cells = []
         for label in labels:
-            r = find(rows, label, scene, view, frame)
-            cells.append("%s / %s" % (results.fmt(lens_metric(r, "ssim"), "%.4f"), results.fmt(lens_metric(r, "flip"), "%.4f")) if r else "-")
+            rs = runs_of(label)
+            ssim = [lens_metric(r, "ssim") for r in rs]
+            flip = [lens_metric(r, "flip") for r in rs]
+            if rs and None not in ssim + flip:
+                cells.append("%s / %s" % (results.fmt(statistics.mean(ssim), "%.4f"), results.fmt(statistics.mean(flip), "%.4f")))
+            else:
+                cells.append("-")
         out.append("| %s | %s |" % (name, " | ".join(cells)))
+
+    for view, where in (("circle", "between viewpoint samples"), ("above", "above their plane")):
+        frames = sorted({r["frame"] for r in rows if r["scene"] == scene and r["view"] == view and r["label"] in labels})
+        # Frames midway between samples (every 8 degrees, from frame 0), each, then all the path's.
+        for frame in (f for f in frames if f % 8 == 4):
+            row("%s (%s@%d)" % (where, view, frame), lambda label: [r for r in [find(rows, label, scene, view, frame)] if r])
+        if len(frames) > 1:
+            row("mean over %s frames %d-%d (%d)" % (view, frames[0], frames[-1], len(frames)),
+                lambda label: [r for r in (find(rows, label, scene, view, f) for f in frames) if r])
+    row("at a viewpoint sample (camera)", lambda label: [r for r in [find(rows, label, scene, "camera", -1)] if r])
     out += ["", "Temporal error along the circling path (mean |(T_k - T_k-1) - (R_k - R_k-1)|, whole image; viewpoint samples every 8 frames):", ""]
     series = {}
     for label in labels:

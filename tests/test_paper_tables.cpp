@@ -2,7 +2,9 @@
 // (sabino_table3.py) must print each scene's size and the medians the records hold, and the gain
 // as their ratio; de Macedo & Rodrigues Tables I-II (macedo_tables.py) a line per N with the
 // dynamic triangles the ray scene updated, and the bvh_update stage's growth with them; issue 7's
-// SSR speed table (ssr_speed_table.py) the ratios to whitted and the refractive trees' bound.
+// SSR speed table (ssr_speed_table.py) the ratios to whitted and the refractive trees' bound;
+// Hakura & Snyder's Figure 8 (hakura_tables.py) the lens metrics at the views between viewpoint
+// samples and their means over the path.
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -187,6 +189,59 @@ params = { fallback = "none", recursion = "single" }
         }
     }
     EXPECT_EQ(variants, 2u);
+}
+
+TEST(PaperTables, HakuraFigure8HoldsTheViewsBetweenSamplesAndThePathMeans) {
+    REQUIRE_ASSETS();
+    test::TempDir dir;
+    const std::string bake = "viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1, em_size = 8";
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim", "flip"]
+[reference]
+params = { lens_model = "two_term" }
+[[scenes]]
+scene = "teapot-lens"
+resolutions = [[64, 36]]
+[[scenes.views]]
+[[scenes.views]]
+path = "circle"
+frames = [3, 5]
+stride = 1
+[[techniques]]
+name = "whitted"
+label = "two-term-rt"
+params = { lens_model = "two_term" }
+[[techniques]]
+name = "layered_em"
+label = "lem-display"
+params = { )" + bake + R"( }
+[[techniques]]
+name = "layered_em"
+label = "lem-display-single"
+params = { single_layer = true, viewpoint_blending = false, )" + bake + R"( }
+)",
+                                            "hakura_tables.py");
+    std::map<std::string, std::map<int, std::pair<double, double>>> lens;  // label -> circle frame -> (SSIM, FLIP)
+    for (const auto& r : resultsOf(dir)) {
+        if (r.at("view") != "circle") continue;
+        const auto& m = r.at("metrics").at("masked");
+        lens[r.at("label")][r.at("frame").get<int>()] = {m.at("ssim").get<double>(), m.at("flip").at("mean").get<double>()};
+    }
+    std::string between = "| between viewpoint samples (circle@4) |", mean = "| mean over circle frames 3-5 (3) |";
+    for (const char* label : {"lem-display", "lem-display-single"}) {
+        const auto& frames = lens[label];
+        ASSERT_EQ(frames.size(), 3u) << label;
+        double ssim = 0.0, flip = 0.0;
+        for (const auto& [frame, v] : frames) {
+            ssim += v.first / 3.0;
+            flip += v.second / 3.0;
+        }
+        between += " " + test::formatNumber("%.4f", frames.at(4).first) + " / " + test::formatNumber("%.4f", frames.at(4).second) + " |";
+        mean += " " + test::formatNumber("%.4f", ssim) + " / " + test::formatNumber("%.4f", flip) + " |";
+    }
+    EXPECT_NE(text.find("| view | lem-display | lem-display-single |"), std::string::npos) << text;
+    EXPECT_NE(text.find(between), std::string::npos) << between << "\n" << text;
+    EXPECT_NE(text.find(mean), std::string::npos) << mean << "\n" << text;
+    EXPECT_EQ(text.find("circle@3"), std::string::npos) << "frames 3 and 5 are not between samples";
 }
 
 }  // namespace
