@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
 #include "common/core/input_error.h"
@@ -64,6 +65,20 @@ TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
     RecordProperty("shell_kinds", kinds);
     EXPECT_EQ(kinds, "QCS") << "Figure 7: a quad for the sparse cup layer, a cylinder for the columns, a sphere for the walls";
     EXPECT_LT(stats.maxRelativeResidual, 1e-3);
+    // The quad's texture is its rectangle: a texel no ray from the origin meets within it (with two
+    // texels' margin) stays empty, though rays travelling away from the plane are forced onto it.
+    const int size = settings.inference.size;
+    std::size_t heldTexels = 0;
+    for (const EmViewpoint& v : em.viewpoints) {
+        for (std::uint32_t t = 0; t < cubeMapLevelOffset(size, 1); ++t) {
+            const bool held = shellHolds(em.layers[0].shell, cubeMapTexelDirection(t, size), 2.0f * glm::half_pi<float>() / static_cast<float>(size));
+            heldTexels += held ? 1 : 0;
+            if (!held) {
+                ASSERT_EQ(v.maps[0].texels[t], glm::vec4(0.0f)) << t;
+            }
+        }
+    }
+    EXPECT_GT(heldTexels, 0u);
 
     EmBakeSettings single = settings;
     single.disablePrevention();

@@ -200,6 +200,27 @@ TEST(EmInference, SolvesOnlyNearWhatTheImagesSeeAndLeavesTheRestEmpty) {
     EXPECT_EQ(r.em.texels[cubeMapTexelIndex({0, 1, 16, 16}, size)], glm::vec4(0.0f)) << "-X, never seen";
     EXPECT_EQ(r.em.texels[cubeMapTexelIndex({0, 4, 0, 0}, size)], glm::vec4(0.0f)) << "+Z corner, beyond the ring";
 
+    // Texels the impostor cannot hold (a quad outside its rectangle) stay empty even where rows
+    // read them; the rest still take the colour.
+    std::vector<bool> holds(cubeMapTexelCount(size), true);
+    std::size_t dropped = 0;
+    for (std::size_t t = 0; t < holds.size(); ++t) {
+        if (r.observed[t] && cubeMapTexelDirection(static_cast<std::uint32_t>(t), size).x > 0.0f) {
+            holds[t] = false;
+            ++dropped;
+        }
+    }
+    ASSERT_GT(dropped, 0u);
+    const EmInferenceResult held = inferLayerEm({o}, settings, holds);
+    for (std::size_t t = 0; t < holds.size(); ++t) {
+        if (!holds[t]) {
+            ASSERT_EQ(held.em.texels[t], glm::vec4(0.0f)) << t;
+        }
+    }
+    EXPECT_LT(held.activeTexels, r.activeTexels);
+    EXPECT_LT(glm::length(held.em.texels[cubeMapTexelIndex({0, 4, 14, 16}, size)] - colour), 0.1f)
+        << "+Z, left of the centre: held (a little off the colour: its rows and smoothness reach the empty half)";
+
     // A layer no image of the window saw (rows of no pixel): an empty map, nothing to solve.
     const EmInferenceResult none = inferLayerEm({EmObservation{}}, settings);
     EXPECT_EQ(none.activeTexels, 0u);

@@ -90,6 +90,15 @@ TEST(LayerShells, PlaneFitAndQuadImpostor) {
     EXPECT_NEAR(glm::dot(away - quad.planePoint, quad.planeNormal), 0.0f, 1e-5f * quad.farDistance);
     EXPECT_GT(glm::dot(away - quad.planePoint, u), 0.99f * quad.farDistance);
     EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), pts), ShellKind::Quad) << "a small patch of the sky";
+    // The quad's texture holds its rectangle (the points span +-2 along u and v): what a ray from
+    // the origin meets inside it, a little margin, and neither the forced index nor a far miss.
+    EXPECT_TRUE(shellHolds(quad, glm::normalize(target - quad.center), 0.0f));
+    EXPECT_TRUE(shellHolds(quad, glm::normalize(p0 + 2.05f * u - quad.center), 0.02f)) << "within the margin";
+    EXPECT_FALSE(shellHolds(quad, glm::normalize(p0 + 2.5f * u - quad.center), 0.02f)) << "beyond it";
+    EXPECT_FALSE(shellHolds(quad, away - quad.center, 0.02f)) << "a ray travelling away, forced far out";
+    EXPECT_FALSE(shellHolds(quad, -n, 0.02f)) << "behind the origin";
+    Shell sphere;
+    EXPECT_TRUE(shellHolds(sphere, -n, 0.0f)) << "a sphere holds every direction";
 
     // Thin columns on all sides of the origin (a ring seen in a convex mirror) occupy as few
     // directions, but no plane holds them: rays leaving away from it would be forced onto it.

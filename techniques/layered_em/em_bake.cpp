@@ -7,6 +7,8 @@
 #include <map>
 #include <unordered_set>
 
+#include <glm/gtc/constants.hpp>
+
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/layered_em/layer_clustering.h"
 #include "techniques/layered_em/lens_raster.h"
@@ -89,6 +91,22 @@ Shell makeShell(glm::vec3 center, const std::vector<glm::vec3>& points, const st
     }
     s.radius = static_cast<float>(meanDistance);
     return s;
+}
+
+// Per texel of the chain, whether the layer's impostor holds it (shellHolds at the level-0 texel
+// centres, two texels' angle of margin for bilinear reads; a coarser texel when any texel below it
+// does); empty for an impostor that holds every direction.
+std::vector<bool> texelsTheShellHolds(const Shell& shell, int size) {
+    if (shell.kind != ShellKind::Quad) return {};
+    const std::vector<std::uint32_t> parents = cubeMapParents(size);
+    std::vector<bool> holds(parents.size(), false);
+    const float margin = 2.0f * glm::half_pi<float>() / static_cast<float>(size);
+    const std::size_t level0 = cubeMapLevelOffset(size, 1);
+    for (std::size_t t = 0; t < level0; ++t) holds[t] = shellHolds(shell, cubeMapTexelDirection(static_cast<std::uint32_t>(t), size), margin);
+    for (std::size_t t = 0; t < holds.size(); ++t) {  // level after level: children before parents
+        if (holds[t] && parents[t] != kNoParent) holds[parents[t]] = true;
+    }
+    return holds;
 }
 
 // Six 90-degree cameras at `center`, one looking through each cube-map face.
@@ -187,6 +205,8 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             stats.environmentQueries += originImages.back().environmentQueries;
         }
     }
+    std::vector<std::vector<bool>> layerHolds;
+    for (const EmLayer& layer : em.layers) layerHolds.push_back(texelsTheShellHolds(layer.shell, size));
     std::map<int, std::vector<std::vector<EmObservation>>> observations;  // viewpoint -> layer -> images
     auto observe = [&](int v) -> const std::vector<std::vector<EmObservation>>& {
         auto it = observations.find(v);
@@ -274,7 +294,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
                 const auto& obs = observations.at(u)[l];
                 rows.insert(rows.end(), obs.begin(), obs.end());
             }
-            EmInferenceResult r = inferLayerEm(rows, settings.inference);
+            EmInferenceResult r = inferLayerEm(rows, settings.inference, layerHolds[l]);
             stats.inferenceRows += r.rows;
             stats.inferenceUnknowns += r.activeTexels;
             stats.maxIterations = std::max(stats.maxIterations, r.iterations);

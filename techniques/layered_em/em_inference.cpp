@@ -119,7 +119,8 @@ std::vector<bool> activeTexels(const std::vector<double>& observedWeight, const 
 
 }  // namespace
 
-EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings) {
+EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings,
+                               const std::vector<bool>& holds) {
     const int size = settings.size;
     const std::size_t texels = cubeMapTexelCount(size);
     EmInferenceResult result;
@@ -141,7 +142,10 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
     }
     // The unknowns: the active texels, numbered in chain order.
     const std::vector<std::uint32_t> parents = cubeMapParents(size);
-    const std::vector<bool> active = activeTexels(observedWeight, parents, size, settings.ring, settings.finerLevels);
+    std::vector<bool> active = activeTexels(observedWeight, parents, size, settings.ring, settings.finerLevels);
+    if (!holds.empty()) {
+        for (std::size_t t = 0; t < texels; ++t) active[t] = active[t] && holds[t];
+    }
     std::vector<Eigen::Index> column(texels, -1);
     Eigen::Index unknowns = 0;
     for (std::size_t t = 0; t < texels; ++t) {
@@ -156,7 +160,7 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         for (std::size_t r = 0; r < o.lookups.size(); ++r, ++row) {
             const double c = o.confidence[r];
             for (const CubeMapTap& t : o.lookups[r].taps) {
-                if (t.weight != 0.0f) entries.emplace_back(row, column[t.texel], c * t.weight);
+                if (t.weight != 0.0f && column[t.texel] >= 0) entries.emplace_back(row, column[t.texel], c * t.weight);
             }
             rhs.push_back(c * glm::dvec4(o.targets[r]));
         }
@@ -197,7 +201,7 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
     const double d = std::sqrt(settings.damping * meanDiagonal);
     for (std::size_t t = 0; t < texels && d > 0.0; ++t) {
         const double w = observedWeight[t];
-        if (w <= 0.0) continue;
+        if (w <= 0.0 || column[t] < 0) continue;
         entries.emplace_back(row, column[t], d);
         rhs.push_back(d * splat[t] / w);
         ++row;

@@ -77,6 +77,9 @@ struct EmInferenceResult {
     std::size_t rows = 0;
 };
 
-EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings);
+// `holds`, when not empty, is per texel of the chain whether the layer's impostor can hold it (a
+// quad only its rectangle); the others stay empty, and rows that read them read zero.
+EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings,
+                               const std::vector<bool>& holds = {});
 
 }  // namespace hybridlab

@@ -62,6 +62,19 @@ glm::vec3 shellPoint(const Shell& shell, glm::vec3 origin, glm::vec3 direction) 
     return shell.center + shell.farDistance * direction;  // misses the impostor: the direction alone
 }
 
+bool shellHolds(const Shell& shell, glm::vec3 direction, float marginRadians) {
+    if (shell.kind != ShellKind::Quad) return true;
+    const glm::vec3 d = glm::normalize(direction);
+    const float dn = glm::dot(d, shell.planeNormal), dist = glm::dot(shell.planePoint - shell.center, shell.planeNormal);
+    if (dn == 0.0f || dist / dn <= 0.0f) return false;
+    const float t = dist / dn;
+    const glm::vec3 q = shell.center + t * d - shell.planePoint;
+    // An angle at distance t covers t * angle across the ray, and more along an oblique plane.
+    const float margin = t * marginRadians / std::max(std::abs(dn), 0.1f);
+    const glm::vec2 uv(glm::dot(q, shell.axisU), glm::dot(q, shell.axisV));
+    return glm::all(glm::greaterThanEqual(uv, shell.extentMin - margin)) && glm::all(glm::lessThanEqual(uv, shell.extentMax + margin));
+}
+
 Plane fitPlane(const std::vector<glm::vec3>& points, glm::vec3 viewer) {
     Plane p;
     if (points.empty()) return p;

@@ -48,6 +48,12 @@ struct OutgoingRay {
 };
 Shell fitQuadShell(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, const std::vector<OutgoingRay>& rays);
 
+// Whether the quad holds what a ray from the EM origin along `direction` indexes: the ray meets
+// the plane in front, within the rectangle grown by `marginRadians` of angle at the hit. Rays
+// that miss it (and rays travelling away from the plane, forced far off it) index texels no part
+// of the quad's texture covers. A sphere or cylinder holds every direction.
+bool shellHolds(const Shell& shell, glm::vec3 direction, float marginRadians);
+
 // The kind a layer gets from its intersection points (seen from the EM origin): a quad when they
 // cover less than `quadCoverage` of the directions around the origin and lie within
 // `quadConeDegrees` of their mean direction (a compact, sparsely occupied layer such as the cup
