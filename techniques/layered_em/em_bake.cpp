@@ -109,6 +109,32 @@ std::vector<bool> texelsTheShellHolds(const Shell& shell, int size) {
     return holds;
 }
 
+// Per texel of the chain, whether a row of `images` reads it (with positive confidence and weight).
+std::vector<bool> texelsRead(const std::vector<EmObservation>& images, int size) {
+    std::vector<bool> read(cubeMapTexelCount(size), false);
+    for (const EmObservation& o : images) {
+        for (std::size_t r = 0; r < o.lookups.size(); ++r) {
+            if (o.confidence[r] <= 0.0f) continue;
+            for (const CubeMapTap& t : o.lookups[r].taps) read[t.texel] = read[t.texel] || t.weight > 0.0f;
+        }
+    }
+    return read;
+}
+
+// The rows of `fill` that read none of the `read` texels.
+EmObservation rowsReadingNone(const EmObservation& fill, const std::vector<bool>& read) {
+    EmObservation out;
+    for (std::size_t r = 0; r < fill.lookups.size(); ++r) {
+        const auto& taps = fill.lookups[r].taps;
+        if (std::any_of(taps.begin(), taps.end(), [&](const CubeMapTap& t) { return t.weight > 0.0f && read[t.texel]; })) continue;
+        out.lookups.push_back(fill.lookups[r]);
+        out.targets.push_back(fill.targets[r]);
+        out.confidence.push_back(fill.confidence[r]);
+        out.pixels.push_back(fill.pixels[r]);
+    }
+    return out;
+}
+
 // Six 90-degree cameras at `center`, one looking through each cube-map face.
 std::vector<Camera> cubeFaceCameras(glm::vec3 center) {
     std::vector<Camera> cameras;
@@ -194,15 +220,20 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     };
     // Direct images from the EM origin, one a cube face at the maps' resolution, traced once: what
-    // the viewpoint samples never saw of a layer (the top of a column, seen only from above their
-    // plane) is then the environment as the origin sees it, not empty.
-    std::vector<Camera> originCameras;
-    std::vector<ViewpointRecords> originImages;
+    // no lens image of a window reads of a layer (the top of a column, seen only from above the
+    // samples' plane) is then the environment as the origin sees it, not empty.
+    std::vector<std::vector<EmObservation>> originImages(layerCount);  // layer -> faces
     if (settings.directImages && settings.originImages) {
-        originCameras = cubeFaceCameras(em.center);
-        for (const Camera& c : originCameras) {
-            originImages.push_back(compileDirectRecords(system, shading, c, size, size, settings.records));
-            stats.environmentQueries += originImages.back().environmentQueries;
+        for (const Camera& c : cubeFaceCameras(em.center)) {
+            const ViewpointRecords direct = compileDirectRecords(system, shading, c, size, size, settings.records);
+            stats.environmentQueries += direct.environmentQueries;
+            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(size * size), glm::vec4(0.0f)));
+            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(size * size), 0.0f));
+            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
+                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
+                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
+            });
+            for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(directObservation(c, size, size, em.layers[l].shell, b[l], confidence[l], size));
         }
     }
     std::vector<std::vector<bool>> layerHolds;
@@ -252,25 +283,20 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             }
         }
         if (settings.directImages) {
-            // Direct images (§4.3), from the viewpoint and from the EM origin: confidence 1 where the
-            // direct ray meets a part of the layer no lens record of this viewpoint came near, 0
-            // elsewhere.
-            auto addDirect = [&](const Camera& cam, int dw, int dh, const ViewpointRecords& direct) {
-                std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(dw * dh), glm::vec4(0.0f)));
-                std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(dw * dh), 0.0f));
-                forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
-                    if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
-                    b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
-                    confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
-                });
-                for (std::size_t l = 0; l < layerCount; ++l) {
-                    perLayer[l].push_back(directObservation(cam, dw, dh, em.layers[l].shell, b[l], confidence[l], size));
-                }
-            };
+            // Direct images (§4.3): confidence 1 where the direct ray meets a part of the layer no
+            // lens record came near, 0 elsewhere.
             ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
             stats.environmentQueries += direct.environmentQueries;
-            addDirect(camera, w, h, direct);
-            for (std::size_t f = 0; f < originImages.size(); ++f) addDirect(originCameras[f], size, size, originImages[f]);
+            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(w * h), glm::vec4(0.0f)));
+            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(w * h), 0.0f));
+            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
+                if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
+                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
+                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
+            });
+            for (std::size_t l = 0; l < layerCount; ++l) {
+                perLayer[l].push_back(directObservation(camera, w, h, em.layers[l].shell, b[l], confidence[l], size));
+            }
         }
         imagesMs += since(t0);
         return observations.emplace(v, std::move(perLayer)).first->second;
@@ -293,6 +319,10 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             for (int u : window) {
                 const auto& obs = observations.at(u)[l];
                 rows.insert(rows.end(), obs.begin(), obs.end());
+            }
+            if (!originImages[l].empty()) {
+                const std::vector<bool> read = texelsRead(rows, size);
+                for (const EmObservation& face : originImages[l]) rows.push_back(rowsReadingNone(face, read));
             }
             EmInferenceResult r = inferLayerEm(rows, settings.inference, layerHolds[l]);
             stats.inferenceRows += r.rows;

@@ -29,7 +29,7 @@ struct EmBakeSettings {
     EmInferenceSettings inference;
     int neighbourViewpoints = 1;           // samples on each side matched at once (§4.3)
     bool directImages = true;              // direct images of the environment (§4.3)
-    bool originImages = true;              // ... also from the EM origin (six cube faces), not only the viewpoint
+    bool originImages = true;              // ... and from the EM origin (six cube faces), where no lens image reads
     float directMissingDistance = 0.05f;   // relative to the shell distance: a direct hit this far from
                                            // every lens record is a missing part (confidence 1)
     std::size_t clusterSampleLimit = 400000;

@@ -40,7 +40,7 @@ TechniqueInfo LayeredEmTechnique::info() {
                                    "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"),
                 ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
                 ParamSpec::boolean("origin_images", d.originImages,
-                                   "direct images also from the EM origin (six cube faces): what no viewpoint sample saw of a layer is what the origin sees, not empty"),
+                                   "direct images also from the EM origin (six cube faces) for the texels no lens image of a sample's window reads: what the origin sees there, not empty"),
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
                 ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
             },
