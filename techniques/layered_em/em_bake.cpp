@@ -71,6 +71,25 @@ void forFirstRecordPerLayer(const ViewpointRecords& recs, const std::vector<int>
     }
 }
 
+// A direct image of the environment as an observation of every layer (§4.3): at each pixel the
+// layer's first record with confidence 1 where `keep(record, layer)`, confidence 0 elsewhere.
+template <typename Keep>
+std::vector<EmObservation> directLayerObservations(const ViewpointRecords& direct, const Camera& camera, int width, int height,
+                                                   const std::vector<EmLayer>& layers, const std::vector<int>& objectLayer, int size,
+                                                   Keep&& keep) {
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<std::vector<glm::vec4>> b(layers.size(), std::vector<glm::vec4>(pixels, glm::vec4(0.0f)));
+    std::vector<std::vector<float>> confidence(layers.size(), std::vector<float>(pixels, 0.0f));
+    forFirstRecordPerLayer(direct, objectLayer, [&](const OutgoingRecord& r, int layer) {
+        if (!keep(r, layer)) return;
+        b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
+        confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
+    });
+    std::vector<EmObservation> out;
+    for (std::size_t l = 0; l < layers.size(); ++l) out.push_back(directObservation(camera, width, height, layers[l].shell, b[l], confidence[l], size));
+    return out;
+}
+
 struct LayerSample {
     ClusterSample sample;
     glm::vec3 position;
@@ -227,13 +246,9 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         for (const Camera& c : cubeFaceCameras(em.center)) {
             const ViewpointRecords direct = compileDirectRecords(system, shading, c, size, size, settings.records);
             stats.environmentQueries += direct.environmentQueries;
-            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(size * size), glm::vec4(0.0f)));
-            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(size * size), 0.0f));
-            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
-                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
-                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
-            });
-            for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(directObservation(c, size, size, em.layers[l].shell, b[l], confidence[l], size));
+            std::vector<EmObservation> face = directLayerObservations(direct, c, size, size, em.layers, partition.objectLayer, size,
+                                                                      [](const OutgoingRecord&, int) { return true; });
+            for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(std::move(face[l]));
         }
     }
     std::vector<std::vector<bool>> layerHolds;
@@ -287,16 +302,11 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             // lens record came near, 0 elsewhere.
             ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
             stats.environmentQueries += direct.environmentQueries;
-            std::vector<std::vector<glm::vec4>> b(layerCount, std::vector<glm::vec4>(static_cast<std::size_t>(w * h), glm::vec4(0.0f)));
-            std::vector<std::vector<float>> confidence(layerCount, std::vector<float>(static_cast<std::size_t>(w * h), 0.0f));
-            forFirstRecordPerLayer(direct, partition.objectLayer, [&](const OutgoingRecord& r, int layer) {
-                if (lensPoints[static_cast<std::size_t>(layer)].near(r.position)) return;
-                b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
-                confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
-            });
-            for (std::size_t l = 0; l < layerCount; ++l) {
-                perLayer[l].push_back(directObservation(camera, w, h, em.layers[l].shell, b[l], confidence[l], size));
-            }
+            std::vector<EmObservation> image = directLayerObservations(direct, camera, w, h, em.layers, partition.objectLayer, size,
+                                                                       [&](const OutgoingRecord& r, int layer) {
+                                                                           return !lensPoints[static_cast<std::size_t>(layer)].near(r.position);
+                                                                       });
+            for (std::size_t l = 0; l < layerCount; ++l) perLayer[l].push_back(std::move(image[l]));
         }
         imagesMs += since(t0);
         return observations.emplace(v, std::move(perLayer)).first->second;
