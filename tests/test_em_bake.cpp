@@ -3,6 +3,8 @@
 // and disocclusion prevention leaves fewer texels unobserved than single-viewpoint inference; the
 // cache round-trips an entry exactly; viewpoint samples and the bake-em command.
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
@@ -96,14 +98,17 @@ TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
 }
 
 // The viewpoint samples circle in one plane, so the cup's reflections never show the top of the
-// column beside it (53 degrees up from the cup); the direct images from the EM origin fill that
-// part of the column's layer, and only what the viewpoints left empty.
+// column beside it (53 degrees up from the cup); the images from the EM origin fill that part of
+// the column's layer, and only what the viewpoints left empty. (The cup's own direct images come
+// from the origin, which would see the top too: here they come from the viewpoints, as a refractive
+// system's do.)
 TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
     REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     ASSERT_EQ(systems[1].name, "cup");
     EmBakeSettings settings = smallBake();
+    settings.directImageSource = DirectImageSource::Viewpoint;
     settings.viewpoints.maxSamples = 2;
     settings.inference.size = 16;
     EmBakeStats stats;
@@ -135,6 +140,87 @@ TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
         }
     }
     EXPECT_LT(unobservedWith, unobservedWithout);
+}
+
+// Whether the ray from `origin` along `direction` passes through `box` grown by `margin`.
+bool rayMeetsBox(glm::vec3 origin, glm::vec3 direction, Aabb box, float margin) {
+    box.lo -= glm::vec3(margin);
+    box.hi += glm::vec3(margin);
+    float t0 = 0.0f, t1 = std::numeric_limits<float>::max();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(direction[a]) < 1e-8f) {
+            if (origin[a] < box.lo[a] || origin[a] > box.hi[a]) return false;
+            continue;
+        }
+        float ta = (box.lo[a] - origin[a]) / direction[a], tb = (box.hi[a] - origin[a]) / direction[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 <= t1;
+}
+
+// §4.3: "Direct images from the lens object center tend to work better for reflective objects
+// while direct images from the viewpoint are better suited for refractive (transparent) objects."
+// A direct image from a viewpoint far from a reflective cup indexes its layer where the viewpoint's
+// ray meets the shell, so a nearby object (the teapot, a column) lands in directions where the cup
+// never sees it. From the EM origin a direct ray's direction is the texel's own.
+TEST(EmBake, ReflectiveSystemsTakeDirectImagesFromTheOrigin) {
+    REQUIRE_ASSETS();
+    Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
+    auto systems = findLensSystems(scene);
+    ASSERT_EQ(systems[0].name, "teapot");
+    ASSERT_EQ(systems[1].name, "cup");
+    EXPECT_EQ(directImageSourceFor(scene, systems[0], DirectImageSource::Automatic), DirectImageSource::Viewpoint) << "glass refracts";
+    EXPECT_EQ(directImageSourceFor(scene, systems[1], DirectImageSource::Automatic), DirectImageSource::Origin) << "the cup only reflects";
+    EXPECT_EQ(directImageSourceFor(scene, systems[1], DirectImageSource::Viewpoint), DirectImageSource::Viewpoint);
+    EXPECT_EQ(directImageSourceNamed("origin"), DirectImageSource::Origin);
+    EXPECT_THROW(directImageSourceNamed("centre"), std::invalid_argument);
+
+    EmBakeSettings settings = smallBake();
+    settings.viewpoints.maxSamples = 2;
+    settings.inference.size = 16;
+    settings.originImages = false;  // the direct images alone
+    EmBakeStats stats;
+    settings.directImageSource = DirectImageSource::Viewpoint;
+    const LayeredEm fromViewpoint = bakeLayeredEm(scene, systems[1], settings, stats);
+    settings.directImageSource = DirectImageSource::Automatic;
+    const LayeredEm fromOrigin = bakeLayeredEm(scene, systems[1], settings, stats);
+    EXPECT_NE(layeredEmCacheKey(scene, systems[1], settings), layeredEmCacheKey(scene, systems[1], [&] {
+                  EmBakeSettings v = settings;
+                  v.directImageSource = DirectImageSource::Viewpoint;
+                  return v;
+              }()));
+    ASSERT_EQ(fromViewpoint.layers.size(), fromOrigin.layers.size());
+    // Level-0 texels of the nearest layer that are opaque although the ray from the EM origin along
+    // the texel passes nowhere near the layer's objects (their boxes grown by about two texels).
+    const int size = settings.inference.size;
+    std::size_t originOpaque = 0;
+    auto misplaced = [&](const LayeredEm& em, std::size_t& opaque) {
+        const EmLayer& layer = em.layers[0];
+        std::size_t count = 0;
+        opaque = 0;
+        for (std::uint32_t t = 0; t < cubeMapLevelOffset(size, 1); ++t) {
+            if (em.viewpoints[0].maps[0].texels[t].a < 0.5f) continue;
+            ++opaque;
+            const glm::vec3 d = glm::normalize(cubeMapTexelDirection(t, size));
+            bool explained = false;
+            for (std::uint32_t o : layer.objects) {
+                const Aabb box = scene.objectBounds(o, 0.0);
+                const float margin = glm::length(box.center() - em.center) * 2.0f * glm::half_pi<float>() / static_cast<float>(size);
+                explained = explained || rayMeetsBox(em.center, d, box, margin);
+            }
+            count += !explained;
+        }
+        return count;
+    };
+    std::size_t viewpointOpaque = 0;
+    const std::size_t viewpointMisplaced = misplaced(fromViewpoint, viewpointOpaque), originMisplaced = misplaced(fromOrigin, originOpaque);
+    RecordProperty("misplaced_texels_viewpoint", std::to_string(viewpointMisplaced) + " of " + std::to_string(viewpointOpaque));
+    RecordProperty("misplaced_texels_origin", std::to_string(originMisplaced) + " of " + std::to_string(originOpaque));
+    EXPECT_GT(originOpaque, 100u) << "the layer holds the teapot and a column";
+    EXPECT_LT(originMisplaced * 10, originOpaque);
+    EXPECT_GT(viewpointMisplaced, 10 * originMisplaced);
 }
 
 TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
@@ -192,16 +278,20 @@ TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     auto results = test::runHybridlabAll({{quick, {}},
                                           {{"bake-em", "--scene", "teapot-lens", "--system", "vase", "--cache", cache}, {}},
                                           {{"bake-em", "--scene", "whitted-classic", "--cache", cache}, {}},
-                                          {{"bake-em", "--scene", "teapot-lens", "--em-size", "1", "--cache", cache}, {}}});
+                                          {{"bake-em", "--scene", "teapot-lens", "--em-size", "1", "--cache", cache}, {}},
+                                          {{"bake-em", "--scene", "teapot-lens", "--direct-images", "centre", "--cache", cache}, {}}});
     EXPECT_EQ(results[0].exitStatus, 0) << results[0].err;
     EXPECT_CONTAINS(results[0].out, "lens system cup (1 objects)");
     EXPECT_CONTAINS(results[0].out, "stage inference");
     EXPECT_CONTAINS(results[0].out, "full ray tree");
+    EXPECT_CONTAINS(results[0].out, "direct images from the EM origin (a reflective system)");
     EXPECT_EQ(results[1].exitStatus, 2);
     EXPECT_CONTAINS(results[1].err, "has no lens system 'vase'");
     EXPECT_EQ(results[2].exitStatus, 2);
     EXPECT_CONTAINS(results[2].err, "the scene has no lens objects");
     EXPECT_EQ(results[3].exitStatus, 2);
+    EXPECT_EQ(results[4].exitStatus, 2);
+    EXPECT_CONTAINS(results[4].err, "--direct-images");
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache), std::filesystem::directory_iterator()), 1)
         << "one entry; bad input writes nothing";
     // The second run finds the entry.

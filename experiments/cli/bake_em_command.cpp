@@ -26,6 +26,7 @@ struct BakeEmOptions {
     bool quiet = false;
     bool noPrevention = false;
     bool noOriginImages = false;
+    std::string directImages = "auto";
     float viewHeight = 0.0f;
     EmBakeSettings settings;
 };
@@ -77,6 +78,7 @@ void run(BakeEmOptions& o) {
         if (systems.empty()) throw InputError("--system: scene '" + scene.name + "' has no lens system '" + o.system + "'");
     }
     if (o.noOriginImages) o.settings.originImages = false;
+    o.settings.directImageSource = directImageSourceNamed(o.directImages);
     if (o.noPrevention) o.settings.disablePrevention();
     if (o.viewHeight != 0.0f) {
         o.settings.viewpoints.height = o.viewHeight;
@@ -87,6 +89,10 @@ void run(BakeEmOptions& o) {
         const std::string key = layeredEmCacheKey(scene, info, o.settings);
         const std::filesystem::path file = dir / (key + ".hlem");
         std::printf("lens system %s (%zu objects): %s\n", info.name.c_str(), info.objects.size(), file.string().c_str());
+        if (o.settings.directImages)
+            std::printf("  direct images from the %s\n",
+                        directImageSourceFor(scene, info, o.settings.directImageSource) == DirectImageSource::Origin ? "EM origin (a reflective system)"
+                                                                                                                : "viewpoint samples");
         if (!o.force) {
             if (auto cached = readLayeredEm(file)) {
                 std::printf("  in the cache: %zu layers, %zu viewpoints\n", cached->layers.size(), cached->viewpoints.size());
@@ -164,7 +170,11 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--frame-stride", s.viewpoints.frameStride, "With --camera-path: every n-th frame")->check(CLI::Range(1, 100000));
     cmd->add_option("--max-viewpoints", s.viewpoints.maxSamples, "Only the first n viewpoint samples (0: all)")->check(CLI::Range(0, 100000));
     cmd->add_option("--neighbours", s.neighbourViewpoints, "Viewpoint samples on each side matched at once")->check(CLI::Range(0, 16));
-    cmd->add_flag("--no-origin-images", o->noOriginImages, "Direct images from the viewpoint samples only, not also from the EM origin");
+    cmd->add_option("--direct-images", o->directImages,
+                    "Where direct images look from: auto (the EM origin for a reflective system, the viewpoint for a refractive one, §4.3), "
+                    "viewpoint or origin")
+        ->check(CLI::IsMember({"auto", "viewpoint", "origin"}));
+    cmd->add_flag("--no-origin-images", o->noOriginImages, "No fill from the EM origin's images where no lens image reads");
     cmd->add_flag("--no-prevention", o->noPrevention, "No EM disocclusion prevention: first hits only, one viewpoint, no direct images");
     cmd->callback([o] { run(*o); });
 }

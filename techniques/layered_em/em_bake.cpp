@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <unordered_set>
 
 #include <glm/gtc/constants.hpp>
@@ -170,6 +171,20 @@ std::vector<Camera> cubeFaceCameras(glm::vec3 center) {
 
 }  // namespace
 
+DirectImageSource directImageSourceNamed(const std::string& name) {
+    if (name == "auto") return DirectImageSource::Automatic;
+    if (name == "viewpoint") return DirectImageSource::Viewpoint;
+    if (name == "origin") return DirectImageSource::Origin;
+    throw std::invalid_argument("direct image source '" + name + "': expected auto, viewpoint or origin");
+}
+
+DirectImageSource directImageSourceFor(const Scene& scene, const LensSystemInfo& system, DirectImageSource requested) {
+    if (requested != DirectImageSource::Automatic) return requested;
+    for (std::uint32_t o : system.objects)
+        if (scene.objectIsRefractive(o)) return DirectImageSource::Viewpoint;
+    return DirectImageSource::Origin;
+}
+
 LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const EmBakeSettings& settings, EmBakeStats& stats,
                         const BakeProgress& progress) {
     auto report = [&](const std::string& stage, int done, int total) {
@@ -238,14 +253,22 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
     auto since = [](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     };
-    // Direct images from the EM origin, one a cube face at the maps' resolution, traced once: what
+    // Images of the environment from the EM origin, one a cube face at the maps' resolution, traced
+    // once. They are the direct images of a reflective system (§4.3). And, for every system, what
     // no lens image of a window reads of a layer (the top of a column, seen only from above the
-    // samples' plane) is then the environment as the origin sees it, not empty.
+    // samples' plane) is the environment as the origin sees it, not empty.
+    const DirectImageSource directSource = directImageSourceFor(scene, info, settings.directImageSource);
+    const bool directFromOrigin = settings.directImages && directSource == DirectImageSource::Origin;
+    std::vector<std::pair<Camera, ViewpointRecords>> originFaces;
+    if (directFromOrigin || (settings.directImages && settings.originImages)) {
+        for (const Camera& c : cubeFaceCameras(em.center)) {
+            originFaces.emplace_back(c, compileDirectRecords(system, shading, c, size, size, settings.records));
+            stats.environmentQueries += originFaces.back().second.environmentQueries;
+        }
+    }
     std::vector<std::vector<EmObservation>> originImages(layerCount);  // layer -> faces
     if (settings.directImages && settings.originImages) {
-        for (const Camera& c : cubeFaceCameras(em.center)) {
-            const ViewpointRecords direct = compileDirectRecords(system, shading, c, size, size, settings.records);
-            stats.environmentQueries += direct.environmentQueries;
+        for (const auto& [c, direct] : originFaces) {
             std::vector<EmObservation> face = directLayerObservations(direct, c, size, size, em.layers, partition.objectLayer, size,
                                                                       [](const OutgoingRecord&, int) { return true; });
             for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(std::move(face[l]));
@@ -298,15 +321,22 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             }
         }
         if (settings.directImages) {
-            // Direct images (§4.3): confidence 1 where the direct ray meets a part of the layer no
-            // lens record came near, 0 elsewhere.
-            ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
-            stats.environmentQueries += direct.environmentQueries;
-            std::vector<EmObservation> image = directLayerObservations(direct, camera, w, h, em.layers, partition.objectLayer, size,
-                                                                       [&](const OutgoingRecord& r, int layer) {
-                                                                           return !lensPoints[static_cast<std::size_t>(layer)].near(r.position);
-                                                                       });
-            for (std::size_t l = 0; l < layerCount; ++l) perLayer[l].push_back(std::move(image[l]));
+            // Direct images (§4.3), from the viewpoint or the EM origin: confidence 1 where the
+            // direct ray meets a part of the layer no lens record came near, 0 elsewhere.
+            auto addDirect = [&](const ViewpointRecords& direct, const Camera& from, int width, int height) {
+                std::vector<EmObservation> image = directLayerObservations(direct, from, width, height, em.layers, partition.objectLayer, size,
+                                                                           [&](const OutgoingRecord& r, int layer) {
+                                                                               return !lensPoints[static_cast<std::size_t>(layer)].near(r.position);
+                                                                           });
+                for (std::size_t l = 0; l < layerCount; ++l) perLayer[l].push_back(std::move(image[l]));
+            };
+            if (directFromOrigin) {
+                for (const auto& [c, direct] : originFaces) addDirect(direct, c, size, size);
+            } else {
+                const ViewpointRecords direct = compileDirectRecords(system, shading, camera, w, h, settings.records);
+                stats.environmentQueries += direct.environmentQueries;
+                addDirect(direct, camera, w, h);
+            }
         }
         imagesMs += since(t0);
         return observations.emplace(v, std::move(perLayer)).first->second;

@@ -18,6 +18,11 @@
 
 namespace hybridlab {
 
+// Where the direct images of the environment (§4.3) look from: "Direct images from the lens object
+// center tend to work better for reflective objects while direct images from the viewpoint are
+// better suited for refractive (transparent) objects." Automatic follows that rule per lens system.
+enum class DirectImageSource { Automatic, Viewpoint, Origin };
+
 struct EmBakeSettings {
     int width = 96, height = 72;           // lens images (each pixel supersampled by records.supersampling)
     RecordSettings records;
@@ -29,6 +34,7 @@ struct EmBakeSettings {
     EmInferenceSettings inference;
     int neighbourViewpoints = 1;           // samples on each side matched at once (§4.3)
     bool directImages = true;              // direct images of the environment (§4.3)
+    DirectImageSource directImageSource = DirectImageSource::Automatic;
     bool originImages = true;              // ... and from the EM origin (six cube faces), where no lens image reads
     float directMissingDistance = 0.05f;   // relative to the shell distance: a direct hit this far from
                                            // every lens record is a missing part (confidence 1)
@@ -71,6 +77,14 @@ struct EmBakeStats {
 
 // Progress: stage name, items done, items in the stage.
 using BakeProgress = std::function<void(const std::string&, int, int)>;
+
+// "auto", "viewpoint" or "origin" (the technique parameter's and bake-em's spelling); throws
+// std::invalid_argument for anything else.
+DirectImageSource directImageSourceNamed(const std::string& name);
+
+// The source the direct images of `system` come from: Automatic resolved by §4.3's rule (the
+// viewpoint when any of its objects refracts, the EM origin when they only reflect).
+DirectImageSource directImageSourceFor(const Scene& scene, const LensSystemInfo& system, DirectImageSource requested);
 
 LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& system, const EmBakeSettings& settings, EmBakeStats& stats,
                         const BakeProgress& progress = {});

@@ -75,6 +75,7 @@ std::string layeredEmCacheKey(const Scene& scene, const LensSystemInfo& system, 
                            std::int64_t{s.maxLayers}, std::int64_t{s.inference.size}, std::int64_t{s.inference.maxIterations}, std::int64_t{s.inference.ring},
                            std::int64_t{s.inference.finerLevels},
                            std::int64_t{s.neighbourViewpoints}, std::int64_t{s.directImages}, std::int64_t{s.originImages},
+                           static_cast<std::int64_t>(directImageSourceFor(scene, system, s.directImageSource)),
                            static_cast<std::int64_t>(s.clusterSampleLimit)}) {
         h.add(v);
     }

@@ -39,6 +39,9 @@ TechniqueInfo LayeredEmTechnique::info() {
                 ParamSpec::integer("neighbour_viewpoints", d.neighbourViewpoints, 0, 16,
                                    "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"),
                 ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
+                ParamSpec::choice("direct_images", "auto", {"auto", "viewpoint", "origin"},
+                                  "where the bake's direct images of the environment look from (§4.3): auto, the EM origin for a reflective "
+                                  "lens system and the viewpoint for a refractive one, as the paper advises"),
                 ParamSpec::boolean("origin_images", d.originImages,
                                    "direct images also from the EM origin (six cube faces) for the texels no lens image of a sample's window reads: what the origin sees there, not empty"),
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
@@ -62,6 +65,7 @@ EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
     s.records.confidenceAngleDegrees = static_cast<float>(p.getFloat("confidence_angle"));
     s.neighbourViewpoints = static_cast<int>(p.getInt("neighbour_viewpoints"));
     s.originImages = p.getBool("origin_images");
+    s.directImageSource = directImageSourceNamed(p.getChoice("direct_images"));
     if (!p.getBool("disocclusion_prevention")) s.disablePrevention();
     return s;
 }
