@@ -16,6 +16,8 @@ PACKAGES=(
   # scene core and images
   libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenimageio-dev libcli11-dev
+  # OpenImageIO's CMake config imports its command-line tools (iconvert, ...) and fails without them
+  openimageio-tools
   # OpenImageIO's CMake config names the OpenCV headers; metrics use OpenCV too
   libopencv-dev
   # tests and benchmarks
