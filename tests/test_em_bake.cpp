@@ -124,6 +124,7 @@ TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
     ASSERT_LT(layer, with.layers.size());
     const glm::vec3 columnTop = scene.objects[column].transform.position + glm::vec3(0.0f, 1.5f, 0.0f);
     const Shell& shell = with.layers[layer].shell;
+    EXPECT_EQ(shell.kind, ShellKind::Cylinder) << "the column's layer, by the column's shape rather than the band the samples saw";
     const glm::vec3 index = shellTextureDirection(shell, with.center, glm::normalize(columnTop - with.center));
     const CubeMapLookup lookup = cubeMapLookup(index, settings.inference.size);
     const float alphaWith = with.viewpoints[0].maps[layer].sample(lookup).a;

@@ -1,6 +1,6 @@
 // EM layers (Hakura & Snyder 2001 §4.2): LBG on synthetic distances with known clusters, the
 // whole-object rule, shell radii from frontmost intersections, the quad impostor's plane fit and
-// the shell-kind choice.
+// the shell-kind choice, from intersection points and from the objects' surfaces.
 #include <cmath>
 #include <random>
 
@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/scene/primitives.h"
+#include "common/scene/scene.h"
+#include "common/scene/surface_samples.h"
 #include "techniques/layered_em/layer_clustering.h"
 #include "techniques/layered_em/layer_shells.h"
 #include "tests/test_support.h"
@@ -89,7 +92,7 @@ TEST(LayerShells, PlaneFitAndQuadImpostor) {
     glm::vec3 away = shellPoint(quad, glm::vec3(0.0f), glm::normalize(n + 0.2f * u));
     EXPECT_NEAR(glm::dot(away - quad.planePoint, quad.planeNormal), 0.0f, 1e-5f * quad.farDistance);
     EXPECT_GT(glm::dot(away - quad.planePoint, u), 0.99f * quad.farDistance);
-    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), pts), ShellKind::Quad) << "a small patch of the sky";
+    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), pts, {}), ShellKind::Quad) << "a small patch of the sky";
     // The quad's texture holds its rectangle (the points span +-2 along u and v): what a ray from
     // the origin meets inside it, a little margin, and neither the forced index nor a far miss.
     EXPECT_TRUE(shellHolds(quad, glm::normalize(target - quad.center), 0.0f));
@@ -106,7 +109,7 @@ TEST(LayerShells, PlaneFitAndQuadImpostor) {
     for (float azimuth : {0.3f, 1.6f, 2.9f, 4.2f}) {
         for (int j = 0; j < 9; ++j) columns.push_back({6.0f * std::cos(azimuth), 0.5f * static_cast<float>(j), 6.0f * std::sin(azimuth) + 2.0f});
     }
-    EXPECT_NE(chooseShellKind(glm::vec3(0.0f), columns), ShellKind::Quad);
+    EXPECT_NE(chooseShellKind(glm::vec3(0.0f), columns, {}), ShellKind::Quad);
 }
 
 TEST(LayerShells, SphereAndCylinderShells) {
@@ -130,8 +133,37 @@ TEST(LayerShells, SphereAndCylinderShells) {
             ball.push_back(5.0f * glm::vec3(std::cos(el) * std::cos(a), std::sin(el), std::cos(el) * std::sin(a)));
         }
     }
-    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), ring), ShellKind::Cylinder);
-    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), ball), ShellKind::Sphere);
+    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), ring, {}), ShellKind::Cylinder);
+    EXPECT_EQ(chooseShellKind(glm::vec3(0.0f), ball, {}), ShellKind::Sphere);
+}
+
+// Two tall columns on either side of the EM origin, at horizontal distances 2.75 and 4.25 (their
+// faces), 10 high, the origin 1 above their base. The viewpoint samples see them only in a band
+// of elevations around the origin's, where distance from the origin and from its vertical axis
+// nearly agree (and the 3D one varies relatively less: a sphere); their surfaces, seen from above
+// that band too, say cylinder (the cup's columns in teapot-lens, above the samples' plane).
+TEST(LayerShells, ColumnsSeenInABandAreACylinderByTheirGeometry) {
+    Scene scene;
+    scene.meshes.push_back(makeCylinder(24));
+    for (glm::vec3 base : {glm::vec3(3.0f, 0.0f, 0.0f), glm::vec3(-4.5f, 0.0f, 0.0f)}) {
+        SceneObject column;
+        column.name = "column";
+        column.meshes = {0};
+        column.transform.position = base + glm::vec3(0.0f, 5.0f, 0.0f);
+        column.transform.scale = {0.5f, 10.0f, 0.5f};
+        scene.objects.push_back(column);
+    }
+    const glm::vec3 origin(0.0f, 1.0f, 0.0f);
+    std::vector<glm::vec3> band;
+    for (int j = 0; j <= 12; ++j) {
+        const float y = 0.7f + 0.05f * static_cast<float>(j);
+        band.push_back({2.75f, y, 0.0f});
+        band.push_back({-4.25f, y, 0.0f});
+    }
+    EXPECT_EQ(chooseShellKind(origin, band, {}), ShellKind::Sphere) << "from what the band saw";
+    const std::vector<glm::vec3> surface = sampleObjectSurfaces(scene, {0, 1}, 4096, 2001);
+    ASSERT_EQ(surface.size(), 4096u);
+    EXPECT_EQ(chooseShellKind(origin, band, surface), ShellKind::Cylinder) << "from the columns themselves";
 }
 
 }  // namespace

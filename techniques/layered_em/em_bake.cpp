@@ -11,11 +11,17 @@
 #include <glm/gtc/constants.hpp>
 
 #include "common/raytrace/whitted_tracer.h"
+#include "common/scene/surface_samples.h"
 #include "techniques/layered_em/layer_clustering.h"
 #include "techniques/layered_em/lens_raster.h"
 
 namespace hybridlab {
 namespace {
+
+// Points over a layer's objects from which its round impostor's kind is chosen: enough for the
+// radius spread to settle to a few parts in a thousand.
+constexpr std::size_t kShellSurfaceSamples = 4096;
+constexpr std::uint32_t kShellSurfaceSeed = 2001;
 
 class Stopwatch {
 public:
@@ -97,10 +103,11 @@ struct LayerSample {
     OutgoingRay ray;
 };
 
-Shell makeShell(glm::vec3 center, const std::vector<glm::vec3>& points, const std::vector<OutgoingRay>& rays, double meanDistance) {
+Shell makeShell(glm::vec3 center, const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& surface,
+                const std::vector<OutgoingRay>& rays, double meanDistance) {
     Shell s;
     s.center = center;
-    s.kind = chooseShellKind(center, points);
+    s.kind = chooseShellKind(center, points, surface);
     s.farDistance = static_cast<float>(1e3 * std::max(1.0, meanDistance));
     if (s.kind == ShellKind::Quad) return fitQuadShell(center, points, rays);
     if (s.kind == ShellKind::Cylinder) {
@@ -234,10 +241,11 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         }
         EmLayer layer;
         layer.meanDistance = partition.shellRadius[l];
-        layer.shell = makeShell(em.center, points, rays, layer.meanDistance);
         for (std::size_t o = 0; o < partition.objectLayer.size(); ++o) {
             if (partition.objectLayer[o] == static_cast<int>(l)) layer.objects.push_back(static_cast<std::uint32_t>(o));
         }
+        const std::vector<glm::vec3> surface = sampleObjectSurfaces(scene, layer.objects, kShellSurfaceSamples, kShellSurfaceSeed);
+        layer.shell = makeShell(em.center, points, surface, rays, layer.meanDistance);
         em.layers.push_back(std::move(layer));
     }
     samples.clear();

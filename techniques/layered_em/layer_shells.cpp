@@ -123,15 +123,41 @@ Shell fitQuadShell(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, con
     return s;
 }
 
-ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage, double quadConeDegrees) {
+namespace {
+
+// Relative standard deviation of the points' distance from the origin (3D) and from the vertical
+// axis through it (horizontal): how far each impostor's single radius is from the geometry.
+struct RadialSpread {
+    double spherical = 0.0, cylindrical = 0.0;
+};
+
+RadialSpread radialSpread(glm::vec3 origin, const std::vector<glm::vec3>& points) {
+    double mean3 = 0.0, mean2 = 0.0, square3 = 0.0, square2 = 0.0;
+    for (const glm::vec3& p : points) {
+        const double d3 = glm::length(glm::dvec3(p - origin));
+        const double d2 = std::hypot(p.x - origin.x, p.z - origin.z);
+        mean3 += d3;
+        mean2 += d2;
+        square3 += d3 * d3;
+        square2 += d2 * d2;
+    }
+    const double n = static_cast<double>(points.size());
+    mean3 /= n;
+    mean2 /= n;
+    auto relative = [n](double mean, double square) { return mean > 0.0 ? std::sqrt(std::max(0.0, square / n - mean * mean)) / mean : 0.0; };
+    return {relative(mean3, square3), relative(mean2, square2)};
+}
+
+}  // namespace
+
+ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& surface,
+                          double quadCoverage, double quadConeDegrees) {
     if (points.empty()) return ShellKind::Sphere;
     // Coverage: occupied cells of a 16 x 32 latitude-longitude grid of directions, weighted by
     // their solid angle.
     constexpr int kRows = 16, kCols = 32;
     std::set<int> cells;
     glm::dvec3 meanDirection(0.0);
-    double mean3 = 0.0, mean2 = 0.0;
-    std::vector<double> d3, d2;
     for (const glm::vec3& p : points) {
         glm::vec3 d = p - emOrigin;
         float len = glm::length(d);
@@ -141,12 +167,8 @@ ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& poin
         int col = std::min(kCols - 1, static_cast<int>((std::atan2(d.z, d.x) / (2.0 * M_PI) + 0.5) * kCols));
         cells.insert(row * kCols + col);
         meanDirection += glm::dvec3(d);
-        d3.push_back(len);
-        d2.push_back(std::hypot(p.x - emOrigin.x, p.z - emOrigin.z));
-        mean3 += d3.back();
-        mean2 += d2.back();
     }
-    if (d3.empty()) return ShellKind::Sphere;
+    if (cells.empty()) return ShellKind::Sphere;
     double covered = 0.0;
     for (int c : cells) {
         int row = c / kCols;
@@ -162,16 +184,12 @@ ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& poin
         if (glm::length(d) > 0.0) widest = std::max(widest, std::acos(std::clamp(glm::dot(glm::normalize(d), axis), -1.0, 1.0)));
     }
     if (covered < quadCoverage && widest < glm::radians(quadConeDegrees)) return ShellKind::Quad;
-    mean3 /= static_cast<double>(d3.size());
-    mean2 /= static_cast<double>(d2.size());
-    double var3 = 0.0, var2 = 0.0;
-    for (std::size_t i = 0; i < d3.size(); ++i) {
-        var3 += (d3[i] - mean3) * (d3[i] - mean3);
-        var2 += (d2[i] - mean2) * (d2[i] - mean2);
-    }
-    const double rel3 = std::sqrt(var3 / static_cast<double>(d3.size())) / mean3;
-    const double rel2 = std::sqrt(var2 / static_cast<double>(d2.size())) / mean2;
-    return rel2 < 0.5 * rel3 ? ShellKind::Cylinder : ShellKind::Sphere;
+    // The round impostor whose radius varies less over the objects' surfaces: the points seen from
+    // the viewpoint samples lie in a band of elevations, over which a sphere and a cylinder differ
+    // little, while a view above the band sees the column tops a sphere puts too near (§2:
+    // cylinders "may be substituted where they more accurately match the actual geometry").
+    const RadialSpread spread = radialSpread(emOrigin, surface.empty() ? points : surface);
+    return spread.cylindrical < spread.spherical ? ShellKind::Cylinder : ShellKind::Sphere;
 }
 
 }  // namespace hybridlab

@@ -54,13 +54,13 @@ Shell fitQuadShell(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, con
 // of the quad's texture covers. A sphere or cylinder holds every direction.
 bool shellHolds(const Shell& shell, glm::vec3 direction, float marginRadians);
 
-// The kind a layer gets from its intersection points (seen from the EM origin): a quad when they
-// cover less than `quadCoverage` of the directions around the origin and lie within
-// `quadConeDegrees` of their mean direction (a compact, sparsely occupied layer such as the cup
-// seen from the teapot, §6), a cylinder when their horizontal distance from the vertical axis
-// through the origin varies much less than their distance from the origin (a ring of columns), a
-// sphere otherwise.
-ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, double quadCoverage = 0.08,
-                          double quadConeDegrees = 50.0);
+// The kind a layer gets. A quad when its intersection points (seen from the EM origin) cover less
+// than `quadCoverage` of the directions around the origin and lie within `quadConeDegrees` of
+// their mean direction (a compact, sparsely occupied layer such as the cup seen from the teapot,
+// §6). Otherwise a cylinder when the distance of `surface` (points spread over the layer's
+// objects; the intersection points when empty) from the vertical axis through the origin varies
+// relatively less than their distance from the origin (a ring of columns), a sphere when not.
+ShellKind chooseShellKind(glm::vec3 emOrigin, const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& surface,
+                          double quadCoverage = 0.08, double quadConeDegrees = 50.0);
 
 }  // namespace hybridlab
