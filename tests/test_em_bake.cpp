@@ -295,10 +295,18 @@ TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     EXPECT_CONTAINS(results[4].err, "--direct-images");
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache), std::filesystem::directory_iterator()), 1)
         << "one entry; bad input writes nothing";
-    // The second run finds the entry.
-    test::CliResult again = test::runHybridlab(quick);
-    EXPECT_EQ(again.exitStatus, 0) << again.err;
-    EXPECT_CONTAINS(again.out, "in the cache: 2 layers, 2 viewpoints");
+    // The second run finds the entry, and writes a chosen viewpoint sample's cube maps; one that
+    // is not a sample writes nothing.
+    const std::string images = (dir / "images").string();
+    std::vector<std::string> second = quick, past = quick;
+    second.insert(second.end(), {"--images", images, "--images-viewpoint", "1"});
+    past.insert(past.end(), {"--images", images, "--images-viewpoint", "2"});
+    auto again = test::runHybridlabAll({{past, {}}, {second, {}}});
+    EXPECT_EQ(again[0].exitStatus, 2);
+    EXPECT_CONTAINS(again[0].err, "--images-viewpoint: 2 is not a viewpoint sample of lens system 'cup', which has 2 (0 to 1)");
+    EXPECT_EQ(again[1].exitStatus, 0) << again[1].err;
+    EXPECT_CONTAINS(again[1].out, "in the cache: 2 layers, 2 viewpoints");
+    for (const char* layer : {"L1", "L2"}) EXPECT_TRUE(std::filesystem::exists(dir / "images" / (std::string("cup-v1-") + layer + ".exr"))) << layer;
 }
 
 }  // namespace

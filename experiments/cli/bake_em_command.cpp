@@ -22,6 +22,7 @@ struct BakeEmOptions {
     std::string system;
     std::string cache;
     std::string images;
+    int imagesViewpoint = 0;
     bool force = false;
     bool quiet = false;
     bool noPrevention = false;
@@ -55,14 +56,20 @@ void printSummary(const Scene& scene, const LayeredEm& em) {
     }
 }
 
-// The inferred cube maps of viewpoint sample 0, one cross per layer (EXR, and PNG for a look).
-void writeLayerImages(const std::filesystem::path& dir, const LayeredEm& em) {
-    if (em.viewpoints.empty()) return;
+// --images-viewpoint names one of the system's viewpoint samples, checked before anything is written.
+void requireViewpoint(const BakeEmOptions& o, const std::string& system, std::size_t views) {
+    if (!o.images.empty() && static_cast<std::size_t>(o.imagesViewpoint) >= views)
+        throw InputError("--images-viewpoint: " + std::to_string(o.imagesViewpoint) + " is not a viewpoint sample of lens system '" + system +
+                         "', which has " + std::to_string(views) + " (0 to " + std::to_string(views - 1) + ")");
+}
+
+// The inferred cube maps of one viewpoint sample, one cross per layer (EXR, and PNG for a look).
+void writeLayerImages(const std::filesystem::path& dir, const LayeredEm& em, int viewpoint) {
     std::filesystem::create_directories(dir);
     for (std::size_t l = 0; l < em.layers.size(); ++l) {
-        const Image cross = cubeMapCross(em.viewpoints[0].maps[l]);
+        const Image cross = cubeMapCross(em.viewpoints.at(static_cast<std::size_t>(viewpoint)).maps[l]);
         for (const char* ext : {".exr", ".png"}) {
-            const auto file = dir / (em.system + "-v0-L" + std::to_string(l + 1) + ext);
+            const auto file = dir / (em.system + "-v" + std::to_string(viewpoint) + "-L" + std::to_string(l + 1) + ext);
             writeImageAtomically(file, cross);
             std::printf("  wrote %s\n", file.string().c_str());
         }
@@ -97,13 +104,15 @@ void run(BakeEmOptions& o) {
             if (auto cached = readLayeredEm(file)) {
                 std::printf("  in the cache: %zu layers, %zu viewpoints\n", cached->layers.size(), cached->viewpoints.size());
                 printSummary(scene, *cached);
-                if (!o.images.empty()) writeLayerImages(o.images, *cached);
+                requireViewpoint(o, info.name, cached->viewpoints.size());
+                if (!o.images.empty()) writeLayerImages(o.images, *cached, o.imagesViewpoint);
                 continue;
             }
         }
         EmBakeStats stats;
         const LensSystem lens(scene, info);
         const std::size_t views = viewpointSamples(scene, lens.center(), o.settings.viewpoints).size();
+        requireViewpoint(o, info.name, views);
         // Figure 2: the greedy two-path model against the full ray tree, on the scene camera's rays.
         const RayQueryComparison q = compareRayQueries(lens.lensRays(), scene.camera, o.settings.width, o.settings.height, o.settings.records.paths);
         std::printf("  ray queries from the scene camera at %dx%d: %llu of %llu rays hit the lens; two greedy paths %llu, full "
@@ -136,7 +145,7 @@ void run(BakeEmOptions& o) {
                     static_cast<unsigned long long>(stats.inferenceRows),
                     static_cast<unsigned long long>(stats.inferenceUnknowns), stats.maxIterations, stats.maxRelativeResidual);
         printSummary(scene, em);
-        if (!o.images.empty()) writeLayerImages(o.images, em);
+        if (!o.images.empty()) writeLayerImages(o.images, em, o.imagesViewpoint);
     }
 }
 
@@ -149,7 +158,8 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--scene", o->scene, "Scene file, or the name of a built-in scene")->required();
     cmd->add_option("--system", o->system, "Only this lens system (a lens_group, or a lone lens object's name)");
     cmd->add_option("--cache", o->cache, "Cache folder (default: $HYBRIDLAB_CACHE/layered-em or ~/.cache/hybridlab/layered-em)");
-    cmd->add_option("--images", o->images, "Also write viewpoint 0's inferred cube maps (one cross per layer) into this folder");
+    cmd->add_option("--images", o->images, "Also write a viewpoint sample's inferred cube maps (one cross per layer) into this folder");
+    cmd->add_option("--images-viewpoint", o->imagesViewpoint, "The viewpoint sample --images writes (0: the first)")->check(CLI::NonNegativeNumber);
     cmd->add_flag("--force", o->force, "Bake even when the cache has the entry");
     cmd->add_flag("--quiet", o->quiet, "No progress bar");
     auto& s = o->settings;
