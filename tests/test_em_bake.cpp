@@ -2,6 +2,7 @@
 // the clustering finds the cup, the columns and the walls as the teapot's three layers (Figure 7),
 // and disocclusion prevention leaves fewer texels unobserved than single-viewpoint inference; the
 // cache round-trips an entry exactly; viewpoint samples and the bake-em command.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 #include "common/core/input_error.h"
 #include "common/scene/scene_file.h"
 #include "techniques/layered_em/em_cache.h"
+#include "techniques/layered_em/lens_system.h"
 #include "tests/cli_runner.h"
 #include "tests/scene_fixtures.h"
 #include "tests/test_support.h"
@@ -122,7 +124,9 @@ TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
         for (std::uint32_t o : with.layers[l].objects)
             if (o == column) layer = l;
     ASSERT_LT(layer, with.layers.size());
-    const glm::vec3 columnTop = scene.objects[column].transform.position + glm::vec3(0.0f, 1.5f, 0.0f);
+    // Near the column's top (at 2 above its centre): about 8 degrees below it as the origin sees it, a
+    // texel and a half at 16 texels a face, where a bilinear lookup reads the column alone.
+    const glm::vec3 columnTop = scene.objects[column].transform.position + glm::vec3(0.0f, 1.0f, 0.0f);
     const Shell& shell = with.layers[layer].shell;
     EXPECT_EQ(shell.kind, ShellKind::Cylinder) << "the column's layer, by the column's shape rather than the band the samples saw";
     const glm::vec3 index = shellTextureDirection(shell, with.center, glm::normalize(columnTop - with.center));
@@ -141,6 +145,45 @@ TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
         }
     }
     EXPECT_LT(unobservedWith, unobservedWithout);
+}
+
+// §4.3's direct images observe what the lens images missed. Where a direct ray from the EM origin
+// reaches the sky, each layer it did not meet is empty along it, and the direct image says so:
+// with only the rays that met a wall observed, the inference spreads the wall's top edge into the
+// sky by the regulariser's reach, and a cup's flat top, seen from above the samples' plane,
+// reflects wall where the sky is. And every object the direct images see has a layer, although the
+// two viewpoint samples' lens images meet only some of the walls.
+TEST(EmBake, DirectImagesSayWhereALayerIsEmptyAndGiveWhatTheySeeALayer) {
+    REQUIRE_ASSETS();
+    Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
+    auto systems = findLensSystems(scene);
+    ASSERT_EQ(systems[1].name, "cup");
+    EmBakeSettings settings = smallBake();
+    settings.viewpoints.maxSamples = 2;
+    settings.inference.size = 32;
+    EmBakeStats stats;
+    const LayeredEm em = bakeLayeredEm(scene, systems[1], settings, stats);
+    for (const char* wall : {"wall-north", "wall-south", "wall-east", "wall-west"}) {
+        const std::uint32_t o = static_cast<std::uint32_t>(objectIndex(scene, wall));
+        bool found = false;
+        for (const EmLayer& layer : em.layers) found = found || std::find(layer.objects.begin(), layer.objects.end(), o) != layer.objects.end();
+        EXPECT_TRUE(found) << wall << " has no layer";
+    }
+    // Level-0 texels of the outermost layer along which the EM origin sees the sky, and of those the
+    // ones the inferred map makes opaque.
+    const LensSystem system(scene, systems[1]);
+    const std::size_t last = em.layers.size() - 1;
+    std::size_t sky = 0, skyOpaque = 0;
+    for (std::uint32_t t = 0; t < cubeMapLevelOffset(settings.inference.size, 1); ++t) {
+        SurfaceHit hit;
+        if (system.environmentRays().intersect({em.center, glm::normalize(cubeMapTexelDirection(t, settings.inference.size))}, 0.0f, std::numeric_limits<float>::infinity(), hit))
+            continue;
+        ++sky;
+        skyOpaque += em.viewpoints[0].maps[last].texels[t].a > 0.5f;
+    }
+    RecordProperty("sky_texels_opaque", std::to_string(skyOpaque) + " of " + std::to_string(sky));
+    EXPECT_GT(sky, 1000u);
+    EXPECT_LT(skyOpaque, 10u);
 }
 
 // Whether the ray from `origin` along `direction` passes through `box` grown by `margin`.
@@ -219,7 +262,20 @@ TEST(EmBake, ReflectiveSystemsTakeDirectImagesFromTheOrigin) {
     const std::size_t viewpointMisplaced = misplaced(fromViewpoint, viewpointOpaque), originMisplaced = misplaced(fromOrigin, originOpaque);
     RecordProperty("misplaced_texels_viewpoint", std::to_string(viewpointMisplaced) + " of " + std::to_string(viewpointOpaque));
     RecordProperty("misplaced_texels_origin", std::to_string(originMisplaced) + " of " + std::to_string(originOpaque));
-    EXPECT_GT(originOpaque, 100u) << "the layer holds the teapot and a column";
+    // The texels along which the origin sees the layer's objects first (the teapot, column-0).
+    const LensSystem system(scene, systems[1]);
+    std::size_t covered = 0;
+    for (std::uint32_t t = 0; t < cubeMapLevelOffset(size, 1); ++t) {
+        SurfaceHit hit;
+        if (!system.environmentRays().intersect({fromOrigin.center, glm::normalize(cubeMapTexelDirection(t, size))}, 0.0f,
+                                                 std::numeric_limits<float>::infinity(), hit))
+            continue;
+        const std::vector<std::uint32_t>& objects = fromOrigin.layers[0].objects;
+        covered += std::find(objects.begin(), objects.end(), system.environmentObject(hit.object)) != objects.end();
+    }
+    RecordProperty("texels_the_origin_sees_the_layer_in", std::to_string(covered));
+    EXPECT_GT(covered, 20u) << "the layer holds the teapot and a column";
+    EXPECT_GT(originOpaque * 10, covered * 8) << "what the origin sees of the layer is opaque";
     EXPECT_LT(originMisplaced * 10, originOpaque);
     EXPECT_GT(viewpointMisplaced, 10 * originMisplaced);
 }

@@ -66,6 +66,32 @@ TEST(LayerClustering, WholeObjectsGoToTheirMajorityClusterAndShellsUseFrontmostH
     EXPECT_EQ(p.samplesPerLayer[2], 101u);
 }
 
+TEST(LayerClustering, ObjectsOnlyDirectImagesSeeJoinTheNearestShellByInverseDistance) {
+    // Shells at 2 and 10 from the lens images' objects 0 and 1. Objects 2 and 3 only the direct
+    // images see: 2 at 4, which is nearer the shell at 2 in distance but nearer the one at 10 in
+    // inverse distance (|1/4 - 1/10| < |1/4 - 1/2|: less parallax there), and 3 at 20; object 4
+    // nobody sees; object 0's direct samples change nothing.
+    std::vector<ClusterSample> lens;
+    std::uint64_t ray = 0;
+    for (int i = 0; i < 50; ++i) lens.push_back({2.0f, 0, ray++, 0});
+    for (int i = 0; i < 50; ++i) lens.push_back({10.0f, 1, ray++, 0});
+    LayerPartition p = clusterLayers(lens, 5, 2);
+    ASSERT_EQ(p.shellRadius.size(), 2u);
+    ASSERT_EQ(p.objectLayer[2], -1);
+    std::vector<ClusterSample> direct;
+    for (int i = 0; i < 10; ++i) direct.push_back({4.0f, 2, ray++, 0});
+    for (int i = 0; i < 10; ++i) direct.push_back({20.0f, 3, ray++, 0});
+    for (int i = 0; i < 10; ++i) direct.push_back({30.0f, 0, ray++, 0});
+    const std::vector<double> shells = p.shellRadius;
+    assignObjectsOnlyDirectImagesSee(p, direct);
+    EXPECT_EQ(p.objectLayer[0], 0) << "a layer the lens images gave stays";
+    EXPECT_EQ(p.objectLayer[1], 1);
+    EXPECT_EQ(p.objectLayer[2], 1) << "by inverse distance, not distance";
+    EXPECT_EQ(p.objectLayer[3], 1);
+    EXPECT_EQ(p.objectLayer[4], -1) << "seen by nothing";
+    EXPECT_EQ(p.shellRadius, shells) << "the lens records place the shells";
+}
+
 TEST(LayerShells, PlaneFitAndQuadImpostor) {
     // Noisy points on the plane through (1, 2, -6) with normal (0.3, 0, 1) normalised.
     const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)), p0(1, 2, -6);

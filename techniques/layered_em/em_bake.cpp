@@ -78,8 +78,12 @@ void forFirstRecordPerLayer(const ViewpointRecords& recs, const std::vector<int>
     }
 }
 
-// A direct image of the environment as an observation of every layer (§4.3): at each pixel the
-// layer's first record with confidence 1 where `keep(record, layer)`, confidence 0 elsewhere.
+// A direct image of the environment as an observation of every layer (§4.3), with confidence 1
+// where `keep(point, layer)` and 0 elsewhere. Where the pixel's ray meets the layer, the layer's
+// first record at its point. Where the ray reached the sky without meeting the layer, the layer is
+// empty along it (transparent black) at the point where the ray crosses the impostor: without it,
+// only the "something here" half of an edge is observed, and the inference smears a layer's edge
+// against the sky (the top of a wall) by the regulariser's reach.
 template <typename Keep>
 std::vector<EmObservation> directLayerObservations(const ViewpointRecords& direct, const Camera& camera, int width, int height,
                                                    const std::vector<EmLayer>& layers, const std::vector<int>& objectLayer, int size,
@@ -87,11 +91,22 @@ std::vector<EmObservation> directLayerObservations(const ViewpointRecords& direc
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     std::vector<std::vector<glm::vec4>> b(layers.size(), std::vector<glm::vec4>(pixels, glm::vec4(0.0f)));
     std::vector<std::vector<float>> confidence(layers.size(), std::vector<float>(pixels, 0.0f));
+    std::vector<std::uint64_t> met(pixels, 0);  // per pixel: the layers its ray met
     forFirstRecordPerLayer(direct, objectLayer, [&](const OutgoingRecord& r, int layer) {
-        if (!keep(r, layer)) return;
+        met[r.pixel] |= 1ull << layer;
+        if (!keep(r.position, layer)) return;
         b[static_cast<std::size_t>(layer)][r.pixel] = glm::vec4(r.radiance, 1.0f);
         confidence[static_cast<std::size_t>(layer)][r.pixel] = 1.0f;
     });
+    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
+        const std::size_t id = pixel * kPathTerms;  // one ray a pixel, term 0 (compileDirectRecords)
+        if (!direct.rayExists[id] || !direct.rayEscaped[id]) continue;
+        for (std::size_t l = 0; l < layers.size(); ++l) {
+            if ((met[pixel] >> l) & 1u) continue;
+            const OutgoingRay& ray = direct.rays[id];
+            if (keep(shellPoint(layers[l].shell, ray.origin, ray.direction), static_cast<int>(l))) confidence[l][pixel] = 1.0f;
+        }
+    }
     std::vector<EmObservation> out;
     for (std::size_t l = 0; l < layers.size(); ++l) out.push_back(directObservation(camera, width, height, layers[l].shell, b[l], confidence[l], size));
     return out;
@@ -227,7 +242,25 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
 
     std::vector<ClusterSample> clusterInput(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) clusterInput[i] = samples[i].sample;
-    const LayerPartition partition = clusterLayers(clusterInput, scene.objects.size(), settings.layers, settings.maxLayers, settings.maxRelativeRms);
+    LayerPartition partition = clusterLayers(clusterInput, scene.objects.size(), settings.layers, settings.maxLayers, settings.maxRelativeRms);
+    // Images of the environment from the EM origin, one a cube face at the maps' resolution, traced
+    // once. They are the direct images of a reflective system (§4.3). And, for every system, what
+    // no lens image of a window reads of a layer (the top of a column, seen only from above the
+    // samples' plane) is the environment as the origin sees it, not empty. What they see that no
+    // lens image met joins a layer first.
+    const int size = settings.inference.size;
+    const DirectImageSource directSource = directImageSourceFor(scene, info, settings.directImageSource);
+    const bool directFromOrigin = settings.directImages && directSource == DirectImageSource::Origin;
+    std::vector<std::pair<Camera, ViewpointRecords>> originFaces;
+    if (settings.directImages) {
+        std::vector<ClusterSample> seen;
+        for (const Camera& c : cubeFaceCameras(system.center())) {
+            originFaces.emplace_back(c, compileDirectRecords(system, shading, c, size, size, settings.records));
+            stats.environmentQueries += originFaces.back().second.environmentQueries;
+            for (const OutgoingRecord& r : originFaces.back().second.records) seen.push_back({r.distance, r.object, r.ray, r.order});
+        }
+        assignObjectsOnlyDirectImagesSee(partition, seen);
+    }
     LayeredEm em;
     em.system = info.name;
     em.center = system.center();
@@ -255,30 +288,16 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
     // §4.3 and §5: per viewpoint sample the tessellated lens, its raster and the layer images, as
     // observations of every layer's cube map.
     const LensMesh mesh = buildLensMesh(system);
-    const int size = settings.inference.size;
     const std::size_t layerCount = em.layers.size();
     double tessellationMs = 0.0, imagesMs = 0.0, inferenceMs = 0.0;
     auto since = [](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     };
-    // Images of the environment from the EM origin, one a cube face at the maps' resolution, traced
-    // once. They are the direct images of a reflective system (§4.3). And, for every system, what
-    // no lens image of a window reads of a layer (the top of a column, seen only from above the
-    // samples' plane) is the environment as the origin sees it, not empty.
-    const DirectImageSource directSource = directImageSourceFor(scene, info, settings.directImageSource);
-    const bool directFromOrigin = settings.directImages && directSource == DirectImageSource::Origin;
-    std::vector<std::pair<Camera, ViewpointRecords>> originFaces;
-    if (directFromOrigin || (settings.directImages && settings.originImages)) {
-        for (const Camera& c : cubeFaceCameras(em.center)) {
-            originFaces.emplace_back(c, compileDirectRecords(system, shading, c, size, size, settings.records));
-            stats.environmentQueries += originFaces.back().second.environmentQueries;
-        }
-    }
     std::vector<std::vector<EmObservation>> originImages(layerCount);  // layer -> faces
     if (settings.directImages && settings.originImages) {
         for (const auto& [c, direct] : originFaces) {
             std::vector<EmObservation> face = directLayerObservations(direct, c, size, size, em.layers, partition.objectLayer, size,
-                                                                      [](const OutgoingRecord&, int) { return true; });
+                                                                      [](glm::vec3, int) { return true; });
             for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(std::move(face[l]));
         }
     }
@@ -333,8 +352,8 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             // direct ray meets a part of the layer no lens record came near, 0 elsewhere.
             auto addDirect = [&](const ViewpointRecords& direct, const Camera& from, int width, int height) {
                 std::vector<EmObservation> image = directLayerObservations(direct, from, width, height, em.layers, partition.objectLayer, size,
-                                                                           [&](const OutgoingRecord& r, int layer) {
-                                                                               return !lensPoints[static_cast<std::size_t>(layer)].near(r.position);
+                                                                           [&](glm::vec3 point, int layer) {
+                                                                               return !lensPoints[static_cast<std::size_t>(layer)].near(point);
                                                                            });
                 for (std::size_t l = 0; l < layerCount; ++l) perLayer[l].push_back(std::move(image[l]));
             };

@@ -11,7 +11,7 @@
 namespace hybridlab {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'f', '\0'};  // v3: the solve over the active texels; b: half-footprint levels; c: empty fill; d: origin images; e: quads hold their rectangle; f: origin images fill only unread texels
+constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'g', '\0'};  // v3: the solve over the active texels; b: half-footprint levels; c: empty fill; d: origin images; e: quads hold their rectangle; f: origin images fill only unread texels; g: round impostors by their objects' shape, direct images observe empty layers
 
 class Writer {
 public:

@@ -114,6 +114,38 @@ LayerPartition partitionByWholeObjects(const std::vector<ClusterSample>& samples
     return out;
 }
 
+namespace {
+
+// Per object, the mean inverse distance of its samples (0 for an object without one) and the count.
+std::pair<std::vector<double>, std::vector<std::uint64_t>> meanInverseDistances(const std::vector<ClusterSample>& samples, std::size_t objectCount) {
+    std::vector<double> sum(objectCount, 0.0);
+    std::vector<std::uint64_t> count(objectCount, 0);
+    for (const ClusterSample& s : samples) {
+        sum[s.object] += 1.0 / std::max(static_cast<double>(s.distance), 1e-6);
+        ++count[s.object];
+    }
+    for (std::size_t o = 0; o < objectCount; ++o) {
+        if (count[o]) sum[o] /= static_cast<double>(count[o]);
+    }
+    return {sum, count};
+}
+
+}  // namespace
+
+void assignObjectsOnlyDirectImagesSee(LayerPartition& partition, const std::vector<ClusterSample>& seen) {
+    if (partition.shellRadius.empty()) return;
+    const auto [inverse, count] = meanInverseDistances(seen, partition.objectLayer.size());
+    for (std::size_t o = 0; o < partition.objectLayer.size(); ++o) {
+        if (partition.objectLayer[o] >= 0 || !count[o]) continue;
+        int best = 0;
+        for (std::size_t l = 1; l < partition.shellRadius.size(); ++l) {
+            if (std::abs(inverse[o] - 1.0 / partition.shellRadius[l]) < std::abs(inverse[o] - 1.0 / partition.shellRadius[static_cast<std::size_t>(best)]))
+                best = static_cast<int>(l);
+        }
+        partition.objectLayer[o] = best;
+    }
+}
+
 LayerPartition clusterLayers(const std::vector<ClusterSample>& samples, std::size_t objectCount, int layers, int maxLayers,
                              double maxRelativeRms) {
     // LBG runs on each object's mean inverse distance, and the objects' clusters go to their samples.
@@ -122,18 +154,13 @@ LayerPartition clusterLayers(const std::vector<ClusterSample>& samples, std::siz
     // shells make. Per object rather than per sample: the whole-object rule (§4.2) makes layers
     // unions of objects anyway, and over samples the many hits on large far objects (the walls)
     // claim the clusters, so that a small near layer (the cup before the teapot) merges with the next.
-    std::vector<double> sum(objectCount, 0.0);
-    std::vector<std::uint64_t> count(objectCount, 0);
-    for (const ClusterSample& s : samples) {
-        sum[s.object] += 1.0 / std::max(static_cast<double>(s.distance), 1e-6);
-        ++count[s.object];
-    }
+    const auto [inverse, count] = meanInverseDistances(samples, objectCount);
     std::vector<float> objectValues;
     std::vector<int> valueOf(objectCount, -1);
     for (std::size_t o = 0; o < objectCount; ++o) {
         if (!count[o]) continue;
         valueOf[o] = static_cast<int>(objectValues.size());
-        objectValues.push_back(static_cast<float>(sum[o] / static_cast<double>(count[o])));
+        objectValues.push_back(static_cast<float>(inverse[o]));
     }
     const int k = std::min<int>(layers, static_cast<int>(objectValues.size()));
     const LbgClusters objects = layers > 0 ? lbgCluster(objectValues, k) : lbgClusterAuto(objectValues, maxLayers, maxRelativeRms);

@@ -46,6 +46,14 @@ struct LayerPartition {
 LayerPartition partitionByWholeObjects(const std::vector<ClusterSample>& samples, const LbgClusters& clusters,
                                        std::size_t objectCount);
 
+// Objects the lens images never met (objectLayer -1) but `seen` samples do (the direct images from
+// the EM origin): each joins the layer whose shell is nearest to it by mean inverse distance, the
+// metric clusterLayers uses. The paper places layers by the lens images' records alone (§4.2) but
+// infers them from direct images too (§4.3), which image such objects, so each needs a layer: the
+// top of a wall that only a view above the viewpoint samples' plane sees in a cup. The shells
+// stay where the lens records put them.
+void assignObjectsOnlyDirectImagesSee(LayerPartition& partition, const std::vector<ClusterSample>& seen);
+
 // Clusters the objects by their samples' mean inverse distance (k = layers, or automatic when
 // layers == 0) and partitions.
 LayerPartition clusterLayers(const std::vector<ClusterSample>& samples, std::size_t objectCount, int layers,

@@ -14,7 +14,8 @@ namespace {
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 // Follows one outgoing ray through the environment recording its front-facing intersections.
-void followIntoEnvironment(const LensSystem& system, const WhittedTracer& shading, Ray ray, std::uint32_t pixel,
+// Whether the ray left the scene with every surface along it recorded (it reached the sky).
+bool followIntoEnvironment(const LensSystem& system, const WhittedTracer& shading, Ray ray, std::uint32_t pixel,
                            std::uint32_t rayId, std::uint8_t term, const RecordSettings& settings,
                            std::vector<OutgoingRecord>& out, std::uint64_t& queries) {
     const int maxHits = settings.continueRays ? settings.maxHitsPerRay : 1;
@@ -22,7 +23,7 @@ void followIntoEnvironment(const LensSystem& system, const WhittedTracer& shadin
     for (int step = 0; step < 4 * settings.maxHitsPerRay && order < maxHits; ++step) {
         SurfaceHit hit;
         ++queries;
-        if (!system.environmentRays().intersect(ray, 0.0f, kInfinity, hit)) return;
+        if (!system.environmentRays().intersect(ray, 0.0f, kInfinity, hit)) return true;
         const bool front = glm::dot(ray.direction, hit.geometricNormal) < 0.0f;
         if (front) {
             OutgoingRecord r;
@@ -36,11 +37,12 @@ void followIntoEnvironment(const LensSystem& system, const WhittedTracer& shadin
             RayStats stats;
             r.radiance = shading.shade(hit, ray.direction, 1, 1.0f, stats);
             out.push_back(r);
-            if (!settings.continueRays) return;
+            if (!settings.continueRays) return false;
         }
         // Continue through the surface.
         ray.origin = offsetRayOrigin(hit.position, front ? -hit.geometricNormal : hit.geometricNormal);
     }
+    return false;
 }
 
 template <typename PerRow>
@@ -54,6 +56,7 @@ ViewpointRecords compileRows(const Camera& camera, int width, int height, int n,
     v.rayExists.assign(rays, 0);
     v.rayDirection.assign(rays, glm::vec3(0.0f));
     v.rays.assign(rays, OutgoingRay{glm::vec3(0.0f), glm::vec3(0.0f)});
+    v.rayEscaped.assign(rays, 0);
     std::vector<std::vector<OutgoingRecord>> rows(static_cast<std::size_t>(height));
     std::vector<std::uint64_t> lensQueries(static_cast<std::size_t>(height), 0), envQueries(static_cast<std::size_t>(height), 0);
     tbb::parallel_for(0, height, [&](int y) { perRow(v, y, rows[static_cast<std::size_t>(y)], lensQueries[static_cast<std::size_t>(y)], envQueries[static_cast<std::size_t>(y)]); });
@@ -107,8 +110,8 @@ ViewpointRecords compileOutgoingRecords(const LensSystem& system, const WhittedT
                     v.rayExists[id] = 1;
                     v.rayDirection[id] = p.exitDirection;
                     v.rays[id] = {p.exitOrigin, p.exitDirection};
-                    followIntoEnvironment(system, shading, Ray{p.exitOrigin, p.exitDirection}, pixel, id,
-                                          static_cast<std::uint8_t>(term), settings, out, envQueries);
+                    v.rayEscaped[id] = followIntoEnvironment(system, shading, Ray{p.exitOrigin, p.exitDirection}, pixel, id,
+                                                             static_cast<std::uint8_t>(term), settings, out, envQueries);
                 }
             }
         }
@@ -127,7 +130,7 @@ ViewpointRecords compileDirectRecords(const LensSystem& system, const WhittedTra
             v.rayExists[id] = 1;
             v.rayDirection[id] = ray.direction;
             v.rays[id] = {ray.origin, ray.direction};
-            followIntoEnvironment(system, shading, ray, pixel, id, 0, settings, out, envQueries);
+            v.rayEscaped[id] = followIntoEnvironment(system, shading, ray, pixel, id, 0, settings, out, envQueries);
         }
     });
 }

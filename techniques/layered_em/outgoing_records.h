@@ -61,6 +61,9 @@ struct ViewpointRecords {
     std::vector<std::uint8_t> rayExists;
     std::vector<glm::vec3> rayDirection;
     std::vector<OutgoingRay> rays;  // exit origin and direction, same indexing
+    // Per ray: whether it reached the sky with every surface along it recorded, so that a layer
+    // without a record of it is empty along it (not merely hidden behind what it met).
+    std::vector<std::uint8_t> rayEscaped;
     std::uint64_t lensQueries = 0, environmentQueries = 0;
 };
 
