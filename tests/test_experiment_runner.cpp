@@ -109,6 +109,16 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
         EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("images").at("maps").get<std::string>() / "flip.png"));
         // Frame 30 of the path has a temporal error against frame 0; the camera views have none.
         EXPECT_EQ(r.contains("temporal_error"), r.at("frame").get<int>() == 30) << r.at("id");
+        // The scene has reflective pixels: the reference's mask is saved, and the temporal error
+        // is also taken on them alone.
+        ASSERT_TRUE(r.at("reference").contains("mask")) << r.at("id");
+        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("reference").at("mask").get<std::string>()));
+        EXPECT_EQ(r.contains("temporal_error_masked"), r.contains("temporal_error")) << r.at("id");
+        if (r.contains("temporal_error_masked")) {
+            // A mean over other pixels than the whole image's.
+            EXPECT_GT(r.at("temporal_error_masked").get<double>(), 0.0);
+            EXPECT_NE(r.at("temporal_error_masked").get<double>(), r.at("temporal_error").get<double>());
+        }
     }
     // depth 0 is the local colour only: far from the reference on the reflective pixels.
     EXPECT_LT(rows[0].at("metrics").at("masked").at("ssim").get<double>(), rows[2].at("metrics").at("masked").at("ssim").get<double>());

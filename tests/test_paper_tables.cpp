@@ -195,7 +195,7 @@ TEST(PaperTables, HakuraFigure8HoldsTheViewsBetweenSamplesAndThePathMeans) {
     REQUIRE_ASSETS();
     test::TempDir dir;
     const std::string bake = "viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1, em_size = 8";
-    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim", "flip"]
+    const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim", "flip", "temporal"]
 [reference]
 params = { lens_model = "two_term" }
 [[scenes]]
@@ -221,10 +221,22 @@ params = { single_layer = true, viewpoint_blending = false, )" + bake + R"( }
 )",
                                             "hakura_tables.py");
     std::map<std::string, std::map<int, std::pair<double, double>>> lens;  // label -> circle frame -> (SSIM, FLIP)
+    std::map<std::string, std::map<int, double>> temporal;                   // label -> circle frame -> on the lens pixels
     for (const auto& r : resultsOf(dir)) {
         if (r.at("view") != "circle") continue;
         const auto& m = r.at("metrics").at("masked");
         lens[r.at("label")][r.at("frame").get<int>()] = {m.at("ssim").get<double>(), m.at("flip").at("mean").get<double>()};
+        if (r.contains("temporal_error_masked")) temporal[r.at("label")][r.at("frame").get<int>()] = r.at("temporal_error_masked").get<double>();
+    }
+    // The temporal error on the lens pixels, frame by frame (into frames 4 and 5), then mean and max.
+    EXPECT_NE(text.find("(mean |(T_k - T_k-1) - (R_k - R_k-1)|, lens pixels;"), std::string::npos) << text;
+    for (const char* label : {"lem-display", "lem-display-single"}) {
+        const auto& t = temporal[label];
+        ASSERT_EQ(t.size(), 2u) << label;
+        const std::string row = std::string("| ") + label + " | " + test::formatNumber("%.4f", t.at(4)) + " | " + test::formatNumber("%.4f", t.at(5)) +
+                                " | " + test::formatNumber("%.4f", (t.at(4) + t.at(5)) / 2.0) + " | " +
+                                test::formatNumber("%.4f", std::max(t.at(4), t.at(5))) + " |";
+        EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
     }
     std::string between = "| between viewpoint samples (circle@4) |", mean = "| mean over circle frames 3-5 (3) |";
     for (const char* label : {"lem-display", "lem-display-single"}) {

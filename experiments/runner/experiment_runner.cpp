@@ -100,11 +100,14 @@ void prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o,
     writeFileAtomically(o.outDir / "config.toml", std::string(std::istreambuf_iterator<char>(in), {}));
 }
 
-void writeReferenceCopy(const ResultsStore& store, const CachedReference& ref) {
+void writeReferenceCopy(const ResultsStore& store, const CachedReference& ref, bool withMask) {
     const fs::path exr = store.referencesDir() / (ref.key + ".exr");
-    if (fs::exists(exr)) return;
-    writeImageAtomically(exr, ref.image);
-    writeImageAtomically(store.referencesDir() / (ref.key + ".png"), ref.image);
+    if (!fs::exists(exr)) {
+        writeImageAtomically(exr, ref.image);
+        writeImageAtomically(store.referencesDir() / (ref.key + ".png"), ref.image);
+    }
+    const fs::path mask = store.referencesDir() / (ref.key + ".mask.png");
+    if (withMask && !fs::exists(mask)) writeImageAtomically(mask, ref.mask);
 }
 
 // The scene being rendered, its shared state, and the techniques prepared for it.
@@ -185,7 +188,6 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             cache.store(*ref);
             ++summary.referencesRendered;
         }
-        writeReferenceCopy(store, *ref);
 
         // The technique: warm-up frames, then timed repeats (medians, min and max per stage).
         Technique& technique = active.technique(std::to_string(run->technique) + "|" + run->parametersText, techSpec.name, run->parameters);
@@ -200,6 +202,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         }
 
         const PixelMask mask = PixelMask::fromImage(ref->mask);
+        writeReferenceCopy(store, *ref, mask.count() > 0);
         MetricOptions scoring;
         scoring.selection = config.metrics;
         const MetricReport report = computeMetrics(result.image, ref->image, scoring, mask.count() > 0 ? &mask : nullptr);
@@ -237,6 +240,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["metrics"] = reportJson(report, sources);
         record["reference"] = {{"key", key}, {"exr", "references/" + key + ".exr"}, {"png", "references/" + key + ".png"},
                                {"frame_ms", ref->frameMilliseconds}, {"cache_hit", ref->cacheHit}};
+        if (mask.count() > 0) record["reference"]["mask"] = "references/" + key + ".mask.png";
         record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
         if (config.keepDebugImages) {
             for (const auto& [name, dbg] : result.debugImages) {

@@ -6,6 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include <glm/common.hpp>
+
 #include "common/core/atomic_file.h"
 #include "common/image/image_io.h"
 #include "metrics/temporal.h"
@@ -110,6 +112,17 @@ void addTemporalErrors(std::vector<json>& records, const fs::path& dir) {
             std::vector<Image> ref = {load(prev, "reference"), load(cur, "reference")};
             cur["temporal_error"] = temporalError(test, ref).perFrame.at(0);
             cur["temporal_previous_frame"] = prev.at("frame");
+            // Also on the masked pixels of either frame (the reflective and refractive ones), where
+            // a technique's own popping is not diluted by the rest of the image.
+            if (prev.at("reference").contains("mask") && cur.at("reference").contains("mask")) {
+                Image region = readImage(dir / prev.at("reference").at("mask").get<std::string>());
+                const Image other = readImage(dir / cur.at("reference").at("mask").get<std::string>());
+                requireSameSize(region, "the previous frame's mask", other, "the frame's mask");
+                for (int y = 0; y < region.height(); ++y)
+                    for (int x = 0; x < region.width(); ++x) region.at(x, y) = glm::max(region.at(x, y), other.at(x, y));
+                const PixelMask mask = PixelMask::fromImage(region);
+                if (mask.count() > 0) cur["temporal_error_masked"] = temporalError(test, ref, &mask).perFrame.at(0);
+            }
         }
     }
 }

@@ -38,7 +38,9 @@ private:
 
 // Adds "temporal_error" to every record on a camera path whose previous frame (in the same
 // sequence: scene, path, resolution, technique label and parameters) is also recorded:
-// mean |(T_k - T_(k-1)) - (R_k - R_(k-1))| over the display image, from the saved frames.
+// mean |(T_k - T_(k-1)) - (R_k - R_(k-1))| over the display image, from the saved frames; and
+// "temporal_error_masked", the same over the pixels either frame's reference mask selects (the
+// reflective and refractive pixels), when both have one.
 void addTemporalErrors(std::vector<nlohmann::json>& records, const std::filesystem::path& dir);
 
 // results.csv's text for `records`.
