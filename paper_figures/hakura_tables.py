@@ -13,7 +13,9 @@ the temporal error along the circling path. Figure 9 as
 numbers: FLIP on the lens pixels with and without disocclusion prevention along em-disocclusion's
 approach. Times are medians over a run's repeats. Entries are found by label, as the config names
 them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-display and
-lem-display-single, the bake at the display's resolution, where present)."""
+lem-display-single, the bake at the display's resolution, where present). From a result set of
+experiments/configs/hakura2001_em_size.toml, the EM resolution table: SSIM and FLIP on the lens
+pixels of lem-display (EM 128 texels a face) and lem-display-256 at each view and size."""
 import statistics
 
 import results
@@ -37,6 +39,8 @@ def lens_metric(r, name):
 def results_table(rows, size):
     scene = "teapot-lens"
     labels = ["lem-tau3", "lem-tau5"] + [l for l in ("lem-display",) if any(r["label"] == l for r in rows)]
+    if not any(find(rows, l, scene, "camera", -1, size) for l in ("lem-tau3", "lem-tau5")):
+        return []  # not the paper's experiment (an EM-resolution set, say)
     ref = find(rows, REFERENCE, scene, "camera", -1, size)
     out = ["**Results table** (teapot-lens, scene camera, %s; ms, medians over repeats; quality on the lens pixels "
            "against two-term ray tracing)" % size, "",
@@ -72,6 +76,8 @@ def results_table(rows, size):
 def figure8(rows):
     scene = "teapot-lens"
     labels = [l for l in ("lem-tau3", "lem-single", "lem-display", "lem-display-single") if any(r["label"] == l for r in rows)]
+    if not any(l.endswith("-single") for l in labels):
+        return []  # Figure 8 is multi-layer against single-layer
     out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing; -single: one layer, "
            "nearest viewpoint sample)", "", "| view | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
     def row(name, runs_of):
@@ -125,6 +131,8 @@ def temporal_series(rows, labels, scene, key, region):
 def figure9(rows):
     scene = "em-disocclusion"
     rs = sorted({(r["view"], r["frame"]) for r in rows if r["scene"] == scene})
+    if not rs:
+        return []
     out = ["**Figure 9** (em-disocclusion; FLIP / SSIM on the lens pixels against two-term ray tracing)", "",
            "| view | with disocclusion prevention (lem-tau3) | without (lem-no-prevention) |", "|---|---|---|"]
     means = {"lem-tau3": [], "lem-no-prevention": []}
@@ -140,12 +148,29 @@ def figure9(rows):
     return out + [""]
 
 
+def em_resolution(rows):
+    scene = "teapot-lens"
+    labels = [l for l in ("lem-display", "lem-display-256") if any(r["label"] == l for r in rows)]
+    if "lem-display-256" not in labels:
+        return []
+    out = ["**EM resolution** (teapot-lens, display bake; SSIM / FLIP on the lens pixels against two-term ray tracing)", "",
+           "| view | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    views = sorted({(results.resolution(r), r["view"], r["frame"]) for r in rows if r["scene"] == scene and r["label"] in labels},
+                   key=lambda v: (int(v[0].split("x")[0]), v[1], v[2]))
+    for size, view, frame in views:
+        runs = [find(rows, label, scene, view, frame, size) for label in labels]
+        cells = ["%s / %s" % (results.fmt(lens_metric(r, "ssim"), "%.4f"), results.fmt(lens_metric(r, "flip"), "%.4f")) if r else "-"
+                 for r in runs]
+        out.append("| %s %s | %s |" % (size, view if frame < 0 else "%s@%d" % (view, frame), " | ".join(cells)))
+    return out + [""]
+
+
 def main():
     a, rows = results.table_script(__doc__, "hakura_tables")
     sizes = sorted({results.resolution(r) for r in rows if r["scene"] == "teapot-lens" and r["view"] == "camera"},
                    key=lambda s: int(s.split("x")[0]))
     tables = [line for size in sizes for line in results_table(rows, size)]
-    results.write_table(tables + figure8(rows) + figure9(rows), a.out)
+    results.write_table(tables + figure8(rows) + figure9(rows) + em_resolution(rows), a.out)
 
 
 if __name__ == "__main__":

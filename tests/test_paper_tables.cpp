@@ -4,7 +4,7 @@
 // dynamic triangles the ray scene updated, and the bvh_update stage's growth with them; issue 7's
 // SSR speed table (ssr_speed_table.py) the ratios to whitted and the refractive trees' bound;
 // Hakura & Snyder's Figure 8 (hakura_tables.py) the lens metrics at the views between viewpoint
-// samples and their means over the path.
+// samples and their means over the path, and its EM resolution table.
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -218,13 +218,21 @@ params = { )" + bake + R"( }
 name = "layered_em"
 label = "lem-display-single"
 params = { single_layer = true, viewpoint_blending = false, )" + bake + R"( }
+[[techniques]]
+name = "layered_em"
+label = "lem-display-256"
+params = { viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1, em_size = 16 }
 )",
                                             "hakura_tables.py");
     std::map<std::string, std::map<int, std::pair<double, double>>> lens;  // label -> circle frame -> (SSIM, FLIP)
     std::map<std::string, std::map<int, double>> temporal;                   // label -> circle frame -> on the lens pixels
+    std::map<std::string, std::string> emResolution;                         // label -> "SSIM / FLIP" at the camera
     for (const auto& r : resultsOf(dir)) {
-        if (r.at("view") != "circle") continue;
         const auto& m = r.at("metrics").at("masked");
+        if (r.at("view") == "camera" && m.contains("ssim"))
+            emResolution[r.at("label")] = test::formatNumber("%.4f", m.at("ssim").get<double>()) + " / " +
+                                          test::formatNumber("%.4f", m.at("flip").at("mean").get<double>());
+        if (r.at("view") != "circle") continue;
         lens[r.at("label")][r.at("frame").get<int>()] = {m.at("ssim").get<double>(), m.at("flip").at("mean").get<double>()};
         if (r.contains("temporal_error_masked")) temporal[r.at("label")][r.at("frame").get<int>()] = r.at("temporal_error_masked").get<double>();
     }
@@ -253,7 +261,12 @@ params = { single_layer = true, viewpoint_blending = false, )" + bake + R"( }
     EXPECT_NE(text.find("| view | lem-display | lem-display-single |"), std::string::npos) << text;
     EXPECT_NE(text.find(between), std::string::npos) << between << "\n" << text;
     EXPECT_NE(text.find(mean), std::string::npos) << mean << "\n" << text;
-    EXPECT_EQ(text.find("circle@3"), std::string::npos) << "frames 3 and 5 are not between samples";
+    const std::string figure8 = text.substr(0, text.find("**EM resolution**"));
+    EXPECT_EQ(figure8.find("circle@3"), std::string::npos) << "frames 3 and 5 are not between samples";
+    // The EM resolution table (hakura2001_em_size.toml): the display bake and its 256-texel twin side by side.
+    const std::string emRow = "| 64x36 camera | " + emResolution["lem-display"] + " | " + emResolution["lem-display-256"] + " |";
+    EXPECT_NE(text.find("| view | lem-display | lem-display-256 |"), std::string::npos) << text;
+    EXPECT_NE(text.find(emRow), std::string::npos) << emRow << "\n" << text;
 }
 
 }  // namespace
