@@ -23,6 +23,10 @@ import results
 REFERENCE = "two-term-rt"
 STAGES = [("vertex_ray_tracing", "ray tracing at vertices"), ("texture_coordinates", "texture coordinates"),
           ("tessellation", "tessellation"), ("other", "other (incl. rendering)")]
+# Figure 8's (multi-layer, single-layer) pairs: the default bake, the bake at the display's resolution,
+# and that bake without matching neighbouring viewpoint samples (hakura2001_popping.toml).
+SINGLE_LAYER_PAIRS = [("lem-tau3", "lem-single"), ("lem-display", "lem-display-single"),
+                      ("lem-display-nv0", "lem-display-single-nv0")]
 
 
 def find(rows, label, scene, view, frame, size=None):
@@ -75,7 +79,7 @@ def results_table(rows, size):
 
 def figure8(rows):
     scene = "teapot-lens"
-    labels = [l for l in ("lem-tau3", "lem-single", "lem-display", "lem-display-single") if any(r["label"] == l for r in rows)]
+    labels = [l for pair in SINGLE_LAYER_PAIRS for l in pair if any(r["label"] == l for r in rows)]
     if not any(l.endswith("-single") for l in labels):
         return []  # Figure 8 is multi-layer against single-layer
     out = ["**Figure 8** (teapot-lens; SSIM / FLIP on the lens pixels against two-term ray tracing; -single: one layer, "
@@ -101,13 +105,14 @@ def figure8(rows):
             row("mean over %s frames %d-%d (%d)" % (view, frames[0], frames[-1], len(frames)),
                 lambda label: [r for r in (find(rows, label, scene, view, f) for f in frames) if r])
     row("at a viewpoint sample (camera)", lambda label: [r for r in [find(rows, label, scene, "camera", -1)] if r])
-    for key, region in (("temporal_error_masked", "lens pixels"), ("temporal_error", "whole image")):
-        out += temporal_series(rows, labels, scene, key, region)
+    out += temporal_series(rows, labels, scene, "temporal_error_masked", "lens pixels", SINGLE_LAYER_PAIRS)
+    out += temporal_series(rows, labels, scene, "temporal_error", "whole image")
     return out + [""]
 
 
-def temporal_series(rows, labels, scene, key, region):
-    """One row per label: the temporal error `key` into each frame of the circling path."""
+def temporal_series(rows, labels, scene, key, region, pairs=()):
+    """One row per label: the temporal error `key` into each frame of the circling path; then, for each
+    (multi-layer, single-layer) pair of `pairs` present, single minus multi, where popping shows as spikes."""
     series = {}
     for label in labels:
         rs = sorted((r for r in rows if r["label"] == label and r["scene"] == scene and r["view"] == "circle"
@@ -119,12 +124,20 @@ def temporal_series(rows, labels, scene, key, region):
     out = ["", "Temporal error along the circling path (mean |(T_k - T_k-1) - (R_k - R_k-1)|, %s; viewpoint samples every 8 "
                "frames, the nearest changes at frames 4, 12, 20):" % region, "",
            "| frame | " + " | ".join(str(f) for f in frames) + " | mean | max |", "|---|" + "---|" * (len(frames) + 2)]
-    for label, s in series.items():
+
+    def row(name, s, spec):
         vals = [s.get(f) for f in frames]
         present = [v for v in vals if v is not None]
-        out.append("| %s | %s | %s | %s |" % (label, " | ".join(results.fmt(v, "%.4f") for v in vals),
-                                               results.fmt(statistics.mean(present), "%.4f") if present else "-",
-                                               results.fmt(max(present), "%.4f") if present else "-"))
+        out.append("| %s | %s | %s | %s |" % (name, " | ".join(results.fmt(v, spec) for v in vals),
+                                               results.fmt(statistics.mean(present), spec) if present else "-",
+                                               results.fmt(max(present), spec) if present else "-"))
+
+    for label, s in series.items():
+        row(label, s, "%.4f")
+    for multi, single in pairs:
+        m, s = series.get(multi), series.get(single)
+        if m and s:
+            row("%s minus %s" % (single, multi), {f: s[f] - m[f] for f in frames if f in s and f in m}, "%+.4f")
     return out
 
 

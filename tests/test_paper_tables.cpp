@@ -246,6 +246,11 @@ params = { viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1,
                                 test::formatNumber("%.4f", std::max(t.at(4), t.at(5))) + " |";
         EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
     }
+    // Single-layer minus multi-layer, where popping shows as spikes.
+    const auto &multi = temporal["lem-display"], &single = temporal["lem-display-single"];
+    const std::string popping = "| lem-display-single minus lem-display | " + test::formatNumber("%+.4f", single.at(4) - multi.at(4)) + " | " +
+                                test::formatNumber("%+.4f", single.at(5) - multi.at(5)) + " |";
+    EXPECT_NE(text.find(popping), std::string::npos) << popping << "\n" << text;
     std::string between = "| between viewpoint samples (circle@4) |", mean = "| mean over circle frames 3-5 (3) |";
     for (const char* label : {"lem-display", "lem-display-single"}) {
         const auto& frames = lens[label];
