@@ -5,7 +5,8 @@ the figures as SVG and PDF.
     report.py RESULT_DIR --out REPORT_DIR [--baseline SCENE]
 
 Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
-the Pareto front drawn and labelled and the reference's frame time marked; per scene the stage-time
+the Pareto front drawn and labelled and the reference's frame time marked (on the whole image, and
+on the reflective and refractive pixels where a scene has them); per scene the stage-time
 breakdown of every technique (Walewski 2019 Table 5 as a chart); along each camera path the frame
 time, the error and the temporal error per frame; and "where methods fail" (failures.py): each
 technique setting's worst frames along every path against its median and against the baseline
@@ -26,22 +27,35 @@ import viewer
 from figure_files import point_links, save
 
 
+# The regions a record is scored on: the whole image, and where a scene has reflective or refractive
+# pixels (the technique's subject, often a small part of the frame) those alone.
+REGIONS = (("whole", ""), ("masked", " refl./refr."))
+
+
+def regions_of(records):
+    return [(region, suffix) for region, suffix in REGIONS if any(r["metrics"].get(region) for r in records)]
+
+
 def colours(variants):
     cmap = plt.get_cmap("tab10" if len(variants) <= 10 else "tab20")
     return {v: cmap(i % cmap.N) for i, v in enumerate(sorted(variants))}
 
 
 def speed_accuracy(records, out_dir, key, title):
-    """Frame time against SSIM and FLIP, every run a point, the Pareto front labelled."""
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    """Frame time against SSIM and FLIP, every run a point, the Pareto front labelled; a row per
+    region scored (the whole image, then the reflective and refractive pixels)."""
+    regions = regions_of(records) or [REGIONS[0]]
+    fig, axes = plt.subplots(len(regions), 2, figsize=(12, 4.5 * len(regions)), squeeze=False)
     col = colours({rs.variant(r) for r in records})
     ref_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
-    for ax, name, better_high in ((axes[0], "ssim", True), (axes[1], "flip", False)):
+    panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix) in enumerate(regions)
+              for j, name in enumerate(("ssim", "flip"))]
+    for ax, region, suffix, name, better_high in panels:
         points = []
         for v in sorted(col):
-            rows = [r for r in records if rs.variant(r) == v and rs.metric(r, "whole", name) is not None]
+            rows = [r for r in records if rs.variant(r) == v and rs.metric(r, region, name) is not None]
             xs = [r["frame_ms"]["median"] for r in rows]
-            ys = [rs.metric(r, "whole", name) for r in rows]
+            ys = [rs.metric(r, region, name) for r in rows]
             ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85).set_urls(point_links(rows))
             points += [(x, y, v) for x, y in zip(xs, ys)]
         front = rs.pareto_front(points, better_high)
@@ -52,9 +66,9 @@ def speed_accuracy(records, out_dir, key, title):
         ax.annotate("reference %.0f ms" % ref_ms, (ref_ms, ax.get_ylim()[0]), fontsize=7, rotation=90, va="bottom", ha="right")
         ax.set_xscale("log")
         ax.set_xlabel("frame time (ms, median; log scale)")
-        ax.set_ylabel("SSIM (higher is better)" if name == "ssim" else "FLIP mean (lower is better)")
+        ax.set_ylabel(("SSIM%s (higher is better)" if name == "ssim" else "FLIP mean%s (lower is better)") % suffix)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=6, loc="lower right")
+    axes[0][0].legend(fontsize=6, loc="lower right")
     fig.suptitle(title)
     return save(fig, out_dir, "speed-accuracy-" + key)
 
@@ -85,25 +99,32 @@ def stage_breakdown(records, out_dir, key, title):
 
 
 def along_path(records, out_dir, key, title):
-    """Frame time, FLIP and temporal error per frame along a camera path, one series a variant."""
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    """Frame time, FLIP and temporal error per frame along a camera path, one series a variant; a
+    second row of FLIP and temporal error on the reflective and refractive pixels where scored."""
+    regions = regions_of(records) or [REGIONS[0]]
+    fig, axes = plt.subplots(len(regions), 3, figsize=(15, 4 * len(regions)), squeeze=False)
     col = colours({rs.variant(r) for r in records})
+    temporal_key = {"whole": "temporal_error", "masked": "temporal_error_masked"}
     for v in sorted(col):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
-        frames = [r["frame"] for r in rows]
-        axes[0].plot(frames, [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
-        scored = [r for r in rows if rs.metric(r, "whole", "flip") is not None]
-        axes[1].plot([r["frame"] for r in scored], [rs.metric(r, "whole", "flip") for r in scored], marker="o", ms=3, color=col[v])
-        for ax, pts, ys in ((axes[0], rows, [r["frame_ms"]["median"] for r in rows]), (axes[1], scored, [rs.metric(r, "whole", "flip") for r in scored])):
-            ax.scatter([r["frame"] for r in pts], ys, s=12, color=col[v]).set_urls(point_links(pts))
-        temporal = [(r["frame"], r["temporal_error"]) for r in rows if "temporal_error" in r]
-        if temporal:
-            axes[2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
-    for ax, label in zip(axes, ("frame time (ms, median)", "FLIP mean", "temporal error")):
-        ax.set_xlabel("frame")
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=6)
+        axes[0][0].plot([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
+        axes[0][0].scatter([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], s=12, color=col[v]).set_urls(point_links(rows))
+        for i, (region, _) in enumerate(regions):
+            scored = [r for r in rows if rs.metric(r, region, "flip") is not None]
+            flips = [rs.metric(r, region, "flip") for r in scored]
+            axes[i][1].plot([r["frame"] for r in scored], flips, marker="o", ms=3, color=col[v])
+            axes[i][1].scatter([r["frame"] for r in scored], flips, s=12, color=col[v]).set_urls(point_links(scored))
+            temporal = [(r["frame"], r[temporal_key[region]]) for r in rows if temporal_key[region] in r]
+            if temporal:
+                axes[i][2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
+    for i, (region, suffix) in enumerate(regions):
+        for ax, label in zip(axes[i], ("frame time (ms, median)", "FLIP mean" + suffix, "temporal error" + suffix)):
+            ax.set_xlabel("frame")
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+    for i in range(1, len(regions)):
+        axes[i][0].set_visible(False)  # frame time is one per run, not per region
+    axes[0][0].legend(fontsize=6)
     fig.suptitle(title)
     return save(fig, out_dir, "path-" + key)
 
@@ -155,22 +176,27 @@ def runs_table(records, out_dir, result_dir):
 
 
 def markdown_summary(records):
-    """Per scene and resolution: each variant's mean frame time, SSIM and FLIP."""
+    """Per scene and resolution: each variant's mean frame time, SSIM and FLIP, on the whole image and
+    on the reflective and refractive pixels where the scene has them."""
     lines = []
     groups = collections.defaultdict(list)
     for r in records:
         groups[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(groups.items()):
-        lines += ["", "### %s at %s" % (scene, res), "", "| technique | frames | frame ms (median, mean over frames) | SSIM | FLIP |",
-                  "|---|---|---|---|---|"]
+        regions = regions_of(rows) or [REGIONS[0]]
+        metrics = [(region, name) for region, _ in regions for name in ("ssim", "flip")]
+        lines += ["", "### %s at %s" % (scene, res), "",
+                  "| technique | frames | frame ms (median, mean over frames) | %s |" %
+                  " | ".join(name.upper() + suffix for _, suffix in regions for name in ("ssim", "flip")),
+                  "|---|---|---|" + "---|" * len(metrics)]
         by = collections.defaultdict(list)
         for r in rows:
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items()):
-            lines.append("| %s | %d | %.2f | %s | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs),
-                                                         rs.fmt(rs.mean_known(rs.metric(r, "whole", "ssim") for r in vs), "%.4f", missing=""),
-                                                         rs.fmt(rs.mean_known(rs.metric(r, "whole", "flip") for r in vs), "%.4f", missing="")))
-        lines.append("| reference (whitted) | | %.2f | 1 | 0 |" % statistics.median(r["reference"]["frame_ms"] for r in rows))
+            lines.append("| %s | %d | %.2f | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs), " | ".join(
+                rs.fmt(rs.mean_known(rs.metric(r, region, name) for r in vs), "%.4f", missing="") for region, name in metrics)))
+        lines.append("| reference (whitted) | | %.2f | %s |" % (statistics.median(r["reference"]["frame_ms"] for r in rows),
+                                                              " | ".join("1" if name == "ssim" else "0" for _, name in metrics)))
     return "\n".join(lines)
 
 

@@ -168,6 +168,28 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path (+ its "where methods fail" figure)
     EXPECT_GE(test::expectFiguresHaveContent(report), 2u * (2 * 2 + 1));
     EXPECT_TRUE(fs::exists(report / "report.md"));
+    // The summary gives each setting's SSIM and FLIP on the reflective and refractive pixels beside
+    // the whole image's (one frame a setting on cornell-mirror-glass: the means are the run's own).
+    const std::string markdown = test::readTextFile(report / "report.md");
+    EXPECT_NE(markdown.find("| SSIM | FLIP | SSIM refl./refr. | FLIP refl./refr. |"), std::string::npos) << markdown;
+    std::size_t summarised = 0;
+    for (const auto& row : rows) {
+        if (row.at("scene") != "cornell-mirror-glass") continue;
+        const std::string params = row.at("parameters_text");
+        const std::string start = "| " + row.at("label").get<std::string>() + (params.empty() ? "" : " [" + params + "]") + " | 1 | ";
+        const std::size_t at = markdown.find(start);
+        ASSERT_NE(at, std::string::npos) << start << "\n" << markdown;
+        const std::string line = markdown.substr(at, markdown.find('\n', at) - at);
+        std::string cells;
+        for (const char* region : {"whole", "masked"}) {
+            const json& m = row.at("metrics").at(region);
+            cells += " | " + test::formatNumber("%.4f", m.at("ssim").get<double>()) + " | " +
+                     test::formatNumber("%.4f", m.at("flip").at("mean").get<double>());
+        }
+        EXPECT_EQ(line.substr(line.size() - cells.size() - 2), cells + " |") << line;
+        ++summarised;
+    }
+    EXPECT_EQ(summarised, 5u);
     // Every run opens in the viewer from the table (the viewer itself: tests/browser).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
     EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
