@@ -15,7 +15,8 @@ approach. Times are medians over a run's repeats. Entries are found by label, as
 them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-display and
 lem-display-single, the bake at the display's resolution, where present). From a result set of
 experiments/configs/hakura2001_em_size.toml, the EM resolution table: SSIM and FLIP on the lens
-pixels of lem-display (EM 128 texels a face) and lem-display-256 at each view and size."""
+pixels of lem-display (EM 128 texels a face), lem-display-256 and lem-display-512-3vp at each view
+and size."""
 import statistics
 
 import results
@@ -163,7 +164,7 @@ def figure9(rows):
 
 def em_resolution(rows):
     scene = "teapot-lens"
-    labels = [l for l in ("lem-display", "lem-display-256") if any(r["label"] == l for r in rows)]
+    labels = [l for l in ("lem-display", "lem-display-256", "lem-display-512-3vp") if any(r["label"] == l for r in rows)]
     if "lem-display-256" not in labels:
         return []
     out = ["**EM resolution** (teapot-lens, display bake; SSIM / FLIP on the lens pixels against two-term ray tracing)", "",
