@@ -56,10 +56,9 @@ LayeredEm randomLayeredEm(int layers, int size, bool translucent, std::uint32_t 
     return em;
 }
 
-// The GPU pass's image of one lens system.
-Image drawOnGpu(Rasterizer& rasterizer, const Scene& scene, const LensDrawGeometry& geometry, const LayeredEm& em,
-                const ViewpointBlend& blend, int width, int height) {
-    LayeredEmPass pass;
+// `pass`'s image of one lens system.
+Image drawWith(LayeredEmPass& pass, Rasterizer& rasterizer, const Scene& scene, const LensDrawGeometry& geometry, const LayeredEm& em,
+               const ViewpointBlend& blend, int width, int height) {
     pass.setDraws({{&geometry, &em, blend}});
     RasterRequest r;
     r.camera = scene.camera;
@@ -69,6 +68,21 @@ Image drawOnGpu(Rasterizer& rasterizer, const Scene& scene, const LensDrawGeomet
     r.passes = {&pass};
     rasterizer.render(r);
     return pass.result();
+}
+
+// A new GPU pass's image of one lens system.
+Image drawOnGpu(Rasterizer& rasterizer, const Scene& scene, const LensDrawGeometry& geometry, const LayeredEm& em,
+                const ViewpointBlend& blend, int width, int height) {
+    LayeredEmPass pass;
+    return drawWith(pass, rasterizer, scene, geometry, em, blend, width, height);
+}
+
+double maxDifference(const Image& a, const Image& b) {
+    double d = 0.0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            for (int c = 0; c < 4; ++c) d = std::max(d, static_cast<double>(std::abs(a.at(x, y)[c] - b.at(x, y)[c])));
+    return d;
 }
 
 struct LensFrame {
@@ -165,6 +179,37 @@ TEST(LayeredEmPass, GpuCompositesLayersSkyAndViewpointsAsItsCpuTwin) {
     EXPECT_LE(off, both / 200) << "pixels further than 1e-4 from the CPU twin (face edges, as above)";
     EXPECT_LT(maxDiff, 1e-2);
     EXPECT_GT(skyShare, 0.0) << "the sky shows behind translucent layers";
+}
+
+TEST(LayeredEmPass, KeepsCubeMapsOnTheDeviceOnlyWhileTheDrawnSamplesAreTheSame) {
+    // One pass over frames whose (EM, sample A, sample B) change, repeat and are replaced in place:
+    // every frame is what a new pass draws (which copies every texel).
+    LensFrame f;
+    RASTERIZER_OR_SKIP(rasterizer, f.scene);
+    const int size = 6;
+    const LayeredEm first = randomLayeredEm(2, size, true, 3);
+    LayeredEm second = randomLayeredEm(2, size, true, 4);
+    const LensDrawGeometry g = lensDrawGeometry(f.lens, first.layers, f.scene, f.scene.camera, f.width, f.height, size);
+    LayeredEmPass pass;
+    struct Frame {
+        const LayeredEm* em;
+        ViewpointBlend blend;
+    };
+    const ViewpointBlend ab{0, 1, 0.7f, 0.3f}, ba{1, 0, 0.7f, 0.3f};
+    std::vector<Image> images;
+    for (const Frame& frame : {Frame{&first, ab}, Frame{&first, ba}, Frame{&first, ba}, Frame{&second, ba}}) {
+        images.push_back(drawWith(pass, *rasterizer, f.scene, g, *frame.em, frame.blend, f.width, f.height));
+        EXPECT_EQ(maxDifference(images.back(), drawOnGpu(*rasterizer, f.scene, g, *frame.em, frame.blend, f.width, f.height)), 0.0)
+            << "frame " << images.size() - 1;
+    }
+    EXPECT_GT(maxDifference(images[0], images[1]), 0.1) << "swapping the samples changes the image";
+    EXPECT_GT(maxDifference(images[2], images[3]), 0.1) << "another EM changes the image";
+    // The same EM object with new texels (as when prepare() reloads the EMs): forgotten, then drawn anew.
+    second.viewpoints[1].maps[0].texels.assign(second.viewpoints[1].maps[0].texels.size(), glm::vec4(0.2f, 0.9f, 0.1f, 1.0f));
+    pass.forgetResidentTexels();
+    const Image replaced = drawWith(pass, *rasterizer, f.scene, g, second, ba, f.width, f.height);
+    EXPECT_GT(maxDifference(replaced, images[3]), 0.1);
+    EXPECT_EQ(maxDifference(replaced, drawOnGpu(*rasterizer, f.scene, g, second, ba, f.width, f.height)), 0.0);
 }
 
 TEST(LayeredEmPass, BlendsTheTwoNearestViewpointSamplesByDistance) {

@@ -32,11 +32,13 @@ struct LensDrawConstants {
     glm::ivec4 chain;
 };
 
-// A host-visible buffer of at least `bytes` (grown, never shrunk).
-void ensureBuffer(const VulkanDevice& device, GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+// A host-visible buffer of at least `bytes` (grown, never shrunk); true when it was (re)allocated,
+// its contents lost.
+bool ensureBuffer(const VulkanDevice& device, GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 16);
-    if (buffer.valid() && buffer.size() >= bytes) return;
+    if (buffer.valid() && buffer.size() >= bytes) return false;
     buffer = GpuBuffer(device, bytes + bytes / 2, usage, GpuBuffer::Memory::HostVisible);
+    return true;
 }
 
 }  // namespace
@@ -71,10 +73,15 @@ void LayeredEmPass::resize(std::uint32_t width, std::uint32_t height) {
                           GpuBuffer::Memory::HostVisible);
 }
 
-// The frame's vertices, indices and the cube maps of the blended viewpoint samples, packed.
+// The frame's vertices, indices and the cube maps of the blended viewpoint samples, packed. The
+// cube maps are copied only when the drawn (EM, sample A, sample B) change: along a path that is
+// once a viewpoint interval, and the copy (7 layers x 2 samples, 29 MB at 128 texels a face) is
+// otherwise a large part of the frame on a host-memory device.
 void LayeredEmPass::upload() {
     std::size_t vertexCount = 0, indexCount = 0, texelCount = 0;
+    std::vector<ResidentTexels> resident;
     for (const LensDraw& d : draws_) {
+        resident.push_back({d.em, d.blend.a, d.blend.b});
         if (d.em->layers.size() > static_cast<std::size_t>(kMaxDrawnLayers))
             throw VulkanError("the layered-EM pass draws at most " + std::to_string(kMaxDrawnLayers) + " layers");
         vertexCount += d.geometry->positions.size();
@@ -85,7 +92,8 @@ void LayeredEmPass::upload() {
     const VulkanDevice& device = *device_;
     ensureBuffer(device, vertices_, vertexCount * sizeof(GpuLensVertex), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     ensureBuffer(device, indices_, indexCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    ensureBuffer(device, texels_, texelCount * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const bool reallocated = ensureBuffer(device, texels_, texelCount * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const bool texelsInPlace = !reallocated && resident == residentTexels_;
     auto* vertexOut = static_cast<GpuLensVertex*>(vertices_.mapped());
     auto* indexOut = static_cast<std::uint32_t*>(indices_.mapped());
     auto* texelOut = static_cast<glm::vec4*>(texels_.mapped());
@@ -113,12 +121,13 @@ void LayeredEmPass::upload() {
         for (int which = 0; which < 2; ++which) {
             (which == 0 ? r.texelsA : r.texelsB) = static_cast<std::int32_t>(texel);
             for (const LayerCubeMap& m : d.em->viewpoints[which == 0 ? d.blend.a : d.blend.b].maps) {
-                std::memcpy(texelOut + texel, m.texels.data(), m.texels.size() * sizeof(glm::vec4));
+                if (!texelsInPlace) std::memcpy(texelOut + texel, m.texels.data(), m.texels.size() * sizeof(glm::vec4));
                 texel += m.texels.size();
             }
         }
         ranges_.push_back(r);
     }
+    residentTexels_ = std::move(resident);
 }
 
 void LayeredEmPass::record(VkCommandBuffer cb, const FrameTargets& t) {

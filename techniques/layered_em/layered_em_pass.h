@@ -33,6 +33,9 @@ public:
 
     // The systems of the next recorded frame (the pointers must stay valid until finish()).
     void setDraws(std::vector<LensDraw> draws) { draws_ = std::move(draws); }
+    // The cube maps stay on the device while the draws' (EM, samples) do not change; call this when
+    // the EMs the draws point to are replaced (a new EM may take an old one's address).
+    void forgetResidentTexels() { residentTexels_.clear(); }
 
     std::string name() const override { return "lens_draw"; }
     void record(VkCommandBuffer cb, const FrameTargets& targets) override;
@@ -62,6 +65,13 @@ private:
         std::int32_t texelsA = 0, texelsB = 0;
     };
     std::vector<Range> ranges_;
+    // Per draw, whose cube maps texels_ holds.
+    struct ResidentTexels {
+        const LayeredEm* em = nullptr;
+        std::size_t a = 0, b = 0;
+        bool operator==(const ResidentTexels&) const = default;
+    };
+    std::vector<ResidentTexels> residentTexels_;
     Image result_;
 };
 

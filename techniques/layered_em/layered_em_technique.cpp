@@ -111,6 +111,7 @@ void LayeredEmTechnique::prepare(SceneContext& context) {
         ems_.push_back(std::move(*em));
     }
     if (!pass_) pass_ = std::make_unique<LayeredEmPass>();
+    pass_->forgetResidentTexels();  // ems_ was refilled
     FrameRequest warmUp{scene.camera, 0.0, 64, 36};
     context.rasterizer().render(rasterRequest(warmUp), raster_);
 }
