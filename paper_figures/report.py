@@ -27,13 +27,14 @@ import viewer
 from figure_files import point_links, save
 
 
-# The regions a record is scored on: the whole image, and where a scene has reflective or refractive
-# pixels (the technique's subject, often a small part of the frame) those alone.
-REGIONS = (("whole", ""), ("masked", " refl./refr."))
+# The regions a record is scored on, with their label suffix and temporal-error key: the whole
+# image, and where a scene has reflective or refractive pixels (the technique's subject, often a
+# small part of the frame) those alone.
+REGIONS = (("whole", "", "temporal_error"), ("masked", " refl./refr.", "temporal_error_masked"))
 
 
 def regions_of(records):
-    return [(region, suffix) for region, suffix in REGIONS if any(r["metrics"].get(region) for r in records)]
+    return [region for region in REGIONS if any(r["metrics"].get(region[0]) for r in records)]
 
 
 def colours(variants):
@@ -48,7 +49,7 @@ def speed_accuracy(records, out_dir, key, title):
     fig, axes = plt.subplots(len(regions), 2, figsize=(12, 4.5 * len(regions)), squeeze=False)
     col = colours({rs.variant(r) for r in records})
     ref_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
-    panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix) in enumerate(regions)
+    panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix, _) in enumerate(regions)
               for j, name in enumerate(("ssim", "flip"))]
     for ax, region, suffix, name, better_high in panels:
         points = []
@@ -104,20 +105,19 @@ def along_path(records, out_dir, key, title):
     regions = regions_of(records) or [REGIONS[0]]
     fig, axes = plt.subplots(len(regions), 3, figsize=(15, 4 * len(regions)), squeeze=False)
     col = colours({rs.variant(r) for r in records})
-    temporal_key = {"whole": "temporal_error", "masked": "temporal_error_masked"}
     for v in sorted(col):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         axes[0][0].plot([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
         axes[0][0].scatter([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], s=12, color=col[v]).set_urls(point_links(rows))
-        for i, (region, _) in enumerate(regions):
+        for i, (region, _, temporal_key) in enumerate(regions):
             scored = [r for r in rows if rs.metric(r, region, "flip") is not None]
             flips = [rs.metric(r, region, "flip") for r in scored]
             axes[i][1].plot([r["frame"] for r in scored], flips, marker="o", ms=3, color=col[v])
             axes[i][1].scatter([r["frame"] for r in scored], flips, s=12, color=col[v]).set_urls(point_links(scored))
-            temporal = [(r["frame"], r[temporal_key[region]]) for r in rows if temporal_key[region] in r]
+            temporal = [(r["frame"], r[temporal_key]) for r in rows if temporal_key in r]
             if temporal:
                 axes[i][2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
-    for i, (region, suffix) in enumerate(regions):
+    for i, (_, suffix, _) in enumerate(regions):
         for ax, label in zip(axes[i], ("frame time (ms, median)", "FLIP mean" + suffix, "temporal error" + suffix)):
             ax.set_xlabel("frame")
             ax.set_ylabel(label)
@@ -184,10 +184,10 @@ def markdown_summary(records):
         groups[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(groups.items()):
         regions = regions_of(rows) or [REGIONS[0]]
-        metrics = [(region, name) for region, _ in regions for name in ("ssim", "flip")]
+        metrics = [(region, name) for region, _, _ in regions for name in ("ssim", "flip")]
         lines += ["", "### %s at %s" % (scene, res), "",
                   "| technique | frames | frame ms (median, mean over frames) | %s |" %
-                  " | ".join(name.upper() + suffix for _, suffix in regions for name in ("ssim", "flip")),
+                  " | ".join(name.upper() + suffix for _, suffix, _ in regions for name in ("ssim", "flip")),
                   "|---|---|---|" + "---|" * len(metrics)]
         by = collections.defaultdict(list)
         for r in rows:

@@ -17,6 +17,11 @@ std::string formatNumber(const char* spec, double v) {
     return text;
 }
 
+std::string reportVariant(const nlohmann::json& record) {
+    const std::string params = record.at("parameters_text");
+    return record.at("label").get<std::string>() + (params.empty() ? "" : " [" + params + "]");
+}
+
 std::string readReportPage(const fs::path& reportDir) { return readTextFile(reportDir / "index.html"); }
 
 std::size_t expectReportLinksResolve(const fs::path& reportDir) {

@@ -5,10 +5,16 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace hybridlab::test {
 
 // `v` formatted as printf's `spec` does (as Python's "%" operator the report scripts use).
 std::string formatNumber(const char* spec, double v);
+
+// A record's technique setting as the report names it: "label [parameters]" (the label alone
+// without parameters).
+std::string reportVariant(const nlohmann::json& record);
 
 // index.html's text.
 std::string readReportPage(const std::filesystem::path& reportDir);

@@ -175,8 +175,7 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     std::size_t summarised = 0;
     for (const auto& row : rows) {
         if (row.at("scene") != "cornell-mirror-glass") continue;
-        const std::string params = row.at("parameters_text");
-        const std::string start = "| " + row.at("label").get<std::string>() + (params.empty() ? "" : " [" + params + "]") + " | 1 | ";
+        const std::string start = "| " + test::reportVariant(row) + " | 1 | ";
         const std::size_t at = markdown.find(start);
         ASSERT_NE(at, std::string::npos) << start << "\n" << markdown;
         const std::string line = markdown.substr(at, markdown.find('\n', at) - at);

@@ -59,11 +59,6 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-std::string variant(const json& r) {
-    const std::string params = r.at("parameters_text");
-    return r.at("label").get<std::string>() + (params.empty() ? "" : " [" + params + "]");
-}
-
 // The summary table's row of one sequence in report.md ("" if none).
 std::string tableRow(const std::string& markdown, const std::string& start) {
     const std::size_t at = markdown.find(start);
@@ -87,7 +82,7 @@ TEST(FailureReport, SummaryTableHoldsWorstFramesMediansAndTheBaseline) {
     const std::vector<json> records = test::readResults(o.outDir);
     const std::string markdown = test::readTextFile(report / "report.md");
     std::map<std::string, std::vector<json>> failure, baseline;
-    for (const auto& rec : records) (rec.at("scene") == "whitted-classic" ? baseline : failure)[variant(rec)].push_back(rec);
+    for (const auto& rec : records) (rec.at("scene") == "whitted-classic" ? baseline : failure)[test::reportVariant(rec)].push_back(rec);
     ASSERT_EQ(failure.size(), 3u);
     std::map<std::string, double> worstSsim;
     for (const auto& [name, rows] : failure) {

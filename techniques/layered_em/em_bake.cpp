@@ -112,6 +112,9 @@ std::vector<EmObservation> directLayerObservations(const ViewpointRecords& direc
     return out;
 }
 
+// A record as the layer clustering sees it, found along the outgoing ray `ray`.
+ClusterSample clusterSampleOf(const OutgoingRecord& r, std::uint64_t ray) { return {r.distance, r.object, ray, r.order}; }
+
 struct LayerSample {
     ClusterSample sample;
     glm::vec3 position;
@@ -234,7 +237,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         stats.environmentQueries += recs.environmentQueries;
         for (const OutgoingRecord& r : recs.records) {
             if ((r.ray / kPathTerms) % stride) continue;
-            samples.push_back({{r.distance, r.object, (static_cast<std::uint64_t>(v) << 32) | r.ray, r.order}, r.position, recs.rays[r.ray]});
+            samples.push_back({clusterSampleOf(r, (static_cast<std::uint64_t>(v) << 32) | r.ray), r.position, recs.rays[r.ray]});
         }
         report("records", v + 1, views);
     }
@@ -257,7 +260,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         for (const Camera& c : cubeFaceCameras(system.center())) {
             originFaces.emplace_back(c, compileDirectRecords(system, shading, c, size, size, settings.records));
             stats.environmentQueries += originFaces.back().second.environmentQueries;
-            for (const OutgoingRecord& r : originFaces.back().second.records) seen.push_back({r.distance, r.object, r.ray, r.order});
+            for (const OutgoingRecord& r : originFaces.back().second.records) seen.push_back(clusterSampleOf(r, r.ray));
         }
         assignObjectsOnlyDirectImagesSee(partition, seen);
     }
