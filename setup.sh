@@ -60,6 +60,28 @@ else
   echo "setup: all ${#PACKAGES[@]} packages present"
 fi
 
+# Vulkan ray tracing (VK_KHR_acceleration_structure, VK_KHR_ray_tracing_pipeline) on lavapipe needs
+# Mesa 25, which Debian 12 has in bookworm-backports (Mesa 22 in bookworm exposes neither). The
+# backports suite gets a sources entry of its own on the mirror the machine already uses; apt takes
+# from it only what is asked for with -t.
+BACKPORTS_SOURCES=/etc/apt/sources.list.d/hybridlab-bookworm-backports.sources
+mesa_version=$(dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || true)
+if ! dpkg --compare-versions "${mesa_version:-0}" ge 25; then
+  SUDO=()
+  if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
+  if [ ! -f "$BACKPORTS_SOURCES" ]; then
+    mirror=$(grep -hoE 'https?://[^ ]+/debian/?' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list \
+               2>/dev/null | grep -v security | head -1)
+    printf 'Types: deb\nURIs: %s\nSuites: bookworm-backports\nComponents: main\nSigned-By: %s\n' \
+      "${mirror:-http://deb.debian.org/debian}" /usr/share/keyrings/debian-archive-keyring.gpg |
+      "${SUDO[@]}" tee "$BACKPORTS_SOURCES" >/dev/null
+  fi
+  echo "setup: installing Mesa 25 (Vulkan ray tracing on lavapipe) from bookworm-backports"
+  export DEBIAN_FRONTEND=noninteractive
+  "${SUDO[@]}" apt-get update -q
+  "${SUDO[@]}" apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+fi
+
 # The browser test's npm packages, as locked in tests/browser/package-lock.json; npm ci deletes and
 # reinstalls them, so only when the lock file is newer than what is installed.
 if [ ! tests/browser/node_modules/.package-lock.json -nt tests/browser/package-lock.json ]; then
@@ -67,5 +89,8 @@ if [ ! tests/browser/node_modules/.package-lock.json -nt tests/browser/package-l
 fi
 
 BUILD_DIR=${BUILD_DIR:-build}
-cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+# ccache, where installed, makes rebuilds in a second checkout (a git worktree) cheap; not required.
+LAUNCHER=()
+if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release "${LAUNCHER[@]}"
 cmake --build "$BUILD_DIR" -j "$(nproc)"
