@@ -1,4 +1,4 @@
-"""The report's "where methods fail" section (issue 12): along every camera path, how each
+"""The report's "where methods fail" section: along every camera path, how each
 technique's quality and frame time behave frame by frame, and where they break.
 
 Per scene, path and resolution one figure, a row per technique and a series per setting: frame
@@ -7,7 +7,7 @@ temporal error. A summary table per (scene, technique, setting): the worst-frame
 frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst FLIP, the
 mean and worst temporal error and the frame-time spike (the largest frame time over the median),
 beside the same setting's median SSIM and frame time along the baseline scene's path
-(sponza-spheres: issue 12's "clearly worse than the same method's median on sponza-spheres").
+(sponza-spheres: a failure is "clearly worse than the same method's median on sponza-spheres").
 Reads only the records of results.json."""
 import collections
 import html

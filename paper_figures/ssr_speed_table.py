@@ -1,4 +1,4 @@
-"""Issue 7's speed against accuracy from a result set of experiments/configs/ssr.toml.
+"""SSR's speed against accuracy from a result set of experiments/configs/ssr.toml.
 
     /usr/bin/python3 paper_figures/ssr_speed_table.py RESULT_DIR [--out FILE.md]
 

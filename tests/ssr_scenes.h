@@ -1,5 +1,5 @@
 #pragma once
-// Scenes for the SSR tests (issue 7's "Must show"): a planar mirror floor reflecting objects that
+// Scenes for the SSR tests: a planar mirror floor reflecting objects that
 // the camera sees, and a mirror wall reflecting an object behind the camera. Matte objects without
 // specular highlights, so that the colour SSR reads from the lit image is the colour the reflected
 // ray sees; one directional light, ambient light so that nothing is black, a blue sky.

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/scene/scene_catalog.h"
 #include "tests/cli_runner.h"
 #include "tests/gltf_builder.h"
 #include "tests/test_support.h"
@@ -113,13 +114,21 @@ TEST(CliBadInput, BadSceneFiles) {
 TEST(CliBadInput, AssetPaths) {
     const fs::path file = badFixture("asset-model.toml");
     TempDir assets;  // set, but without the model
+    // A scene beside an assets/ folder reads its models from there (as scenes/*.toml do).
+    TempDir beside;
+    fs::create_directories(beside / "assets");
+    fs::copy_file(file, beside / "asset-model.toml");
     auto r = runHybridlabAll({{{"scene-info", file.string()}, kNoAssets},
-                              {{"scene-info", file.string()}, {{"HYBRIDLAB_ASSETS", assets.path().string()}}}});
-    expectBadInput(r[0], {file.string() + ":8:9: objects[0].model: 'assets/no-such-folder/statue.glb' is an asset, but "
-                                          "HYBRIDLAB_ASSETS is not set"});
+                              {{"scene-info", file.string()}, {{"HYBRIDLAB_ASSETS", assets.path().string()}}},
+                              {{"scene-info", (beside / "asset-model.toml").string()}, kNoAssets}});
+    expectBadInput(r[0], {file.string() + ":8:9: objects[0].model: 'assets/no-such-folder/statue.glb' not found (looked for " +
+                              (scenesDirectory() / "assets" / "no-such-folder" / "statue.glb").string() + ")",
+                          "the test-scene models are in the repository's scenes/assets"});
     expectBadInput(r[1], {file.string() + ":8:9: objects[0].model: 'assets/no-such-folder/statue.glb' not found (looked for " +
                               (assets.path() / "no-such-folder" / "statue.glb").string() + ")",
                           "HYBRIDLAB_ASSETS=" + assets.path().string() + " does not hold it"});
+    expectBadInput(r[2], {"objects[0].model: 'assets/no-such-folder/statue.glb' not found (looked for " +
+                          (beside / "assets" / "no-such-folder" / "statue.glb").string() + ")"});
 }
 
 // A scene laid out like fixtures/minimal.toml whose one object is the model `model` (line 8,

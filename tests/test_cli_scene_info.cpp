@@ -50,7 +50,8 @@ TEST(CliSceneInfo, SummaryOfANamedSceneAndOfAFile) {
 }
 
 TEST(CliScenes, ListsEverySceneAndExplainsMissingAssets) {
-    CliResult r = runHybridlab({"scenes"}, {{"HYBRIDLAB_ASSETS", std::nullopt}});
+    test::TempDir empty;  // an assets folder without the models
+    CliResult r = runHybridlab({"scenes"}, {{"HYBRIDLAB_ASSETS", empty.path().string()}});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_EQ(r.err, "");
     std::string whitted = lineStartingWith(r.out, "whitted-classic ");
@@ -60,14 +61,13 @@ TEST(CliScenes, ListsEverySceneAndExplainsMissingAssets) {
     for (const char* scene : {"sponza-spheres ", "sponza-armadillo ", "teapot-lens "}) {
         std::string line = lineStartingWith(r.out, scene);
         EXPECT_CONTAINS(line, "unavailable: ");
-        EXPECT_CONTAINS(line, "HYBRIDLAB_ASSETS is not set");
+        EXPECT_CONTAINS(line, "HYBRIDLAB_ASSETS=" + empty.path().string() + " does not hold it");
     }
 }
 
-TEST(CliScenes, PaperScenesWithAssets) {
-    auto assets = test::assetsFromEnvironment();
-    if (!assets) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: the paper scenes need the test-scene assets";
-    CliResult r = runHybridlab({"scenes"});
+// The models come with the repository (scenes/assets): no environment needed.
+TEST(CliScenes, PaperScenesWithTheRepositorysAssets) {
+    CliResult r = runHybridlab({"scenes"}, {{"HYBRIDLAB_ASSETS", std::nullopt}});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     // Columns: objects, vertices, triangles, lights, reflective, refractive.
     std::istringstream row(lineStartingWith(r.out, "sponza-spheres "));

@@ -42,7 +42,6 @@ std::size_t objectIndex(const Scene& s, const std::string& name) {
 }
 
 TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
-    REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     ASSERT_EQ(systems.size(), 2u) << "the teapot and the cup are two lens systems";
@@ -105,7 +104,6 @@ TEST(EmBake, TeapotLayersAreCupColumnsWallsAndPreventionFillsTexels) {
 // from the origin, which would see the top too: here they come from the viewpoints, as a refractive
 // system's do.)
 TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
-    REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     ASSERT_EQ(systems[1].name, "cup");
@@ -154,7 +152,6 @@ TEST(EmBake, OriginImagesFillWhatNoViewpointSampleSaw) {
 // reflects wall where the sky is. And every object the direct images see has a layer, although the
 // two viewpoint samples' lens images meet only some of the walls.
 TEST(EmBake, DirectImagesSayWhereALayerIsEmptyAndGiveWhatTheySeeALayer) {
-    REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     ASSERT_EQ(systems[1].name, "cup");
@@ -210,7 +207,6 @@ bool rayMeetsBox(glm::vec3 origin, glm::vec3 direction, Aabb box, float margin) 
 // ray meets the shell, so a nearby object (the teapot, a column) lands in directions where the cup
 // never sees it. From the EM origin a direct ray's direction is the texel's own.
 TEST(EmBake, ReflectiveSystemsTakeDirectImagesFromTheOrigin) {
-    REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     ASSERT_EQ(systems[0].name, "teapot");
@@ -281,7 +277,6 @@ TEST(EmBake, ReflectiveSystemsTakeDirectImagesFromTheOrigin) {
 }
 
 TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
-    REQUIRE_ASSETS();
     Scene scene = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     auto systems = findLensSystems(scene);
     EmBakeSettings settings = smallBake();
@@ -326,7 +321,6 @@ namespace hybridlab {
 namespace {
 
 TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
-    REQUIRE_ASSETS();
     test::TempDir dir;
     const std::string cache = (dir / "cache").string();
     const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache, "--quiet",

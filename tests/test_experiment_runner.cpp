@@ -329,8 +329,7 @@ TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
     const fs::path configs = test::sourceDir() / "experiments" / "configs";
     const ExperimentConfig quick = loadExperimentConfig(configs / "quick.toml");
     EXPECT_GT(planRuns(quick).size(), 10u);
-    if (!test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: the configs with paper scenes not checked";
-    // stability.toml (issue 12): every registered technique at its defaults and at least two other
+    // stability.toml: every registered technique at its defaults and at least two other
     // settings, along a camera path of every scene (the failure scenes and sponza-spheres, the
     // baseline), all at one size so that the baseline compares (320x180: the 45-minute budget, see
     // the file's header), each path from its first frame to its last.

@@ -1,8 +1,9 @@
-// The failure-case scenes of issue 12 (scenes/*.toml): each drives one method into a weak point its
+// The failure-case scenes (scenes/*.toml): each drives one method into a weak point its
 // paper names. They are procedural (built-in primitives only, no assets), small, and each has the
 // camera path that walks into its failure and out again; the middle frame of the path (the
 // failure) renders with the reference.
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct FailureScene {
     std::string name, path;
     Method method;
 };
+
+// How GoogleTest prints the parameter (in test names and messages): the scene and its path.
+void PrintTo(const FailureScene& s, std::ostream* os) { *os << s.name << " along " << s.path; }
 
 const std::vector<FailureScene>& failureScenes() {
     static const std::vector<FailureScene> scenes = {
@@ -103,7 +107,7 @@ TEST_P(FailureScenes, FailureFrameRendersWithTheReference) {
     EXPECT_GT(hi - lo, 0.05f);
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue12, FailureScenes, testing::ValuesIn(failureScenes()), testName);
+INSTANTIATE_TEST_SUITE_P(FailureCases, FailureScenes, testing::ValuesIn(failureScenes()), testName);
 
 }  // namespace
 }  // namespace hybridlab

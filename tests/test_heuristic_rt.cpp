@@ -1,5 +1,5 @@
 // `heuristic_rt` (Walewski 2019): with an unlimited budget it is the reference up to rasterization
-// (DESIGN.md's invariant: SSIM >= 0.99 against `whitted`); with nothing selected it is the P-buffer,
+// (DESIGN.md "Invariants that tests hold": SSIM >= 0.99 against `whitted`); with nothing selected it is the P-buffer,
 // i.e. the `raster` image; "no heuristic" selects what an unlimited budget does; the selected cost
 // never exceeds the budget; per-effect selection at an unlimited budget is per-object selection;
 // and the frame-time target's controller settles on a target.
@@ -37,7 +37,6 @@ class HeuristicAtUnlimitedBudget : public ::testing::TestWithParam<const char*> 
 
 TEST_P(HeuristicAtUnlimitedBudget, MatchesWhitted) {
     const std::string name = GetParam();
-    if (name.rfind("sponza", 0) == 0 && !test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set";
     const Scene textured = loadSceneFile(findSceneFile(name));
     const Scene scene = test::withoutTextures(textured);
     RASTERIZER_OR_SKIP(probe, scene);

@@ -1,7 +1,7 @@
 // The paper scenes (scenes/sponza-*.toml, teapot-lens.toml, de Macedo & Rodrigues' dynamic
 // bunnies-falling-N and teapots-deforming-N) with their assets: exact triangle counts of the
 // models and Walewski 2019 Table 4's reflective and refractive object counts.
-// They need HYBRIDLAB_ASSETS and are skipped without it (CI sets it).
+// Their models are in scenes/assets (HYBRIDLAB_ASSETS overrides the folder).
 //
 // Sponza: sponza.gltf holds 66,450 triangles, 6 of which have zero area (three distinct vertices
 // on one line: 1 in mesh 'relief', 4 in 'object3', 1 in 'doors'). The loader drops them with a
@@ -34,7 +34,6 @@ std::size_t objectIndex(const Scene& s, const std::string& name) {
 }
 
 TEST(PaperScenes, SponzaSpheresCounts) {
-    REQUIRE_ASSETS();
     Scene s = loadSceneFile(test::builtinSceneFile("sponza-spheres"), {.loadTextures = false});
     ASSERT_EQ(s.objects.size(), 1u + 3u + 23u);
     EXPECT_EQ(s.objectTriangleCount(objectIndex(s, "sponza")), kSponzaTriangles);
@@ -82,7 +81,6 @@ TEST(PaperScenes, SponzaSpheresCounts) {
 }
 
 TEST(PaperScenes, SponzaSpheresDecodesSponzaTextures) {
-    REQUIRE_ASSETS();
     Scene s = loadSceneFile(test::builtinSceneFile("sponza-spheres"));
     const SceneObject& sponza = s.objects[objectIndex(s, "sponza")];
     std::size_t textured = 0;
@@ -109,7 +107,6 @@ TEST(PaperScenes, SponzaSpheresDecodesSponzaTextures) {
 }
 
 TEST(PaperScenes, TeapotLensCounts) {
-    REQUIRE_ASSETS();
     Scene s = loadSceneFile(test::builtinSceneFile("teapot-lens"), {.loadTextures = false});
     ASSERT_EQ(s.objects.size(), 14u);  // teapot, cup, 8 columns, 4 walls: no floor, as the paper's scene
     const std::size_t teapot = objectIndex(s, "teapot");
@@ -137,7 +134,6 @@ TEST(PaperScenes, TeapotLensCounts) {
 // steps of 5, one file per N differing only in the copy count) around a static mirror sphere on a
 // static floor, with the orbit path the tables are measured along.
 TEST(PaperScenes, DynamicScenesCounts) {
-    REQUIRE_ASSETS();
     for (int n = 5; n <= 30; n += 5) {
         for (const auto& [family, model, triangles] : {std::tuple{"bunnies-falling-", "bunny", kBunnyTriangles},
                                                        std::tuple{"teapots-deforming-", "teapot", kTeapotTriangles}}) {
@@ -161,7 +157,6 @@ TEST(PaperScenes, DynamicScenesCounts) {
 }
 
 TEST(PaperScenes, SponzaArmadilloCounts) {
-    REQUIRE_ASSETS();
     Scene s = loadSceneFile(test::builtinSceneFile("sponza-armadillo"), {.loadTextures = false});
     ASSERT_EQ(s.objects.size(), 3u);
     EXPECT_EQ(s.objectTriangleCount(objectIndex(s, "armadillo")), kArmadilloTriangles);
@@ -181,7 +176,6 @@ TEST(PaperScenes, SponzaArmadilloCounts) {
 }
 
 TEST(PaperScenes, DiningRoomCounts) {
-    REQUIRE_ASSETS();
     Scene s = loadSceneFile(test::builtinSceneFile("dining-room"), {.loadTextures = false});
     ASSERT_EQ(s.objects.size(), 2u);
     EXPECT_EQ(s.objectTriangleCount(objectIndex(s, "room")), 269538u);  // the asset README's count

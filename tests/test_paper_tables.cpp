@@ -1,7 +1,7 @@
 // The paper-table scripts of paper_figures/ on small result sets: Sabino 2012 Table 3
 // (sabino_table3.py) must print each scene's size and the medians the records hold, and the gain
 // as their ratio; de Macedo & Rodrigues Tables I-II (macedo_tables.py) a line per N with the
-// dynamic triangles the ray scene updated, and the bvh_update stage's growth with them; issue 7's
+// dynamic triangles the ray scene updated, and the bvh_update stage's growth with them; the
 // SSR speed table (ssr_speed_table.py) the ratios to whitted and the refractive trees' bound;
 // Hakura & Snyder's Figure 8 (hakura_tables.py) the lens metrics at the views between viewpoint
 // samples and their means over the path, and its EM resolution table.
@@ -143,7 +143,7 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
     EXPECT_NE(text.find("ms per 1000 dynamic triangles"), std::string::npos) << text;
 }
 
-// Issue 7's speed table (ssr_speed_table.py): per ssr_fallback variant, whitted's and its frame
+// The SSR speed table (ssr_speed_table.py): per ssr_fallback variant, whitted's and its frame
 // times with their ratio, SSIM, hit rate and fallback rays as the records hold them; per glass-trees
 // run, the largest speed-up whitted / (raster + ssr + ray_trace).
 TEST(PaperTables, SsrSpeedTableHoldsTheRatiosAndTheBound) {
@@ -192,7 +192,6 @@ params = { fallback = "none", recursion = "single" }
 }
 
 TEST(PaperTables, HakuraFigure8HoldsTheViewsBetweenSamplesAndThePathMeans) {
-    REQUIRE_ASSETS();
     test::TempDir dir;
     const std::string bake = "viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1, em_size = 8";
     const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim", "flip", "temporal"]

@@ -58,7 +58,7 @@ std::string readText(const fs::path& path) {
     return ss.str();
 }
 
-// Display sRGB values in [0, 1], as the metrics see them (DESIGN.md "Output").
+// Display sRGB values in [0, 1], as the metrics see them (DESIGN.md "The shading model", output).
 std::vector<glm::vec3> displayValues(const Image& linear) {
     std::vector<glm::vec3> out(linear.pixelCount());
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec3(linearToDisplay(linear.data()[i]));

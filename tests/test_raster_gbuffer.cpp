@@ -82,7 +82,6 @@ class GBufferAgreesWithPrimaryRays : public ::testing::TestWithParam<const char*
 
 TEST_P(GBufferAgreesWithPrimaryRays, OnTheScene) {
     const std::string name = GetParam();
-    if (name.rfind("sponza", 0) == 0 && !test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set";
     const Scene scene = loadSceneFile(findSceneFile(name));
     RASTERIZER_OR_SKIP(raster, scene);
     RasterRequest request;
@@ -198,7 +197,6 @@ look_at = [0.0, 0.8, 0.0]
 // (Listing 6); counting object ids in the read-back target gives the same numbers.
 TEST_P(VisiblePixelCounts, FromTheIdTargetEqualTheOcclusionQueries) {
     const std::string name = GetParam();
-    if (name.rfind("sponza", 0) == 0 && !test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set";
     const Scene scene = loadSceneFile(findSceneFile(name));
     RASTERIZER_OR_SKIP(raster, scene);
     RasterRequest request;

@@ -163,8 +163,7 @@ TEST(RasterLighting, GlslLocalTermEqualsTheCppShadingOnEveryTexel) {
         RASTERIZER_OR_SKIP(unused, probe);
     }
     expectAgreement(everyLightAndACubeSky(), "every light type + cube sky", false);
-    std::vector<std::string> scenes = {"whitted-classic", "cornell-mirror-glass"};
-    if (test::assetsFromEnvironment()) scenes.push_back("sponza-spheres");
+    const std::vector<std::string> scenes = {"whitted-classic", "cornell-mirror-glass", "sponza-spheres"};
     for (const auto& name : scenes) expectAgreement(loadSceneFile(findSceneFile(name)), name, false);
 }
 

@@ -50,7 +50,6 @@ class RasterAgainstWhitted : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RasterAgainstWhitted, WithoutReflectionOrRefractionTheyAgree) {
     const std::string name = GetParam();
-    if (name.rfind("sponza", 0) == 0 && !test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set";
     const Scene texturedScene = matteScene(name);
     const Scene scene = test::withoutTextures(texturedScene);
     RASTERIZER_OR_SKIP(probe, scene);

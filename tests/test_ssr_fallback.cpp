@@ -41,7 +41,6 @@ class SsrOffAgainstWhitted : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SsrOffAgainstWhitted, EverythingFallsBackAndMatchesTheReference) {
     const std::string name = GetParam();
-    if (name.rfind("sponza", 0) == 0 && !test::assetsFromEnvironment()) GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set";
     const Scene scene = loadSceneFile(findSceneFile(name));
     RASTERIZER_OR_SKIP(probe, scene);
     constexpr int kWidth = 640, kHeight = 360;

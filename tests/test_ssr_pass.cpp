@@ -4,6 +4,8 @@
 // marked; non-reflective texels are left alone; its parameters do what they say.
 #include <cstdio>
 #include <limits>
+#include <ostream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +17,14 @@
 #include "tests/ssr_scenes.h"
 
 namespace hybridlab {
+namespace {
+std::string traversalName(SsrSettings::Traversal t);
+}  // namespace
+
+// How GoogleTest prints the parameter (in test names and messages); found by argument-dependent
+// lookup in the parameter type's namespace. Without it the parameter prints as its bytes.
+void PrintTo(SsrSettings::Traversal t, std::ostream* os) { *os << traversalName(t); }
+
 namespace {
 
 constexpr int kWidth = 320, kHeight = 180;
@@ -224,8 +234,10 @@ TEST(SsrPass, ParametersLimitAndCoarsenTheMarch) {
     EXPECT_GT(fadedHits, fineHits / 2);
 }
 
+std::string traversalName(SsrSettings::Traversal t) { return t == SsrSettings::Traversal::HiZ ? "hiz" : "linear"; }
+
 INSTANTIATE_TEST_SUITE_P(SsrPass, SsrTraversal, ::testing::Values(SsrSettings::Traversal::Linear, SsrSettings::Traversal::HiZ),
-                         [](const auto& info) { return info.param == SsrSettings::Traversal::HiZ ? std::string("hiz") : std::string("linear"); });
+                         [](const auto& info) { return traversalName(info.param); });
 
 TEST(SsrPass, HiZFindsTheLinearMarchHitsInFewerSteps) {
     const Scene scene = test::mirrorFloorScene();

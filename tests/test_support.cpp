@@ -6,7 +6,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "common/scene/assets.h"
 #include "common/scene/scene_catalog.h"
 
 namespace hybridlab::test {
@@ -45,8 +44,6 @@ std::string readTextFile(const fs::path& path) {
 }
 
 fs::path builtinSceneFile(const std::string& name) { return scenesDirectory() / (name + ".toml"); }
-
-std::optional<fs::path> assetsFromEnvironment() { return assetsRoot(); }
 
 namespace {
 

@@ -40,8 +40,6 @@ std::filesystem::path fixturesDir();
 std::filesystem::path sourceDir();
 // scenes/<name>.toml in the source tree.
 std::filesystem::path builtinSceneFile(const std::string& name);
-// The test-scene assets (HYBRIDLAB_ASSETS), if set and non-empty.
-std::optional<std::filesystem::path> assetsFromEnvironment();
 
 // The name of a test instantiated per scene (GoogleTest names allow no '-'): the scene name with '_'.
 struct SceneTestName {
@@ -66,10 +64,3 @@ struct SceneTestName {
 #define EXPECT_VEC_NEAR(actual, expected, tolerance) EXPECT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
 #define ASSERT_VEC_NEAR(actual, expected, tolerance) ASSERT_TRUE(::hybridlab::test::vecNear((actual), (expected), (tolerance)))
 #define EXPECT_CONTAINS(text, fragment) EXPECT_TRUE(::hybridlab::test::contains((text), (fragment)))
-
-// Skips a test that needs the paper-scene assets when HYBRIDLAB_ASSETS is not set.
-#define REQUIRE_ASSETS()                                                                                      \
-    if (!::hybridlab::test::assetsFromEnvironment()) {                                                        \
-        GTEST_SKIP() << "HYBRIDLAB_ASSETS is not set: set it to the test-scene assets folder (CI sets it to " \
-                        "../shared/assets) to run the paper-scene tests";                                     \
-    }

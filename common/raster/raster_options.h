@@ -16,7 +16,7 @@ struct ShadowSettings {
 struct LightingOptions {
     bool shadows = false;             // shadow-map visibility (else every light is unshadowed)
     bool environmentMapping = false;  // reflective and refractive pixels compose with the sky (the `raster` technique)
-    bool walewskiBlend = false;       // composition rule BlendRule::Walewski2019 instead of DESIGN.md's
+    bool walewskiBlend = false;       // composition rule BlendRule::Walewski2019 instead of the shading model's
 };
 
 }  // namespace hybridlab

@@ -34,7 +34,7 @@ struct TracedEffects {
     bool refraction = true;
 };
 
-// The terms DESIGN.md's composition combines at a surface: o_m * M + (1 - o_m) * (o_r * R + (1 - o_r) * C).
+// The terms the composition (DESIGN.md "The shading model") combines at a surface: o_m * M + (1 - o_m) * (o_r * R + (1 - o_r) * C).
 struct ShadingParts {
     glm::vec3 local{0.0f};      // C: local colour
     glm::vec3 reflected{0.0f};  // M

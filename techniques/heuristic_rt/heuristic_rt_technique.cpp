@@ -187,7 +187,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     });
     clock.lap("rayt");
 
-    // blend: Listing 10 (eqs. 4-6), or DESIGN.md's rule, over the P-buffer (moved: the next frame's
+    // blend: Listing 10 (eqs. 4-6), or the shading model's composition, over the P-buffer (moved: the next frame's
     // read-back reallocates it).
     result.image = std::move(raster_.lighting);
     for (std::size_t i = 0; i < pixels; ++i) {

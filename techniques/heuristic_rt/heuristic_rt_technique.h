@@ -8,7 +8,7 @@
 //         reflection and refraction recursive to max_depth with the importance cut-off, the sky on
 //         a miss (Listings 8a-8d);
 //   blend Listing 10: unmasked pixels keep the P-buffer; masked ones compose the traced terms with
-//         DESIGN.md's rule (default, so that an unlimited budget reproduces the reference) or
+//         the shading model's composition (default, so that an unlimited budget reproduces the reference) or
 //         eqs. (5)-(6) (`blend = "walewski2019"`).
 // `heuristic = false` selects every visible object (the paper's "no heuristic" run). Beyond the
 // paper (§5-6): `target_ms` sets T each frame from a learned cost-to-time rate, and `per_effect`

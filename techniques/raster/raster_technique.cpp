@@ -14,7 +14,8 @@ TechniqueInfo RasterTechnique::info() {
                 ParamSpec::boolean("redraw_shadow_maps", false,
                                    "redraw shadow maps every frame (false: only when something moved or the settings changed)"),
                 ParamSpec::choice("blend", "design", {"design", "walewski2019"},
-                                  "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+                                  "composition rule: design = o_m*M + (1-o_m)*(o_r*R + (1-o_r)*C) (o_m reflectivity or Fresnel, "
+                                  "o_r 1-opacity), or walewski2019 = that averaged with the other order (Walewski 2019 eqs. (5)-(6))"),
             },
             [](const ParameterSet& p) { return std::make_unique<RasterTechnique>(p); }};
     const std::vector<ParamSpec> shadowMaps = shadowMapParameterSpecs();

@@ -4,7 +4,7 @@
 // shadow maps, or ray-traced shadow rays); SSR as a compute pass on the G-buffer (ssr_pass.h);
 // Embree rays for the texels SSR failed on, from the G-buffer position, recursive like the
 // reference, and for every refractive texel; the two reflection images merged and their seam
-// blurred (seam_blur.h); the composition of DESIGN.md's shading model.
+// blurred (seam_blur.h); the composition of the shading model (DESIGN.md).
 #include <memory>
 #include <vector>
 

@@ -22,7 +22,7 @@ namespace hybridlab {
 struct SsrSettings {
     enum class Traversal { Linear, HiZ };
     // The min-depth pyramid (FidelityFX SSSR) or the DDA pixel by pixel: the same hits, found
-    // faster by the pyramid (ssr.toml; the notes of issue 7).
+    // faster by the pyramid (measured by experiments/configs/ssr.toml).
     Traversal traversal = Traversal::HiZ;
     int maxSteps = 512;          // steps per ray (DDA steps, refinement steps, or pyramid cells visited)
     int stride = 1;              // linear: pixels per coarse step; a coarse hit is refined with unit steps

@@ -16,7 +16,8 @@ std::vector<ParamSpec> WhittedTechnique::recursionParameterSpecs(double defaultI
         ParamSpec::real("importance_cutoff", defaultImportanceCutoff, 0.0, 1.0,
                         "do not trace secondary rays whose weight in the pixel is below this (0: full ray tree)"),
         ParamSpec::choice("blend", "design", {"design", "walewski2019"},
-                          "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+                          "composition rule: design = o_m*M + (1-o_m)*(o_r*R + (1-o_r)*C) (o_m reflectivity or Fresnel, "
+                          "o_r 1-opacity), or walewski2019 = that averaged with the other order (Walewski 2019 eqs. (5)-(6))"),
     };
 }
 

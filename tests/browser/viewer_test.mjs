@@ -1,7 +1,7 @@
 // The viewer in a real browser: the runner makes a small result set (whitted-classic at 64x36,
 // three frames of the orbit path, two techniques), `hybridlab report` writes viewer.html, and
 // headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks
-// what issue 9 asks: every pane's image loads, a wheel event zooms all panes alike, flip changes the
+// what the viewer promises: every pane's image loads, a wheel event zooms all panes alike, flip changes the
 // image and back, the FLIP map layer shows the map's file, the frame slider moves every pane to the
 // new frame, the inspector shows the same pixel in every pane; and no console error on the way.
 //
@@ -30,8 +30,10 @@ try {
   ({ chromium } = await import('playwright-core'));
 } catch {
   const here = path.dirname(fileURLToPath(import.meta.url));
-  console.error(`playwright-core is missing: ./setup.sh runs npm ci in ${here}`);
-  process.exit(1);
+  // A skip, as GoogleTest prints one (tests/skip_summary.py reads it): the npm packages come only
+  // with `./setup.sh --tests`, whose npm step may fail without stopping the build.
+  console.log(`Skipped\nplaywright-core is missing (npm ci in ${here} failed or did not run: ./setup.sh --tests)\n[  SKIPPED ] ViewerInBrowser`);
+  process.exit(77);
 }
 
 const CONFIG = `
