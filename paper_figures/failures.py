@@ -95,7 +95,7 @@ def baseline_summaries(seqs, baseline_scene):
 
 def summary_rows(seqs, baseline, baseline_scene):
     """One row per sequence outside the baseline scene: (key, its summary, the baseline's or None)."""
-    return [(k, sequence_summary(rows), baseline.get((k[1], k[4]))) for k, rows in sorted(seqs.items()) if k[0] != baseline_scene]
+    return [(k, sequence_summary(rows), baseline.get((k[1], k[4]))) for k, rows in sorted(seqs.items(), key=lambda item: rs.natural_key(item[0])) if k[0] != baseline_scene]
 
 
 def along_path_by_technique(seqs, out_dir, name, title, baseline):
@@ -108,7 +108,7 @@ def along_path_by_technique(seqs, out_dir, name, title, baseline):
     panels = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP mean", False),
               (temporal, "temporal error", False))
     for row, technique in zip(axes, techniques):
-        variants = sorted(k for k in seqs if k[3] == technique)
+        variants = sorted((k for k in seqs if k[3] == technique), key=rs.natural_key)
         for i, k in enumerate(variants):
             rows, colour = seqs[k], cmap(i % cmap.N)
             for ax, (value, _, higher_is_better) in zip(row, panels):

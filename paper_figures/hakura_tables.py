@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """Hakura & Snyder 2001 tables from a result set of experiments/configs/hakura2001.toml.
 
     /usr/bin/python3 paper_figures/hakura_tables.py RESULT_DIR [--out FILE.md]

@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """de Macedo & Rodrigues 2019 Tables I and II from a result set of experiments/configs/macedo2019.toml.
 
     /usr/bin/python3 paper_figures/macedo_tables.py RESULT_DIR [--out FILE.md]

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The report of a hybridlab result set: index.html (works from the file system), report.md and
 the figures as SVG and PDF.
 
@@ -39,7 +39,7 @@ def regions_of(records):
 
 def colours(variants):
     cmap = plt.get_cmap("tab10" if len(variants) <= 10 else "tab20")
-    return {v: cmap(i % cmap.N) for i, v in enumerate(sorted(variants))}
+    return {v: cmap(i % cmap.N) for i, v in enumerate(sorted(variants, key=rs.natural_key))}
 
 
 def speed_accuracy(records, out_dir, key, title):
@@ -53,7 +53,7 @@ def speed_accuracy(records, out_dir, key, title):
               for j, name in enumerate(("ssim", "flip"))]
     for ax, region, suffix, name, better_high in panels:
         points = []
-        for v in sorted(col):
+        for v in sorted(col, key=rs.natural_key):
             rows = [r for r in records if rs.variant(r) == v and rs.metric(r, region, name) is not None]
             xs = [r["frame_ms"]["median"] for r in rows]
             ys = [rs.metric(r, region, name) for r in rows]
@@ -80,7 +80,7 @@ def stage_breakdown(records, out_dir, key, title):
     for r in records:
         by_variant[rs.variant(r)].append(r)
     stages = sorted({s for r in records for s in r["stages"]})
-    variants = sorted(by_variant)
+    variants = sorted(by_variant, key=rs.natural_key)
     fig, ax = plt.subplots(figsize=(max(6, 0.7 * len(variants) + 2), 4.5))
     bottom = [0.0] * len(variants)
     cmap = plt.get_cmap("tab20")
@@ -105,7 +105,7 @@ def along_path(records, out_dir, key, title):
     regions = regions_of(records) or [REGIONS[0]]
     fig, axes = plt.subplots(len(regions), 3, figsize=(15, 4 * len(regions)), squeeze=False)
     col = colours({rs.variant(r) for r in records})
-    for v in sorted(col):
+    for v in sorted(col, key=rs.natural_key):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         axes[0][0].plot([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
         axes[0][0].scatter([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], s=12, color=col[v]).set_urls(point_links(rows))
@@ -192,7 +192,7 @@ def markdown_summary(records):
         by = collections.defaultdict(list)
         for r in rows:
             by[rs.variant(r)].append(r)
-        for v, vs in sorted(by.items()):
+        for v, vs in sorted(by.items(), key=lambda item: rs.natural_key(item[0])):
             lines.append("| %s | %d | %.2f | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs), " | ".join(
                 rs.fmt(rs.mean_known(rs.metric(r, region, name) for r in vs), "%.4f", missing="") for region, name in metrics)))
         lines.append("| reference (whitted) | | %.2f | %s |" % (statistics.median(r["reference"]["frame_ms"] for r in rows),
@@ -255,6 +255,7 @@ def main():
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("report: %s" % os.path.join(a.out, "index.html"))
+    print("viewer: %s" % os.path.join(a.out, "viewer.html"))
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@ Every script in paper_figures/ reads only results.json / results.csv, never the 
 import argparse
 import json
 import os
+import re
 import sys
 
 
@@ -15,6 +16,15 @@ def load(result_dir):
 def variant(r):
     """A technique with its parameter set: the unit that gets one colour and one series."""
     return r["label"] + (" [" + r["parameters_text"] + "]" if r["parameters_text"] else "")
+
+
+def natural_key(value):
+    """A sort key that orders the numbers inside names by value, so that "budget=5000" comes before
+    "budget=20000" (plain string order puts it after); tuples of names are keyed element by element."""
+    if isinstance(value, tuple):
+        return tuple(natural_key(v) for v in value)
+    parts = re.split(r"(\d+(?:\.\d+)?)", str(value))
+    return [float(p) if i % 2 else p for i, p in enumerate(parts)]
 
 
 def view_name(r):

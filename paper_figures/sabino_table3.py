@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """Sabino et al. 2012 Table 3 from a result set of experiments/configs/sabino2012.toml.
 
     /usr/bin/python3 paper_figures/sabino_table3.py RESULT_DIR [--out FILE.md]

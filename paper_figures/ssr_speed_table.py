@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """SSR's speed against accuracy from a result set of experiments/configs/ssr.toml.
 
     /usr/bin/python3 paper_figures/ssr_speed_table.py RESULT_DIR [--out FILE.md]

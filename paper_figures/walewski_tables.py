@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """Walewski 2019 Tables 5 and 6 from a result set of experiments/configs/walewski2019.toml.
 
     /usr/bin/python3 paper_figures/walewski_tables.py RESULT_DIR [--out FILE.md]

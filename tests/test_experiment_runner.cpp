@@ -17,6 +17,7 @@
 #include "runner_checks.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
+#include "experiments/runner/results_store.h"
 #include "techniques/technique.h"
 #include "test_support.h"
 
@@ -163,6 +164,8 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     const fs::path report = dir.path() / "report";
     test::CliResult r = test::runHybridlab({"report", (dir.path() / "a").string(), "--out", report.string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
+    EXPECT_CONTAINS(r.out, "report: " + (report / "index.html").string() + "\n");
+    EXPECT_CONTAINS(r.out, "viewer: " + (report / "viewer.html").string() + "\n");
     const std::string page = test::readReportPage(report);
     EXPECT_GT(test::expectReportLinksResolve(report), 20u * 4);  // per run at least: thumbnail, image, exr, reference (+ maps)
     // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path (+ its "where methods fail" figure)
@@ -255,6 +258,40 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
     EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "b", cache)).referencesRendered, 0u);
     std::ofstream(dir.path() / "scene.toml", std::ios::app) << "\n# an edit\n";
     EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "c", cache)).referencesRendered, 1u);
+}
+
+// A scene given by a path relative to the config file resolves against the config's folder (not the
+// working folder), and the records call it by its own name; --resume on a result set whose config
+// has changed says what changed and how to go on.
+TEST(ExperimentRunner, ScenePathsResolveAgainstTheConfigAndResumeExplainsAChangedConfig) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "my-scenes");
+    fs::copy_file(test::builtinSceneFile("whitted-classic"), dir.path() / "my-scenes" / "copy.toml");  // [scene] name = "whitted-classic"
+    const std::string head = "[experiment]\nname = \"relative\"\nrepeats = 1\nwarmup_frames = 0\n[[scenes]]\nscene = \"my-scenes/copy.toml\"\n"
+                             "resolutions = [[24, 16]]\n[[techniques]]\nname = \"raster\"\n";
+    const ExperimentConfig config = loadExperimentConfig(writeConfig(dir, head, "relative.toml"));
+    EXPECT_EQ(config.scenes[0].file, dir.path() / "my-scenes" / "copy.toml");
+    const fs::path out = dir.path() / "out", cache = dir.path() / "cache";
+    ASSERT_TRUE(runExperiment(config, test::quietRunnerOptions(out, cache)).complete);
+    const json record = ResultsStore(out).loadRecords().at(0);
+    EXPECT_EQ(record.at("scene"), "whitted-classic");
+    EXPECT_NE(record.at("id").get<std::string>().find("-whitted-classic-"), std::string::npos) << record.at("id");
+
+    // The same experiment with a second technique: one run the folder does not hold.
+    const ExperimentConfig changed =
+        loadExperimentConfig(writeConfig(dir, head + "[[techniques]]\nname = \"whitted\"\n", "relative.toml"));
+    RunnerOptions resume = test::quietRunnerOptions(out, cache);
+    resume.resume = true;
+    try {
+        runExperiment(changed, resume);
+        ADD_FAILURE() << "--resume continued a result set of another config";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_CONTAINS(m, out.string() + ": holds experiment 'relative' made with another config (hash " + config.hash.substr(0, 12) +
+                               " there, " + changed.hash.substr(0, 12) + " in " + changed.file.string() + "; its runs: 1 then, 2 now)");
+        EXPECT_CONTAINS(m, "1 run(s) of the config are not recorded (00001-whitted-classic-camera-24x16-whitted-");
+        EXPECT_CONTAINS(m, "give this config another --out; to redo them with this config, remove the folder first");
+    }
 }
 
 TEST(ExperimentRunner, ConfigChoosesTheMetricsAndTheImagesKept) {
@@ -367,7 +404,7 @@ TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
     }
 }
 
-TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
+TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithoutDryRun) {
     TempDir dir;
     const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 18]]\n";
     const std::string technique = "[[techniques]]\nname = \"whitted\"\n";
@@ -402,8 +439,19 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWritten) {
     for (const auto& c : cases) {
         fs::path config = writeConfig(dir, c.text, c.name + ".toml");
         runs.push_back({{"run", config.string(), "--out", (dir.path() / ("out-" + c.name)).string(), "--quiet"}, {}});
+        runs.push_back({{"run", config.string(), "--out", (dir.path() / ("out-" + c.name)).string(), "--dry-run"}, {}});
     }
-    auto outcomes = test::runHybridlabAll(runs);
+    auto both = test::runHybridlabAll(runs);
+    std::vector<test::CliResult> outcomes;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        SCOPED_TRACE(cases[i].name);
+        // --dry-run checks the config as `run` does: the same message and exit status.
+        const test::CliResult& dry = both[2 * i + 1];
+        EXPECT_EQ(dry.exitStatus, 2) << dry.err;
+        EXPECT_EQ(dry.err, both[2 * i].err);
+        EXPECT_EQ(dry.out, "");
+        outcomes.push_back(both[2 * i]);
+    }
     for (std::size_t i = 0; i < cases.size(); ++i) {
         SCOPED_TRACE(cases[i].name);
         EXPECT_EQ(outcomes[i].exitStatus, 2) << outcomes[i].err;

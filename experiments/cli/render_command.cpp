@@ -2,6 +2,7 @@
 // its stage times and ray counts.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include <tbb/global_control.h>
@@ -14,6 +15,7 @@
 #include "common/scene/view.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/view_options.h"
+#include "experiments/runner/parameter_json.h"
 #include "techniques/stage_clock.h"
 #include "techniques/technique.h"
 
@@ -86,7 +88,7 @@ void addRenderCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("render", "Render one frame with one technique; writes a linear EXR and a display PNG");
     o->view.addTo(cmd);
     cmd->add_option("--technique", o->technique, "Technique name (see `hybridlab techniques`)")->capture_default_str();
-    cmd->add_option("--out", o->out, "Output image (.exr; a display .png is written beside it)")->required();
+    cmd->add_option("--out", o->out, "Output image, .exr or .png: both the linear EXR and the display PNG are written")->required();
     cmd->add_option("--param", o->params, "Technique parameter key=value (repeatable)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
     cmd->callback([o] { run(*o); });
@@ -94,7 +96,22 @@ void addRenderCommand(CLI::App& app) {
 
 void addTechniquesCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("techniques", "List the techniques with their parameters, defaults and descriptions");
-    cmd->callback([] {
+    auto json = std::make_shared<bool>(false);
+    cmd->add_flag("--json", *json, "Print a JSON array of {name, description, parameters: [{name, type, default, description}]} instead");
+    cmd->callback([json] {
+        if (*json) {
+            nlohmann::json out = nlohmann::json::array();
+            for (const auto& t : registeredTechniques()) {
+                nlohmann::json params = nlohmann::json::array();
+                for (const auto& p : t.parameters) {
+                    params.push_back({{"name", p.name}, {"type", p.typeDescription()}, {"default", parameterJson(p.defaultValue)},
+                                      {"description", p.description}});
+                }
+                out.push_back({{"name", t.name}, {"description", t.description}, {"parameters", params}});
+            }
+            std::printf("%s\n", out.dump(1).c_str());
+            return;
+        }
         for (const auto& t : registeredTechniques()) {
             std::printf("%s\n    %s\n", t.name.c_str(), t.description.c_str());
             for (const auto& p : t.parameters) {

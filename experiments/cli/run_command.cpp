@@ -1,4 +1,5 @@
 // `hybridlab run` and `hybridlab merge`: experiments (DESIGN.md "Experiments and results").
+#include <algorithm>
 #include <cstdio>
 
 #include "common/core/input_error.h"
@@ -18,6 +19,7 @@ struct RunOptions {
     bool resume = false;
     long maxRuns = -1;
     bool quiet = false;
+    bool dryRun = false;
 };
 
 std::pair<int, int> parseShard(const std::string& text) {
@@ -27,6 +29,33 @@ std::pair<int, int> parseShard(const std::string& text) {
         throw InputError("--shard " + text + ": expected i/n with 0 <= i < n, e.g. 0/3");
     }
     return {i, n};
+}
+
+// --dry-run: the config checked and its runs listed, with how many references are cached; nothing
+// written.
+void listRuns(const ExperimentConfig& config, const RunnerOptions& r) {
+    const ExperimentPlan plan = planExperiment(config, r);
+    std::printf("experiment %s (%s, config hash %s): %zu runs", config.name.c_str(), config.file.string().c_str(),
+                config.hash.substr(0, 12).c_str(), plan.runs.size());
+    if (r.shardCount > 1) std::printf(", %zu in shard %d/%d", plan.mine.size(), r.shardIndex, r.shardCount);
+    std::printf("; references: %zu, %zu of them cached in %s\n", plan.references, plan.referencesCached, r.cacheDir.string().c_str());
+    std::size_t sceneWidth = 5, viewWidth = 4, techniqueWidth = 9;
+    for (const auto& p : plan.mine) {
+        sceneWidth = std::max(sceneWidth, config.scenes[p.run->scene].label.size());
+        viewWidth = std::max(viewWidth, p.run->cameraPath.empty() ? 6 : p.run->cameraPath.size());
+        techniqueWidth = std::max(techniqueWidth, config.techniques[p.run->technique].label.size());
+    }
+    std::printf("%5s  %-*s  %-*s  %5s  %-9s  %-*s  %-9s  %s\n", "index", static_cast<int>(sceneWidth), "scene", static_cast<int>(viewWidth), "view",
+                "frame", "size", static_cast<int>(techniqueWidth), "technique", "reference", "parameters");
+    for (const auto& p : plan.mine) {
+        const RunSpec& run = *p.run;
+        const std::string frame = run.frame >= 0 ? std::to_string(run.frame) : "-";
+        const std::string size = std::to_string(run.width) + "x" + std::to_string(run.height);
+        std::printf("%5zu  %-*s  %-*s  %5s  %-9s  %-*s  %-9s  %s\n", run.index, static_cast<int>(sceneWidth), config.scenes[run.scene].label.c_str(),
+                    static_cast<int>(viewWidth), run.cameraPath.empty() ? "camera" : run.cameraPath.c_str(), frame.c_str(), size.c_str(),
+                    static_cast<int>(techniqueWidth), config.techniques[run.technique].label.c_str(), p.referenceCached ? "cached" : "to render",
+                    run.parametersText.empty() ? "(defaults)" : run.parametersText.c_str());
+    }
 }
 
 void run(const RunOptions& o) {
@@ -39,6 +68,7 @@ void run(const RunOptions& o) {
     r.resume = o.resume;
     r.maxRuns = o.maxRuns;
     r.quiet = o.quiet;
+    if (o.dryRun) return listRuns(config, r);
     const RunnerSummary s = runExperiment(config, r);
     std::printf("experiment %s (shard %d/%d): %zu runs, %zu rendered, %zu already done; references: %zu rendered, %zu from the cache (%s)\n",
                 config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
@@ -59,6 +89,9 @@ void addRunCommand(CLI::App& app) {
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
     cmd->add_flag("--quiet", o->quiet, "No progress output");
+    cmd->add_flag("--dry-run", o->dryRun,
+                  "Check the config and list the runs (index, scene, view, frame, size, technique, reference cached or not, "
+                  "parameters); render and write nothing");
     cmd->callback([o] { run(*o); });
 
     auto out = std::make_shared<std::string>();

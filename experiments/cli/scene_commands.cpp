@@ -1,6 +1,9 @@
 // `hybridlab scenes` and `hybridlab scene-info`: what a scene holds (Walewski 2019 Table 4's rows).
 #include <cstdio>
+#include <memory>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "common/core/input_error.h"
 #include "common/scene/scene_catalog.h"
@@ -16,6 +19,47 @@ void printSceneRow(const std::string& name, const SceneStats& s) {
                 s.reflectiveObjects, s.refractiveObjects);
 }
 
+nlohmann::json statsJson(const SceneStats& s) {
+    return {{"objects", s.objects}, {"vertices", s.vertices}, {"triangles", s.triangles}, {"lights", s.lights},
+            {"reflective", s.reflectiveObjects}, {"refractive", s.refractiveObjects}};
+}
+
+nlohmann::json vecJson(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+// `scene-info --json`: the same facts as the text, for scripts.
+nlohmann::json sceneInfoJson(const Scene& scene) {
+    const Aabb b = scene.bounds(0.0);
+    nlohmann::json j = {{"scene", scene.name},
+                        {"description", scene.description},
+                        {"file", scene.file.string()},
+                        {"stats", statsJson(scene.stats())},
+                        {"materials", scene.materials.size()},
+                        {"textures", scene.textures.size()},
+                        {"bounds", {{"min", vecJson(b.lo)}, {"max", vecJson(b.hi)}}},
+                        {"camera",
+                         {{"projection", scene.camera.projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
+                          {"position", vecJson(scene.camera.position)},
+                          {"forward", vecJson(scene.camera.forward())}}},
+                        {"camera_paths", nlohmann::json::array()},
+                        {"objects", nlohmann::json::array()},
+                        {"lights", nlohmann::json::array()}};
+    for (const auto& p : scene.cameraPaths) {
+        j["camera_paths"].push_back({{"name", p.name}, {"keys", p.times.size()}, {"seconds", p.duration()}, {"frames", p.frameCount()},
+                                     {"fps", p.framesPerSecond}});
+    }
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const auto& o = scene.objects[i];
+        j["objects"].push_back({{"name", o.name}, {"triangles", scene.objectTriangleCount(i)}, {"reflective", scene.objectIsReflective(i)},
+                                {"refractive", scene.objectIsRefractive(i)}, {"relevance", o.relevance}, {"cost", o.cost},
+                                {"animated", o.isAnimated()}, {"deforms", o.isDeforming()}, {"lens", static_cast<bool>(o.lens)}});
+    }
+    for (const auto& l : scene.lights) {
+        j["lights"].push_back({{"name", l.name}, {"type", lightTypeName(l.type)}, {"color", vecJson(l.color)}, {"intensity", l.intensity},
+                               {"casts_shadows", l.castsShadows}});
+    }
+    return j;
+}
+
 std::string vecString(glm::vec3 v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g)", v.x, v.y, v.z);
@@ -27,7 +71,25 @@ std::string vecString(glm::vec3 v) {
 void addScenesCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("scenes", "List the scenes in scenes/ with their object, vertex, triangle, light, "
                                              "reflective and refractive object counts");
-    cmd->callback([] {
+    auto json = std::make_shared<bool>(false);
+    cmd->add_flag("--json", *json, "Print a JSON array of {name, file, stats} (or {name, file, unavailable}) instead");
+    cmd->callback([json] {
+        if (*json) {
+            nlohmann::json out = nlohmann::json::array();
+            for (const auto& file : listSceneFiles()) {
+                nlohmann::json row = {{"name", file.stem().string()}, {"file", file.string()}};
+                try {
+                    const Scene scene = loadSceneFile(file, {.loadTextures = false});
+                    row["name"] = scene.name;
+                    row["stats"] = statsJson(scene.stats());
+                } catch (const InputError& e) {
+                    row["unavailable"] = e.what();
+                }
+                out.push_back(row);
+            }
+            std::printf("%s\n", out.dump(1).c_str());
+            return;
+        }
         std::printf("%-24s %8s %10s %10s %7s %11s %11s\n", "scene", "objects", "vertices", "triangles", "lights", "reflective",
                     "refractive");
         for (const auto& file : listSceneFiles()) {
@@ -45,8 +107,14 @@ void addSceneInfoCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("scene-info", "Print one scene's summary and bounds");
     auto* file = new std::string;  // lives as long as the app
     cmd->add_option("scene", *file, "Scene file, or the name of a built-in scene")->required();
-    cmd->callback([file] {
+    auto json = std::make_shared<bool>(false);
+    cmd->add_flag("--json", *json, "Print the summary as a JSON object instead");
+    cmd->callback([file, json] {
         Scene scene = loadSceneFile(findSceneFile(*file), {.loadTextures = false});
+        if (*json) {
+            std::printf("%s\n", sceneInfoJson(scene).dump(1).c_str());
+            return;
+        }
         SceneStats s = scene.stats();
         Aabb b = scene.bounds(0.0);
         std::printf("scene        %s\n", scene.name.c_str());

@@ -103,6 +103,14 @@ std::string safeName(const std::string& s) {
     return out;
 }
 
+// A scene path (not a scenes/ name) relative to the config file's folder, as paths in a scene file
+// are relative to the scene file's: the config means the same from any working folder.
+std::string sceneFileAsWritten(const std::string& written, const fs::path& configFile) {
+    const fs::path p(written);
+    const bool isPath = written.find('/') != std::string::npos || p.extension() == ".toml";
+    return isPath && p.is_relative() ? (configFile.parent_path() / p).string() : written;
+}
+
 }  // namespace
 
 ExperimentConfig loadExperimentConfig(const fs::path& file) {
@@ -136,7 +144,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
         SceneSpec s;
         s.name = t.requiredString("scene");
         try {
-            s.file = findSceneFile(s.name);
+            s.file = findSceneFile(sceneFileAsWritten(s.name, file));
         } catch (const InputError& e) {
             t.fail("scene", e.what());
         }
@@ -146,6 +154,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
         } catch (const InputError& e) {
             t.fail("scene", e.what());
         }
+        s.label = scene.name;
         const toml::node* res = t.has("resolutions") ? &t.node("resolutions") : nullptr;
         if (!res) t.fail("resolutions", "missing (expected a list of [width, height] pairs)");
         auto arr = res->as_array();
@@ -266,10 +275,10 @@ std::vector<RunSpec> planRuns(const ExperimentConfig& config) {
                             r.parametersText = text.str();
                             const std::string viewLabel = onPath ? view.cameraPath + "@" + std::to_string(f) : "camera";
                             const std::string res = std::to_string(w) + "x" + std::to_string(h);
-                            r.sequenceKey = scene.name + "|" + view.cameraPath + "|" + res + "|" + tech.label + "|" + r.parametersText;
+                            r.sequenceKey = scene.label + "|" + view.cameraPath + "|" + res + "|" + tech.label + "|" + r.parametersText;
                             char index[16];
                             std::snprintf(index, sizeof index, "%05zu", r.index);
-                            r.id = std::string(index) + "-" + safeName(fs::path(scene.name).stem().string()) + "-" + safeName(viewLabel) + "-" + res +
+                            r.id = std::string(index) + "-" + safeName(scene.label) + "-" + safeName(viewLabel) + "-" + res +
                                    "-" + safeName(tech.label) + "-" + ContentHash().add(r.parametersText).hex().substr(0, 8);
                             runs.push_back(std::move(r));
                         }

@@ -23,7 +23,8 @@ struct ViewSpec {
 };
 
 struct SceneSpec {
-    std::string name;  // as written: a scenes/ name or a path
+    std::string name;   // as written: a scenes/ name or a path
+    std::string label;  // the scene's own name ([scene] name, default the file name): records say this
     std::filesystem::path file;
     std::vector<std::pair<int, int>> resolutions;
     std::vector<ViewSpec> views;

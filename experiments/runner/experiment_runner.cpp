@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <iterator>
 #include <memory>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +15,7 @@
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
+#include "experiments/runner/parameter_json.h"
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
@@ -37,13 +40,6 @@ Spread spread(std::vector<double> v) {
 }
 
 json toJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
-
-json toJson(const ParamValue& v) {
-    if (auto b = std::get_if<bool>(&v)) return *b;
-    if (auto i = std::get_if<long long>(&v)) return *i;
-    if (auto d = std::get_if<double>(&v)) return *d;
-    return std::get<std::string>(v);
-}
 
 // 1 where the camera ray's first hit is a reflective or refractive material: the region of the
 // masked metrics ("on the reflective/refractive pixels").
@@ -77,15 +73,51 @@ json readJson(const fs::path& p) {
     return json::parse(in);
 }
 
+// "a, b, c and 4 more" of at most three names.
+std::string someOf(const std::vector<std::string>& names) {
+    std::string out;
+    for (std::size_t i = 0; i < names.size() && i < 3; ++i) out += (i ? ", " : "") + names[i];
+    if (names.size() > 3) out += " and " + std::to_string(names.size() - 3) + " more";
+    return out;
+}
+
+// Why --resume cannot continue a result set made with another config: the hashes, which runs the
+// folder holds that the config no longer makes and which the config makes anew (by run id, which
+// names the scene, view, size, technique label and parameters), and what to do.
+std::string configChangedMessage(const ExperimentConfig& config, const fs::path& outDir, const json& meta, std::size_t runsTotal) {
+    std::set<std::string> planned, recorded;
+    for (const auto& r : planRuns(config)) planned.insert(r.id);
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(ResultsStore(outDir).runsDir(), ec))
+        if (e.path().extension() == ".json") recorded.insert(e.path().stem().string());
+    std::vector<std::string> gone, added;
+    std::set_difference(recorded.begin(), recorded.end(), planned.begin(), planned.end(), std::back_inserter(gone));
+    std::set_difference(planned.begin(), planned.end(), recorded.begin(), recorded.end(), std::back_inserter(added));
+    std::string s = outDir.string() + ": holds experiment '" + meta.at("name").get<std::string>() + "' made with another config (hash " +
+                    meta.at("config_hash").get<std::string>().substr(0, 12) + " there, " + config.hash.substr(0, 12) + " in " +
+                    config.file.string() + "; its runs: " + meta.value("runs_total", json(0)).dump() + " then, " +
+                    std::to_string(runsTotal) + " now). ";
+    if (gone.empty() && added.empty()) {
+        s += "The recorded runs are the same, so only settings that are not in the run ids changed (repeats, metrics, reference, ...). ";
+    } else {
+        if (!gone.empty()) s += std::to_string(gone.size()) + " recorded run(s) are not in the config (" + someOf(gone) + "). ";
+        if (!added.empty()) s += std::to_string(added.size()) + " run(s) of the config are not recorded (" + someOf(added) + "). ";
+    }
+    return s + "Its config is " + (outDir / "config.toml").string() +
+           ". To keep those results, give this config another --out; to redo them with this config, remove the folder first";
+}
+
 // Refuses to touch a folder that is not this experiment's (or empty/new).
 void prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o, std::size_t runsTotal) {
     const fs::path meta = o.outDir / "experiment.json";
     if (fs::exists(o.outDir)) {
         if (fs::exists(meta)) {
             json m = readJson(meta);
-            if (m.at("config_hash") != config.hash || m.at("shard").at("index") != o.shardIndex || m.at("shard").at("count") != o.shardCount) {
-                throw InputError(o.outDir.string() + ": holds another experiment or shard (" + m.at("name").get<std::string>() +
-                                 "); choose another --out");
+            if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
+            if (m.at("shard").at("index") != o.shardIndex || m.at("shard").at("count") != o.shardCount) {
+                throw InputError(o.outDir.string() + ": holds shard " + m.at("shard").at("index").dump() + "/" + m.at("shard").at("count").dump() +
+                                 " of this experiment, not " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) +
+                                 "; choose another --out");
             }
             if (!o.resume) {
                 throw InputError(o.outDir.string() + ": already holds results of this experiment; pass --resume to continue it, or choose another --out");
@@ -220,7 +252,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         json record;
         record["index"] = run->index;
         record["id"] = run->id;
-        record["scene"] = sceneSpec.name;
+        record["scene"] = sceneSpec.label;
         record["scene_stats"] = active.stats;
         record["view"] = run->cameraPath.empty() ? "camera" : run->cameraPath;
         record["frame"] = run->frame;
@@ -230,7 +262,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["technique"] = techSpec.name;
         record["label"] = techSpec.label;
         record["parameters"] = json::object();
-        for (const auto& [k, v] : run->parameters) record["parameters"][k] = toJson(v);
+        for (const auto& [k, v] : run->parameters) record["parameters"][k] = parameterJson(v);
         record["parameters_text"] = run->parametersText;
         record["sequence"] = run->sequenceKey;
         record["frame_ms"] = toJson(spread(frameTimes));
@@ -265,6 +297,35 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         store.writeResults(records);
     }
     return summary;
+}
+
+ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
+    if (o.shardCount < 1 || o.shardIndex < 0 || o.shardIndex >= o.shardCount) {
+        throw InputError("--shard " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) + ": expected i/n with 0 <= i < n");
+    }
+    ExperimentPlan plan;
+    plan.runs = planRuns(config);
+    const ReferenceCache cache(o.cacheDir);
+    std::set<std::string> keys;
+    std::unique_ptr<Scene> scene;
+    std::size_t loaded = static_cast<std::size_t>(-1);
+    for (const auto& run : plan.runs) {
+        if (static_cast<int>(run.index % o.shardCount) != o.shardIndex) continue;
+        if (run.scene != loaded) {
+            // With textures: the reference key hashes every file the scene was built from.
+            scene = std::make_unique<Scene>(loadSceneFile(config.scenes[run.scene].file));
+            loaded = run.scene;
+        }
+        const View view = resolveView(*scene, run.cameraPath, run.frame >= 0 ? std::optional<int>(run.frame) : std::nullopt, std::nullopt);
+        const std::string key = ReferenceCache::key(*scene, view, run.width, run.height, config.referenceParameters);
+        const bool cached = cache.contains(key);
+        plan.mine.push_back({&run, cached});
+        if (keys.insert(key).second) {
+            ++plan.references;
+            plan.referencesCached += cached;
+        }
+    }
+    return plan;
 }
 
 void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir) {

@@ -31,6 +31,20 @@ struct RunnerSummary {
 // one that exists without --resume; nothing is written then.
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options);
 
+// `hybridlab run --dry-run`: the runs of the shard, each with whether its reference is cached, and
+// how many distinct references they need. Checks what `run` checks of the config; writes nothing.
+struct PlannedRun {
+    const RunSpec* run = nullptr;  // into ExperimentPlan::runs
+    bool referenceCached = false;
+};
+struct ExperimentPlan {
+    std::vector<RunSpec> runs;      // every run of the experiment
+    std::vector<PlannedRun> mine;   // the shard's
+    std::size_t references = 0;     // distinct references the shard's runs need
+    std::size_t referencesCached = 0;
+};
+ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& options);
+
 // `hybridlab merge`: joins shard folders of one experiment into `outDir`, as one unsharded run
 // would have written it. Throws InputError when they are not shards of the same experiment or
 // runs are missing.

@@ -32,9 +32,13 @@ std::string ReferenceCache::key(const Scene& scene, const View& view, int width,
     return h.hex();
 }
 
+bool ReferenceCache::contains(const std::string& key) const {
+    return fs::exists(dir_ / (key + ".json")) && fs::exists(dir_ / (key + ".exr")) && fs::exists(dir_ / (key + ".mask.exr"));
+}
+
 std::optional<CachedReference> ReferenceCache::find(const std::string& key) const {
+    if (!contains(key)) return std::nullopt;
     const fs::path meta = dir_ / (key + ".json");
-    if (!fs::exists(meta) || !fs::exists(dir_ / (key + ".exr")) || !fs::exists(dir_ / (key + ".mask.exr"))) return std::nullopt;
     CachedReference r;
     r.key = key;
     std::ifstream in(meta);

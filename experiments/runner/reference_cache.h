@@ -32,6 +32,8 @@ public:
 
     static std::string key(const Scene& scene, const View& view, int width, int height, const ParameterList& referenceParameters);
 
+    // Whether the entry is cached (without reading it).
+    bool contains(const std::string& key) const;
     // The cached entry, or nullopt.
     std::optional<CachedReference> find(const std::string& key) const;
     void store(const CachedReference& entry) const;

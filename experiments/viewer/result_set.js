@@ -9,6 +9,9 @@ function distinct(values) {
   return [...new Set(values)];
 }
 
+// Numbers inside names by value: "budget=5000" before "budget=20000".
+const naturalOrder = new Intl.Collator('en', { numeric: true }).compare;
+
 export class ResultSet {
   constructor(manifest) {
     this.title = manifest.title;
@@ -42,7 +45,7 @@ export class ResultSet {
   }
 
   variants(sel) {
-    return distinct(this.group(sel).map((r) => r.variant));
+    return distinct(this.group(sel).map((r) => r.variant)).sort(naturalOrder);
   }
 
   run(sel, frame, variant) {
