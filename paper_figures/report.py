@@ -20,9 +20,11 @@ import statistics
 import sys
 
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import device
 import failures
 import matplotlib.pyplot as plt
 import results as rs
+import verdict
 import viewer
 from figure_files import point_links, save
 
@@ -228,6 +230,8 @@ def main():
             figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path)))
         sections.append((scene, res, figs))
     failure_html, failure_md = failures.write_section(records, a.out, a.baseline) or ("", [])
+    device_html, device_md = device.write(a.result_dir, records)
+    verdict_html, verdict_md = verdict.write(verdict.verdicts(records, a.result_dir), viewer.link)
 
     figure_html = []
     for scene, res, figs in sections:
@@ -236,11 +240,13 @@ def main():
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
     page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
             "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
-            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
-            "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
+            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee} "
+            "table.device th{text-align:left;cursor:auto} .warning{color:#a40;font-weight:bold} .sentence{font-size:15px;max-width:60em} "
+            "table.verdict{margin:0.4em 0 1em}</style></head><body>"
+            "<h1>%s</h1>%s%s<p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
             "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
-            % (html.escape(title), html.escape(title), len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
+            % (html.escape(title), html.escape(title), device_html, verdict_html, len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
                html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
                ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
                "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
@@ -248,7 +254,9 @@ def main():
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
     viewer.write_viewer(records, a.out, a.result_dir, title)
-    md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
+    md = ["# " + title] + device_md + verdict_md + ["", "## Every setting", "",
+                                                    "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records),
+                                                    markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
     md += failure_md
