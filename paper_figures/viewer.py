@@ -80,7 +80,7 @@ def run_entry(r, out_dir, result_dir):
         "id": r["id"], "index": r["index"], "scene": r["scene"], "size": rs.resolution(r), "width": r["width"],
         "height": r["height"], "view": r["view"], "frame": r["frame"], "label": r["label"], "variant": rs.variant(r),
         "parameters_text": r["parameters_text"], "frame_ms": r["frame_ms"]["median"],
-        "stages": {k: v["median"] for k, v in r["stages"].items()},
+        "stages": rs.stages(r),
         "metrics": {"ssim": rs.metric(r, "whole", "ssim"), "flip": rs.metric(r, "whole", "flip"), "psnr": rs.metric(r, "whole", "psnr"),
                     "masked_ssim": rs.metric(r, "masked", "ssim"), "masked_flip": rs.metric(r, "masked", "flip"),
                     "temporal": r.get("temporal_error")},
