@@ -29,6 +29,7 @@ import results as rs
 import verdict
 import viewer
 from figure_files import point_links, save
+from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 
@@ -67,7 +68,7 @@ def speed_accuracy_figure(v, title):
     fig.subplots_adjust(left=0.06, right=0.70, top=0.9 if len(regions) > 1 else 0.86, bottom=0.1, hspace=0.32, wspace=0.25)
     panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix, _) in enumerate(regions)
               for j, name in enumerate(("ssim", "flip"))]
-    handles = {}
+    handles = {s.name: Line2D([], [], ls="none", marker="o", ms=5, color=col[s.name], mec="black", mew=0.3) for s in settings}
     for ax, region, suffix, name, better_high in panels:
         points = []
         for s in settings:
@@ -76,9 +77,12 @@ def speed_accuracy_figure(v, title):
                 continue
             ax.errorbar([s.ms], [y], xerr=[[s.ms - s.best_ms], [s.worst_ms - s.ms]], fmt="none", ecolor=col[s.name], elinewidth=0.8,
                         capsize=2, alpha=0.7)
-            handles[s.name] = ax.scatter([s.ms], [y], color=col[s.name], s=26, edgecolors="black", linewidths=0.3, zorder=3)
-            handles[s.name].set_urls(point_links(s.records[:1]))
             points.append((s.ms, y, s.name))
+        # One scatter for the panel's points, each linked to its setting's first run: matplotlib's SVG
+        # writer drops the link of a scatter of one point, so a lone point is drawn twice.
+        shown = points * (2 if len(points) == 1 else 1)
+        ax.scatter([p[0] for p in shown], [p[1] for p in shown], color=[col[p[2]] for p in shown], s=26, edgecolors="black",
+                   linewidths=0.3, zorder=3).set_urls([point_links(v.settings[p[2]].records[:1])[0] for p in shown])
         front = rs.pareto_front(points, better_high)
         handles["Pareto front"] = ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1)[0]
         handles["reference"] = ax.axvline(v.reference_ms, color="grey", ls="--", lw=1)
@@ -93,7 +97,7 @@ def speed_accuracy_figure(v, title):
         ax.points = points
     for ax, *_ in panels:
         point_labels.place(ax, [(t, y) for t, y, _ in ax.points], [str(number[n]) for _, _, n in ax.points])
-    names = [n for n in number if n in handles]
+    names = [n for n in number if any(n == p[2] for ax, *_ in panels for p in ax.points)]
     fig.legend([handles[n] for n in names] + [handles["Pareto front"], handles["reference"]],
                ["%d  %s" % (number[n], n) for n in names] + ["Pareto front", "reference %.1f ms" % v.reference_ms],
                loc="upper left", bbox_to_anchor=(0.71, 0.9), fontsize=7, frameon=False)
