@@ -24,18 +24,21 @@ export function sameRange(a, b) {
 
 const recoloured = new Map(); // file|range -> data URL
 
-// A data: URL of the map `data` (ImageData coloured by `table` over `own`) coloured over `shared`.
-export function recolour(file, data, table, own, shared) {
-  const key = `${file}|${shared.join(',')}`;
+// A data: URL of the map `data` (ImageData coloured by `table` over `own`) coloured over `shared`,
+// its first `height` rows only: the runner draws the map's own legend below the image, which would
+// contradict the shared scale (the pane's legend shows that).
+export function recolour(file, data, table, own, shared, height) {
+  const key = `${file}|${shared.join(',')}|${height}`;
   if (!recoloured.has(key)) {
+    const rows = Math.min(height, data.height);
     const canvas = document.createElement('canvas');
     canvas.width = data.width;
-    canvas.height = data.height;
+    canvas.height = rows;
     const ctx = canvas.getContext('2d');
-    const out = ctx.createImageData(data.width, data.height);
+    const out = ctx.createImageData(data.width, rows);
     const byColour = new Map();
     const last = table.length - 1;
-    for (let i = 0; i < data.data.length; i += 4) {
+    for (let i = 0; i < out.data.length; i += 4) {
       const packed = (data.data[i] << 16) | (data.data[i + 1] << 8) | data.data[i + 2];
       let c = byColour.get(packed);
       if (!c) {

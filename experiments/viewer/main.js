@@ -175,13 +175,13 @@ function image(paneIndex, content, cls) {
   img.draggable = false;
   img.src = content.layer.file;
   img.dataset.drawn = 'png';
-  redraw(img, content.layer);
+  redraw(img, content.layer, content.height);
   return img;
 }
 
 // Images drawn from their linear data under the exposure and transform, and error maps coloured
 // over the shared scale: the PNG first, replaced when the data has loaded.
-function redraw(img, layer) {
+function redraw(img, layer, height) {
   const file = layer.file;
   if (layer.id === 'image' && !isIdentity(state.ev, state.display)) {
     const ev = state.ev;
@@ -196,7 +196,7 @@ function redraw(img, layer) {
     const table = results.colormaps[layer.legend.colormap];
     pixelData(file, results.pixelScripts[file]).then((data) => {
       if (!data || !table || !img.isConnected) return;
-      img.src = recolour(file, data, table, layer.legend.range, range);
+      img.src = recolour(file, data, table, layer.legend.range, range, height);
       img.dataset.drawn = `scale ${range.join(' ')}`;
     });
   }
