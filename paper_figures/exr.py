@@ -53,14 +53,27 @@ def undo_zip(block):
     return out.tobytes()
 
 
+def load_header(path):
+    """The file's bytes and its parsed header; ExrError naming the file where it is not a readable
+    EXR (missing, not OpenEXR, or a kind not read here)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+        attrs, at = header(data)
+        for key in ("compression", "dataWindow", "channels"):
+            if key not in attrs:
+                raise ExrError("no '%s' attribute" % key)
+    except (OSError, IndexError, struct.error, ExrError) as e:
+        raise ExrError("%s: not a readable scan-line OpenEXR image (%s)" % (path, e)) from e
+    if attrs["compression"][1][0] not in LINES_PER_BLOCK:
+        raise ExrError("%s: compression %d is not read (NONE, ZIPS and ZIP are)" % (path, attrs["compression"][1][0]))
+    return data, attrs, at
+
+
 def read(path):
     """{channel name: float32 array (height, width)}."""
-    with open(path, "rb") as f:
-        data = f.read()
-    attrs, at = header(data)
+    data, attrs, at = load_header(path)
     compression = attrs["compression"][1][0]
-    if compression not in LINES_PER_BLOCK:
-        raise ExrError("%s: compression %d is not read (NONE, ZIPS and ZIP are)" % (path, compression))
     x0, y0, x1, y1 = struct.unpack("<4i", attrs["dataWindow"][1])
     width, height = x1 - x0 + 1, y1 - y0 + 1
     chans = sorted(channels(attrs["channels"][1]))
@@ -69,8 +82,16 @@ def read(path):
     per_line = sum(DTYPES[t].itemsize for _, t in chans) * width
     lines = LINES_PER_BLOCK[compression]
     blocks = (height + lines - 1) // lines
-    offsets = struct.unpack_from("<%dQ" % blocks, data, at)
     out = {name: np.empty((height, width), np.float32) for name, _ in chans}
+    try:
+        offsets = struct.unpack_from("<%dQ" % blocks, data, at)
+        read_blocks(data, offsets, chans, width, per_line, lines, y0, y1, out)
+    except (struct.error, zlib.error, ValueError, IndexError) as e:
+        raise ExrError("%s: damaged pixel data (%s)" % (path, e)) from e
+    return out
+
+
+def read_blocks(data, offsets, chans, width, per_line, lines, y0, y1, out):
     for offset in offsets:
         y, size = struct.unpack_from("<ii", data, offset)
         raw = data[offset + 8:offset + 8 + size]
@@ -83,7 +104,6 @@ def read(path):
                 dt = DTYPES[t]
                 out[name][row] = np.frombuffer(raw, dtype=dt, count=width, offset=pos)
                 pos += dt.itemsize * width
-    return out
 
 
 def rgb(path):

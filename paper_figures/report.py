@@ -21,6 +21,7 @@ import sys
 
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
 import device
+import exr
 import failures
 import matplotlib.pyplot as plt
 import palette
@@ -244,10 +245,17 @@ def main():
     records = rs.load(a.result_dir)
     if not records:
         sys.exit("report: %s holds no runs" % a.result_dir)
+    # Every image the report reads, checked before anything is written.
+    try:
+        for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
+            exr.load_header(os.path.join(a.result_dir, path))
+        verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir)}
+    except exr.ExrError as e:
+        print("report: %s" % e, file=sys.stderr)
+        sys.exit(2)
     os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
 
     sections = []
-    verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir)}
     by_scene = collections.defaultdict(list)
     for r in records:
         by_scene[(r["scene"], rs.resolution(r))].append(r)

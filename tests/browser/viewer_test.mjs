@@ -359,6 +359,12 @@ try {
       trs.map((tr) => [...tr.cells].map((c) => c.textContent)).find((cells) => cells[0] === 'SSIM >= 0.99, whole image'));
     assert.equal(verdictRow[1], 'rt_only [importance_cutoff=0.01]');
     assert.match(await report.textContent('#verdict ~ p.sentence'), /SSIM 0\.99 on the whole image is rt_only \[importance_cutoff=0\.01\]/);
+    // The device: named where experiment.json records it, "device not recorded" where it does not.
+    const experiment = JSON.parse(fs.readFileSync(path.join(resultDir, 'experiment.json'), 'utf8'));
+    const deviceText = await report.textContent('table.device');
+    if (experiment.device) assert.ok(deviceText.includes(experiment.device.vulkan_device), deviceText);
+    else assert.match(deviceText, /device not recorded/);
+    assert.match(deviceText, /ray backend\s*embree/);
     const hrefs = await report.$$eval('table.runs a[href^="viewer.html#run="]', (as) => as.map((a) => a.getAttribute('href')));
     assert.deepEqual(hrefs.sort(), manifest.runs.map((r) => `viewer.html#run=${r.id}`).sort());
     const target = runAt(40, variants[1]);
@@ -375,6 +381,41 @@ try {
       assert.ok(text.includes(`target="_top" xlink:href="../viewer.html#run=${linked.id}"`), svg);
     }
     await report.close();
+  });
+
+  await check('a raster on a software Vulkan device is flagged at the top of the report', async () => {
+    const file = path.join(resultDir, 'experiment.json');
+    const original = fs.readFileSync(file, 'utf8');
+    const experiment = JSON.parse(original);
+    experiment.device = {
+      cpu_model: 'Test CPU 9000', cpu_cores: 2, vulkan_device: 'llvmpipe (LLVM 19.1.7, 256 bits)', vulkan_device_type: 'cpu',
+      vulkan_driver: 'Mesa 25.0.7', vulkan_api_version: '1.4.305', embree_version: '3.13.5', tbb_threads: 2, lp_num_threads: 2,
+      os: 'Debian GNU/Linux 12', program_version: 'test',
+    };
+    fs.writeFileSync(file, JSON.stringify(experiment));
+    const deviceReport = path.join(work, 'device-report');
+    try {
+      hybridlabRun(['report', resultDir, '--out', deviceReport]);
+    } finally {
+      fs.writeFileSync(file, original);
+    }
+    const page = fs.readFileSync(path.join(deviceReport, 'index.html'), 'utf8');
+    assert.ok(page.indexOf('Test CPU 9000 (2 cores)') < page.indexOf('id="verdict"'));
+    assert.match(page, /llvmpipe \(LLVM 19\.1\.7, 256 bits\) \(cpu\)/);
+    assert.match(page, /class="warning">Warning: The raster ran on a software Vulkan device/);
+    assert.match(fs.readFileSync(path.join(deviceReport, 'report.md'), 'utf8'), /\*\*Warning:\*\* The raster ran on a software Vulkan device/);
+  });
+
+  await check('a damaged image in the result set: exit status 2, a message naming it, no report', async () => {
+    const damaged = path.join(work, 'damaged');
+    fs.cpSync(resultDir, damaged, { recursive: true, filter: (f) => !f.startsWith(reportDir) });
+    const exr = path.join(damaged, manifest.runs[1].exr.replace(/^\.\.\//, ''));
+    fs.writeFileSync(exr, fs.readFileSync(exr).subarray(0, 1000));
+    const out = path.join(work, 'damaged-report');
+    const r = spawnSync(hybridlab, ['report', damaged, '--out', out], { encoding: 'utf8' });
+    assert.equal(r.status, 2, r.stderr);
+    assert.ok(r.stderr.includes(exr), r.stderr);
+    assert.ok(!fs.existsSync(out));
   });
 } finally {
   await browser.close();
