@@ -294,7 +294,8 @@ def main():
                TABLE_SCRIPT))
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
-    viewer.write_viewer(records, a.out, a.result_dir, title)
+    viewer.write_viewer(records, a.out, a.result_dir, title,
+                        {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()})
     md = ["# " + title] + device_md + verdict_md + ["", "## Every setting", "",
                                                     "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records),
                                                     markdown_summary(records)]

@@ -149,9 +149,12 @@ def reference_parameters(result_dir):
     return " ".join("%s=%s" % (k, json.dumps(v) if not isinstance(v, str) else v) for k, v in sorted(params.items()))
 
 
-def write_viewer(records, out_dir, result_dir, title):
-    """viewer.html and viewer/ in `out_dir` for the runs in `records` (results.json)."""
+def write_viewer(records, out_dir, result_dir, title, not_applicable=None):
+    """viewer.html and viewer/ in `out_dir` for the runs in `records` (results.json);
+    `not_applicable`: {(scene, size, setting name): why} for the settings the verdict left out."""
     runs = [run_entry(r, out_dir, result_dir) for r in records]
+    for entry in runs:
+        entry["not_applicable"] = (not_applicable or {}).get((entry["scene"], entry["size"], entry["variant"]))
     manifest = {
         "title": title,
         "reference_parameters": reference_parameters(result_dir),

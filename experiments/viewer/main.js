@@ -112,6 +112,7 @@ function legendHtml(legend, range, shared) {
 function infoHtml(c) {
   const lines = [`<div class="title">${escapeHtml(c.title)}</div>`];
   if (c.parameters) lines.push(`<div class="params">${escapeHtml(c.parameters)}</div>`);
+  if (c.run && c.run.not_applicable) lines.push(`<div class="not-applicable">not applicable here: ${escapeHtml(c.run.not_applicable)}</div>`);
   lines.push(`<div class="time">frame ${c.frameMs.toFixed(2)} ms</div>`);
   if (c.stages) {
     const s = Object.entries(c.stages).map(([k, v]) => `${escapeHtml(k)} ${v.toFixed(2)}`).join('<br>');

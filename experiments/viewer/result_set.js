@@ -47,10 +47,12 @@ export class ResultSet {
   }
 
   // One setting per technique, techniques in the order they first appear: the one run with the
-  // technique's defaults (no parameters) where there is one, else the first in name order.
+  // technique's defaults (no parameters) where there is one, else the first in name order. Settings
+  // the report found not applicable to the scene (they change nothing there) are left out.
   defaultVariants(sel) {
     const byTechnique = new Map();
     for (const r of this.group(sel)) {
+      if (r.not_applicable) continue;
       const key = r.technique || r.label;
       if (!byTechnique.has(key)) byTechnique.set(key, new Set());
       byTechnique.get(key).add(r.variant);

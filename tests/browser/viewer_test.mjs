@@ -358,6 +358,16 @@ try {
     const verdictRow = await report.$$eval('table.verdict.thresholds tr', (trs) =>
       trs.map((tr) => [...tr.cells].map((c) => c.textContent)).find((cells) => cells[0] === 'SSIM >= 0.99, whole image'));
     assert.equal(verdictRow[1], 'rt_only [importance_cutoff=0.01]');
+    // Its frame time is the median of its runs' medians, its speed-up the reference's median over it.
+    const median = (xs) => {
+      const v = [...xs].sort((x, y) => x - y);
+      return v.length % 2 ? v[(v.length - 1) / 2] : (v[v.length / 2 - 1] + v[v.length / 2]) / 2;
+    };
+    const rtRuns = manifest.runs.filter((r) => r.variant === 'rt_only [importance_cutoff=0.01]');
+    const rtMs = median(rtRuns.map((r) => r.frame_ms));
+    assert.equal(verdictRow[2], rtMs.toFixed(2));
+    assert.equal(verdictRow[3], (median(manifest.runs.map((r) => r.reference_ms)) / rtMs).toFixed(2));
+    assert.equal(verdictRow[4], '1.00');
     assert.match(await report.textContent('#verdict ~ p.sentence'), /SSIM 0\.99 on the whole image is rt_only \[importance_cutoff=0\.01\]/);
     // The device: named where experiment.json records it, "device not recorded" where it does not.
     const experiment = JSON.parse(fs.readFileSync(path.join(resultDir, 'experiment.json'), 'utf8'));
