@@ -142,13 +142,17 @@ class SceneVerdict:
     def sentence(self):
         """The verdict in words, from the numbers of the tables."""
         head = "On %s at %s" % (self.scene, self.size)
+        if not self.applicable():
+            return head + ", no setting changes the image: every one is not applicable here."
         parts = []
+        if not self.regions:
+            parts.append("no run has an SSIM score (the config's metrics leave it out)")
         for region, label in self.regions:
             reached = [(t, s) for rg, _, t, s in self.thresholds if rg == region and s]
             if not reached:
                 best = max(self.applicable(), key=lambda s: s.score(region, "ssim") or 0.0)
-                parts.append("no setting reaches SSIM %.2f on the %s (best: %s, %.4f)" % (THRESHOLDS[-1], label, best.name,
-                                                                                          best.score(region, "ssim")))
+                parts.append("no setting reaches SSIM %.2f on the %s (best: %s, %s)" % (THRESHOLDS[-1], label, best.name,
+                                                                                      rs.fmt(best.score(region, "ssim"), "%.4f")))
                 continue
             t, s = reached[0]
             ref, rt = self.speedups(s)
