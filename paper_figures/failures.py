@@ -142,7 +142,8 @@ def along_path_by_technique(seqs, out_dir, name, title, baseline):
             ax.set_ylabel(label, fontsize=8)
             ax.grid(alpha=0.3)
         row[0].set_title(technique, loc="left", fontsize=9, fontweight="bold")
-        row[0].legend(fontsize=6)
+        # The settings' key beside the row, not over its data.
+        row[-1].legend(*row[0].get_legend_handles_labels(), fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
     fig.suptitle(title + "\nred: each setting's worst frame (frame time: only a spike beyond its repeats' spread); dotted: its median along "
                  "the path" + ("; dashed (SSIM): its median on the baseline scene" if baseline else ""), fontsize=10)
     fig.tight_layout()
