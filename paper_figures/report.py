@@ -20,11 +20,18 @@ import statistics
 import sys
 
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import device
+import exr
 import failures
 import matplotlib.pyplot as plt
+import palette
+import point_labels
 import results as rs
+import verdict
 import viewer
 from figure_files import point_links, save
+from matplotlib.lines import Line2D
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 
 # The regions a record is scored on, with their label suffix and temporal-error key: the whole
@@ -37,41 +44,69 @@ def regions_of(records):
     return [region for region in REGIONS if any(r["metrics"].get(region[0]) for r in records)]
 
 
-def colours(variants):
-    cmap = plt.get_cmap("tab10" if len(variants) <= 10 else "tab20")
-    return {v: cmap(i % cmap.N) for i, v in enumerate(sorted(variants, key=rs.natural_key))}
+def log_ticks(axis):
+    """Labelled ticks at 1, 2 and 5 times the powers of ten (a log axis spanning less than a decade
+    would otherwise label none or one)."""
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: "%g" % v))
+    axis.set_minor_formatter(NullFormatter())
 
 
-def speed_accuracy(records, out_dir, key, title):
-    """Frame time against SSIM and FLIP, every run a point, the Pareto front labelled; a row per
-    region scored (the whole image, then the reflective and refractive pixels)."""
-    regions = regions_of(records) or [REGIONS[0]]
-    fig, axes = plt.subplots(len(regions), 2, figsize=(12, 4.5 * len(regions)), squeeze=False)
-    col = colours({rs.variant(r) for r in records})
-    ref_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
+def speed_accuracy(v, out_dir, key, title):
+    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key)
+
+
+def speed_accuracy_figure(v, title):
+    """Frame time against SSIM and FLIP, a point per applicable setting (its median over the runs,
+    a bar from its best to its worst run), the Pareto front through the settings, the points
+    numbered with the key beside the axes; a row per region scored (the whole image, then the
+    reflective and refractive pixels)."""
+    regions = [rg for rg in REGIONS if rg[0] in dict(v.regions)] or [REGIONS[0]]
+    settings = sorted(v.applicable(), key=lambda s: (s.technique, rs.natural_key(s.name)))
+    number = {s.name: i + 1 for i, s in enumerate(settings)}
+    col = palette.setting_colours([r for s in settings for r in s.records])
+    fig, axes = plt.subplots(len(regions), 2, figsize=(13, 4.6 * len(regions)), squeeze=False)
+    fig.subplots_adjust(left=0.06, right=0.70, top=0.9 if len(regions) > 1 else 0.86, bottom=0.1, hspace=0.32, wspace=0.25)
     panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix, _) in enumerate(regions)
               for j, name in enumerate(("ssim", "flip"))]
+    handles = {s.name: Line2D([], [], ls="none", marker="o", ms=5, color=col[s.name], mec="black", mew=0.3) for s in settings}
     for ax, region, suffix, name, better_high in panels:
         points = []
-        for v in sorted(col, key=rs.natural_key):
-            rows = [r for r in records if rs.variant(r) == v and rs.metric(r, region, name) is not None]
-            xs = [r["frame_ms"]["median"] for r in rows]
-            ys = [rs.metric(r, region, name) for r in rows]
-            ax.scatter(xs, ys, color=col[v], label=v, s=22, alpha=0.85).set_urls(point_links(rows))
-            points += [(x, y, v) for x, y in zip(xs, ys)]
+        for s in settings:
+            y = s.score(region, name)
+            if y is None:
+                continue
+            ax.errorbar([s.ms], [y], xerr=[[s.ms - s.best_ms], [s.worst_ms - s.ms]], fmt="none", ecolor=col[s.name], elinewidth=0.8,
+                        capsize=2, alpha=0.7)
+            points.append((s.ms, y, s.name))
+        # One scatter for the panel's points, each linked to its setting's first run: matplotlib's SVG
+        # writer drops the link of a scatter of one point, so a lone point is drawn twice.
+        shown = points * (2 if len(points) == 1 else 1)
+        ax.scatter([p[0] for p in shown], [p[1] for p in shown], color=[col[p[2]] for p in shown], s=26, edgecolors="black",
+                   linewidths=0.3, zorder=3).set_urls([point_links(v.settings[p[2]].records[:1])[0] for p in shown])
         front = rs.pareto_front(points, better_high)
-        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1, label="Pareto front")
-        for t, v, p in front:
-            ax.annotate(p, (t, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
-        ax.axvline(ref_ms, color="grey", ls="--", lw=1)
-        ax.annotate("reference %.0f ms" % ref_ms, (ref_ms, ax.get_ylim()[0]), fontsize=7, rotation=90, va="bottom", ha="right")
+        handles["Pareto front"] = ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1)[0]
+        handles["reference"] = ax.axvline(v.reference_ms, color="grey", ls="--", lw=1)
         ax.set_xscale("log")
-        ax.set_xlabel("frame time (ms, median; log scale)")
+        log_ticks(ax.xaxis)
+        lo = min([s.best_ms for s in settings] + [v.reference_ms])
+        hi = max([s.worst_ms for s in settings] + [v.reference_ms])
+        ax.set_xlim(lo / 1.25, hi * 1.25)
+        ax.set_xlabel("frame time (ms, median over runs; bar: best to worst run; log scale)", fontsize=8)
         ax.set_ylabel(("SSIM%s (higher is better)" if name == "ssim" else "FLIP mean%s (lower is better)") % suffix)
-        ax.grid(alpha=0.3)
-    axes[0][0].legend(fontsize=6, loc="lower right")
+        ax.grid(alpha=0.3, which="both")
+        ax.points = points
+    for ax, *_ in panels:
+        point_labels.place(ax, [(t, y) for t, y, _ in ax.points], [str(number[n]) for _, _, n in ax.points])
+    names = [n for n in number if any(n == p[2] for ax, *_ in panels for p in ax.points)]
+    fig.legend([handles[n] for n in names] + [handles["Pareto front"], handles["reference"]],
+               ["%d  %s" % (number[n], n) for n in names] + ["Pareto front", "reference %.1f ms" % v.reference_ms],
+               loc="upper left", bbox_to_anchor=(0.71, 0.9), fontsize=7, frameon=False)
+    if v.excluded():
+        fig.text(0.71, 0.06, "not applicable here (not drawn):\n" + "\n".join(s.name for s in v.excluded()), fontsize=7, va="bottom",
+                 color="dimgrey")
     fig.suptitle(title)
-    return save(fig, out_dir, "speed-accuracy-" + key)
+    return fig
 
 
 def stage_breakdown(records, out_dir, key, title):
@@ -79,13 +114,13 @@ def stage_breakdown(records, out_dir, key, title):
     by_variant = collections.defaultdict(list)
     for r in records:
         by_variant[rs.variant(r)].append(r)
-    stages = sorted({s for r in records for s in r["stages"]})
+    stages = sorted({s for r in records for s in rs.stages(r)})
     variants = sorted(by_variant, key=rs.natural_key)
     fig, ax = plt.subplots(figsize=(max(6, 0.7 * len(variants) + 2), 4.5))
     bottom = [0.0] * len(variants)
     cmap = plt.get_cmap("tab20")
     for i, s in enumerate(stages):
-        vals = [statistics.mean(r["stages"].get(s, {"median": 0.0})["median"] for r in by_variant[v]) for v in variants]
+        vals = [statistics.mean(rs.stages(r).get(s, 0.0) for r in by_variant[v]) for v in variants]
         ax.bar(range(len(variants)), vals, bottom=bottom, label=s, color=cmap(i % 20))
         bottom = [b + v for b, v in zip(bottom, vals)]
     ax.set_xticks(range(len(variants)))
@@ -104,7 +139,7 @@ def along_path(records, out_dir, key, title):
     second row of FLIP and temporal error on the reflective and refractive pixels where scored."""
     regions = regions_of(records) or [REGIONS[0]]
     fig, axes = plt.subplots(len(regions), 3, figsize=(15, 4 * len(regions)), squeeze=False)
-    col = colours({rs.variant(r) for r in records})
+    col = palette.setting_colours(records)
     for v in sorted(col, key=rs.natural_key):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         axes[0][0].plot([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
@@ -124,7 +159,7 @@ def along_path(records, out_dir, key, title):
             ax.grid(alpha=0.3)
     for i in range(1, len(regions)):
         axes[i][0].set_visible(False)  # frame time is one per run, not per region
-    axes[0][0].legend(fontsize=6)
+    axes[0][0].legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncol=2, frameon=False)
     fig.suptitle(title)
     return save(fig, out_dir, "path-" + key)
 
@@ -210,6 +245,14 @@ def main():
     records = rs.load(a.result_dir)
     if not records:
         sys.exit("report: %s holds no runs" % a.result_dir)
+    # Every image the report reads, checked before anything is written.
+    try:
+        for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
+            exr.load_header(os.path.join(a.result_dir, path))
+        verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir)}
+    except exr.ExrError as e:
+        print("report: %s" % e, file=sys.stderr)
+        sys.exit(2)
     os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
 
     sections = []
@@ -218,7 +261,7 @@ def main():
         by_scene[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(by_scene.items()):
         key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
-        figs = [speed_accuracy(rows, a.out, key, "%s at %s: speed against accuracy" % (scene, res)),
+        figs = [speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res)),
                 stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res))]
         paths = collections.defaultdict(list)
         for r in rows:
@@ -228,6 +271,8 @@ def main():
             figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path)))
         sections.append((scene, res, figs))
     failure_html, failure_md = failures.write_section(records, a.out, a.baseline) or ("", [])
+    device_html, device_md = device.write(a.result_dir, records)
+    verdict_html, verdict_md = verdict.write(list(verdicts.values()), viewer.link)
 
     figure_html = []
     for scene, res, figs in sections:
@@ -236,19 +281,24 @@ def main():
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
     page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
             "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
-            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
-            "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
+            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee} "
+            "table.device th{text-align:left;cursor:auto} .warning{color:#a40;font-weight:bold} .sentence{font-size:15px;max-width:60em} "
+            "table.verdict{margin:0.4em 0 1em}</style></head><body>"
+            "<h1>%s</h1>%s%s<p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
             "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
-            % (html.escape(title), html.escape(title), len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
+            % (html.escape(title), html.escape(title), device_html, verdict_html, len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
                html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
                ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
                "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
                TABLE_SCRIPT))
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
-    viewer.write_viewer(records, a.out, a.result_dir, title)
-    md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
+    viewer.write_viewer(records, a.out, a.result_dir, title,
+                        {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()})
+    md = ["# " + title] + device_md + verdict_md + ["", "## Every setting", "",
+                                                    "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records),
+                                                    markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
     md += failure_md

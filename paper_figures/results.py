@@ -53,10 +53,27 @@ def fmt(value, spec="%.3f", missing="-"):
     return missing if value is None else spec % value
 
 
+# One name per kind of work across techniques; result sets written before the techniques used
+# these names carry the old ones, read here under the new.
+STAGE_NAMES = {"rast": "raster", "heur": "heuristic", "rayt": "trace", "ray_trace": "trace"}
+
+
+def stage_name(name):
+    return STAGE_NAMES.get(name, name)
+
+
+def stages(r):
+    """A record's median stage times (ms) by their names in the one vocabulary."""
+    out = {}
+    for name, s in r["stages"].items():
+        out[stage_name(name)] = out.get(stage_name(name), 0.0) + s["median"]
+    return out
+
+
 def stage(r, name, missing=None):
-    """The median time (ms) of a record's stage `name`; `missing` if the technique has no such stage."""
-    s = r["stages"].get(name)
-    return s["median"] if s else missing
+    """The median time (ms) of a record's stage `name` (either vocabulary); `missing` if the
+    technique has no such stage."""
+    return stages(r).get(stage_name(name), missing)
 
 
 def result_link(out_dir, result_dir, path):

@@ -16,7 +16,7 @@ import sys
 import results
 
 HYBRID, RAY_TRACER = "hybrid", "rt"
-RASTER_STAGE = "rast"
+RASTER_STAGE = "raster"
 
 
 def scene_rows(rows, scene, label):
@@ -35,10 +35,10 @@ def table3(rows):
         hybrid, rt = scene_rows(rows, scene, HYBRID), scene_rows(rows, scene, RAY_TRACER)
         if not hybrid or not rt:
             sys.exit("sabino_table3: %s needs runs labelled '%s' and '%s'" % (scene, HYBRID, RAY_TRACER))
-        if RASTER_STAGE not in hybrid[0]["stages"]:
+        if results.stage(hybrid[0], RASTER_STAGE) is None:
             sys.exit("sabino_table3: the '%s' runs have no '%s' stage (is it heuristic_rt?)" % (HYBRID, RASTER_STAGE))
         stats = hybrid[0]["scene_stats"]
-        dr = mean(hybrid, lambda r: r["stages"][RASTER_STAGE]["median"])
+        dr = mean(hybrid, lambda r: results.stage(r, RASTER_STAGE))
         t_rt = mean(rt, lambda r: r["frame_ms"]["median"])
         t_hybrid = mean(hybrid, lambda r: r["frame_ms"]["median"])
         out.append("| %s | %d | %d | %.1f | %.1f | %.1f | %.2f | %.4f / %.4f |" % (

@@ -7,10 +7,10 @@ Speed: one line per scene and `ssr_fallback` variant (label `ssr_fallback`): the
 frame time, the variant's, their ratio (whitted / ssr_fallback: the speed-up), SSIM against the
 reference, the SSR hit rate and the fallback rays, with the variant's stage times (medians over the
 repeats). Bound: one line per run labelled `glass-trees` (SSR on, no fallback, SSR hits not
-recursed: what remains in the `ray_trace` stage is the refractive texels' ray trees, which the
+recursed: what remains in the `trace` stage is the refractive texels' ray trees, which the
 method always traces): its raster, SSR and ray-trace stages, the trees' share of whitted's frame,
 and the largest speed-up the method could reach if everything else cost nothing,
-whitted / (raster + ssr + ray_trace), beside whitted / raster (the raster stages alone)."""
+whitted / (raster + ssr + trace), beside whitted / raster (the raster stages alone)."""
 import sys
 
 import results
@@ -34,7 +34,7 @@ def beside_whitted(rows, whitted, label):
 def speed_table(rows, whitted):
     out = ["**Speed against accuracy** (ms, medians over the repeats; ratio = whitted / ssr_fallback)", "",
            "| scene | size | setting | whitted ms | ssr_fallback ms | ratio | SSIM | SSR hit rate | fallback rays | "
-           "raster | ssr | ray_trace | seam_blur | composite |",
+           "raster | ssr | trace | seam_blur | composite |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r, w in beside_whitted(rows, whitted, "ssr_fallback"):
         c = r["counters"]
@@ -42,19 +42,19 @@ def speed_table(rows, whitted):
         out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r), w / frame(r),
             "%.4f" % ssim if ssim is not None else "-", c.get("ssr_hit_rate", 0.0), int(c.get("fallback_rays", 0)),
-            *(results.stage(r, s, 0.0) for s in ("raster", "ssr", "ray_trace", "seam_blur", "composite"))))
+            *(results.stage(r, s, 0.0) for s in ("raster", "ssr", "trace", "seam_blur", "composite"))))
     out.append("")
     return out
 
 
 def bound_table(rows, whitted):
     out = ["**Bound**: the refractive texels' ray trees (runs labelled `glass-trees`) and the largest speed-up "
-           "whitted / (raster + ssr + ray_trace)", "",
+           "whitted / (raster + ssr + trace)", "",
            "| scene | size | setting | whitted ms | raster | ssr | refractive trees | trees / whitted | largest speed-up | "
            "whitted / raster |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     for r, w in beside_whitted(rows, whitted, "glass-trees"):
-        raster, ssr, trees = results.stage(r, "raster", 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "ray_trace", 0.0)
+        raster, ssr, trees = results.stage(r, "raster", 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "trace", 0.0)
         out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,
             w / (raster + ssr + trees), w / raster))

@@ -5,7 +5,11 @@ web server.
 The viewer's source is ES modules in experiments/viewer/. Browsers refuse module scripts (and
 fetch()) from file:// pages, so the modules are joined here into one classic script, each module
 in its own function scope, and the manifest is written both as manifest.json and as manifest.js (a
-classic script that sets window.HYBRIDLAB_MANIFEST)."""
+classic script that sets window.HYBRIDLAB_MANIFEST).
+
+The PNGs are display images (sRGB, clamped to [0, 1]); for exposure, other display transforms and
+the inspector's linear values, each run's and reference's EXR is also written as a classic script
+holding its linear RGB as half floats (viewer/linear/N.js), loaded when first needed."""
 import base64
 import functools
 import json
@@ -16,6 +20,7 @@ import tomllib
 
 import matplotlib
 
+import exr
 import results as rs
 
 VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "viewer")
@@ -78,9 +83,10 @@ def run_entry(r, out_dir, result_dir):
             maps[name] = {"file": rel(r["images"]["maps"] + "/" + m["file"]), "colormap": m["colormap"], "range": m["range"]}
     return {
         "id": r["id"], "index": r["index"], "scene": r["scene"], "size": rs.resolution(r), "width": r["width"],
-        "height": r["height"], "view": r["view"], "frame": r["frame"], "label": r["label"], "variant": rs.variant(r),
+        "height": r["height"], "view": r["view"], "frame": r["frame"], "technique": r["technique"], "label": r["label"],
+        "variant": rs.variant(r), "exr": rel(r["images"]["exr"]), "reference_exr": rel(r["reference"]["exr"]),
         "parameters_text": r["parameters_text"], "frame_ms": r["frame_ms"]["median"],
-        "stages": {k: v["median"] for k, v in r["stages"].items()},
+        "stages": rs.stages(r),
         "metrics": {"ssim": rs.metric(r, "whole", "ssim"), "flip": rs.metric(r, "whole", "flip"), "psnr": rs.metric(r, "whole", "psnr"),
                     "masked_ssim": rs.metric(r, "masked", "ssim"), "masked_flip": rs.metric(r, "masked", "flip"),
                     "temporal": r.get("temporal_error")},
@@ -114,6 +120,25 @@ def write_pixel_scripts(runs, out_dir):
     return scripts
 
 
+def write_linear_scripts(runs, out_dir):
+    """Each shown image's linear RGB (from its EXR) as a script that hands it to the viewer:
+    hybridlabLinear(png file, width, height, base64 of little-endian half floats, RGB by row).
+    Keyed by the PNG the viewer shows for it."""
+    scripts = {}
+    os.makedirs(os.path.join(out_dir, "viewer", "linear"), exist_ok=True)
+    for entry in runs:
+        for png, exr_file in ((entry["image"], entry["exr"]), (entry["reference"], entry["reference_exr"])):
+            if png in scripts:
+                continue
+            pixels = exr.rgb(os.path.join(out_dir, exr_file))
+            data = base64.b64encode(pixels.astype("<f2").tobytes()).decode()
+            script = "viewer/linear/%d.js" % len(scripts)
+            with open(os.path.join(out_dir, script), "w") as s:
+                s.write("hybridlabLinear(%s, %d, %d, %s);\n" % (json.dumps(png), pixels.shape[1], pixels.shape[0], json.dumps(data)))
+            scripts[png] = script
+    return scripts
+
+
 def reference_parameters(result_dir):
     """The reference's parameters from the config the result set was run with, as `k=v k=v`."""
     path = os.path.join(result_dir, "config.toml")
@@ -124,9 +149,12 @@ def reference_parameters(result_dir):
     return " ".join("%s=%s" % (k, json.dumps(v) if not isinstance(v, str) else v) for k, v in sorted(params.items()))
 
 
-def write_viewer(records, out_dir, result_dir, title):
-    """viewer.html and viewer/ in `out_dir` for the runs in `records` (results.json)."""
+def write_viewer(records, out_dir, result_dir, title, not_applicable=None):
+    """viewer.html and viewer/ in `out_dir` for the runs in `records` (results.json);
+    `not_applicable`: {(scene, size, setting name): why} for the settings the verdict left out."""
     runs = [run_entry(r, out_dir, result_dir) for r in records]
+    for entry in runs:
+        entry["not_applicable"] = (not_applicable or {}).get((entry["scene"], entry["size"], entry["variant"]))
     manifest = {
         "title": title,
         "reference_parameters": reference_parameters(result_dir),
@@ -135,6 +163,7 @@ def write_viewer(records, out_dir, result_dir, title):
         # the legends and for reading a map's value back from its colour.
         "colormaps": {name: colour_table(name) for name in sorted({m["colormap"] for e in runs for m in e["maps"].values()})},
         "pixel_scripts": write_pixel_scripts(runs, out_dir),
+        "linear_scripts": write_linear_scripts(runs, out_dir),
     }
     viewer_dir = os.path.join(out_dir, "viewer")
     text = json.dumps(manifest, separators=(",", ":"))

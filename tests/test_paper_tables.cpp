@@ -68,7 +68,7 @@ label = "rt"
         const double tHybrid = hybrid.at("frame_ms").at("median"), tRt = rt.at("frame_ms").at("median");
         const std::string row = "| " + scene + " | " + std::to_string(hybrid.at("scene_stats").at("vertices").get<int>()) + " | " +
                                 std::to_string(hybrid.at("scene_stats").at("triangles").get<int>()) + " | " +
-                                test::formatNumber("%.1f", hybrid.at("stages").at("rast").at("median")) + " | " + test::formatNumber("%.1f", tRt) + " | " +
+                                test::formatNumber("%.1f", hybrid.at("stages").at("raster").at("median")) + " | " + test::formatNumber("%.1f", tRt) + " | " +
                                 test::formatNumber("%.1f", tHybrid) + " | " + test::formatNumber("%.2f", tRt / tHybrid) + " | ";
         EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
         EXPECT_GT(hybrid.at("scene_stats").at("triangles").get<int>(), 0);
@@ -145,7 +145,7 @@ TEST(PaperTables, MacedoTablesGrowTheBvhUpdateWithTheDeformedTriangles) {
 
 // The SSR speed table (ssr_speed_table.py): per ssr_fallback variant, whitted's and its frame
 // times with their ratio, SSIM, hit rate and fallback rays as the records hold them; per glass-trees
-// run, the largest speed-up whitted / (raster + ssr + ray_trace).
+// run, the largest speed-up whitted / (raster + ssr + trace).
 TEST(PaperTables, SsrSpeedTableHoldsTheRatiosAndTheBound) {
     test::TempDir dir;
     const std::string text = runAndTabulate(dir, kOneFrameEach + R"(metrics = ["ssim"]
@@ -181,9 +181,9 @@ params = { fallback = "none", recursion = "single" }
                                     std::to_string(static_cast<long>(r.at("counters").at("fallback_rays").get<double>())) + " | ";
             EXPECT_NE(text.find(row), std::string::npos) << row << "\n" << text;
         } else if (r.at("label") == "glass-trees") {
-            const double floor = stage("raster") + stage("ssr") + stage("ray_trace");
-            const std::string cells = test::formatNumber("%.1f", stage("ray_trace")) + " | " +
-                                      test::formatNumber("%.2f", stage("ray_trace") / whitted) + " | " +
+            const double floor = stage("raster") + stage("ssr") + stage("trace");
+            const std::string cells = test::formatNumber("%.1f", stage("trace")) + " | " +
+                                      test::formatNumber("%.2f", stage("trace") / whitted) + " | " +
                                       test::formatNumber("%.2f", whitted / floor) + " | " + test::formatNumber("%.2f", whitted / stage("raster")) + " |";
             EXPECT_NE(text.find(cells), std::string::npos) << cells << "\n" << text;
         }

@@ -53,6 +53,8 @@ void addReportCommand(CLI::App& app) {
         std::vector<std::string> args = {python(), script.string(), *dir, "--out", target};
         if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
         const int status = runProgram(args);
+        // report.py exits with 2 on a bad result set (an unreadable image), having said which.
+        if (status == 2) throw InputError(*dir + ": not a complete result set (paper_figures/report.py's message above)");
         if (status != 0) throw std::runtime_error("paper_figures/report.py failed (exit status " + std::to_string(status) + ")");
     });
 }

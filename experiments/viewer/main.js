@@ -1,14 +1,20 @@
-// The viewer page: up to four panes side by side (or one pane in flip or swipe mode) showing the
+// The viewer page: up to eight panes side by side (or one pane in flip or swipe mode) showing the
 // reference and technique variants of one scene, size, view and frame, with shared zoom and pan,
-// a pixel inspector and keyboard shortcuts. The result set comes from viewer/manifest.js.
+// exposure and display transform of the linear images, error maps on one scale, a pixel inspector
+// and keyboard shortcuts. The result set comes from viewer/manifest.js.
 
 import { ResultSet, REFERENCE } from './result_set.js';
 import { fit, zoomAbout, pan, imagePixel, cssTransform } from './view_transform.js';
 import { paneContent, nextErrorLayer } from './pane_content.js';
 import { pixelData, rgbaAt, mapValue } from './pixels.js';
 import { actionOf, helpHtml } from './shortcuts.js';
+import { DISPLAY_TRANSFORMS, DEFAULT_TRANSFORM, linearData, linearAt, displayRgb, isIdentity, drawLinear } from './display.js';
+import { sharedRange, sameRange, recolour } from './error_scale.js';
+import { debugLegendHtml } from './debug_legends.js';
 
-const MAX_PANES = 4;
+const MAX_PANES = 8;
+const EV_STEP = 0.5;
+const EV_LIMIT = 10;
 const PLAY_INTERVAL_MS = 700;
 
 const results = new ResultSet(window.HYBRIDLAB_MANIFEST);
@@ -29,6 +35,9 @@ const state = {
   active: 1,
   player: null,
   pixel: null, // the inspected pixel
+  ev: 0, // exposure of the linear images: values times 2^ev
+  display: DEFAULT_TRANSFORM, // the display transform of the linear images
+  sharedScale: true, // error maps on one scale per scene, size and metric (else each pane its own)
 };
 
 function fillSelect(select, values, current, label = (v) => v) {
@@ -47,16 +56,21 @@ function select(scene, size, view, frame, variantsFirst) {
   state.frames = results.frames(state.sel);
   state.frameIndex = Math.max(0, state.frames.indexOf(frame));
   state.variants = results.variants(state.sel);
-  const order = [...variantsFirst.filter((v) => state.variants.includes(v)), ...state.variants.filter((v) => !variantsFirst.includes(v))];
+  // The panes open on the reference and one setting of each technique (its default where it ran);
+  // the rest follow, for the pane count menu.
+  const defaults = results.defaultVariants(state.sel);
+  const first = [...variantsFirst, ...defaults].filter((v, i, all) => state.variants.includes(v) && all.indexOf(v) === i);
+  const order = [...first, ...state.variants.filter((v) => !first.includes(v))];
   state.panes = [REFERENCE, ...order].slice(0, MAX_PANES).map((variant) => ({ variant, layer: 'image' }));
   while (state.panes.length < MAX_PANES) state.panes.push({ variant: order[0] || REFERENCE, layer: 'image' });
-  state.paneCount = Math.min(MAX_PANES, 1 + state.variants.length);
+  state.paneCount = Math.min(MAX_PANES, 1 + first.length);
   state.active = Math.min(1, state.paneCount - 1);
   state.transform = null;
   fillSelect($('scene'), results.scenes(), scene);
   fillSelect($('size'), sizes, size);
   fillSelect($('view'), views, view);
   $('pane-count').value = String(state.paneCount);
+  $('variant-list').innerHTML = [REFERENCE, ...state.variants].map((v) => `<option value="${escapeHtml(variantLabel(v))}"></option>`).join('');
   $('frame').max = String(state.frames.length - 1);
   $('frame-controls').hidden = state.frames.length < 2;
   render();
@@ -79,18 +93,26 @@ function variantLabel(v) {
   return `${state.variants.indexOf(v) + 2}: ${v}`;
 }
 
-function legendHtml(legend) {
+// The range a map layer is drawn over: the shared one of its scene, size and metric, or its own.
+function mapRange(layer) {
+  const shared = state.sharedScale && sharedRange(results, state.sel, layer.id);
+  return shared || layer.legend.range;
+}
+
+function legendHtml(legend, range, shared) {
   const table = results.colormaps[legend.colormap];
   if (!table) return '';
   const stops = table.filter((_, i) => i % 16 === 0 || i === table.length - 1).map((c) => `rgb(${c[0]},${c[1]},${c[2]})`);
   const fmt = (v) => Number(v).toPrecision(3);
   return `<div class="legend"><div class="bar" style="background:linear-gradient(to right,${stops.join(',')})"></div>`
-    + `<div class="ends"><span>${fmt(legend.range[0])}</span><span>${escapeHtml(legend.colormap)}</span><span>${fmt(legend.range[1])}</span></div></div>`;
+    + `<div class="ends"><span class="lo">${fmt(range[0])}</span><span>${escapeHtml(legend.colormap)}</span><span class="hi">${fmt(range[1])}</span></div>`
+    + `<div class="scale">${shared ? 'scale shared by every pane (M: per pane)' : "this pane's own scale (M: shared)"}</div></div>`;
 }
 
 function infoHtml(c) {
   const lines = [`<div class="title">${escapeHtml(c.title)}</div>`];
   if (c.parameters) lines.push(`<div class="params">${escapeHtml(c.parameters)}</div>`);
+  if (c.run && c.run.not_applicable) lines.push(`<div class="not-applicable">not applicable here: ${escapeHtml(c.run.not_applicable)}</div>`);
   lines.push(`<div class="time">frame ${c.frameMs.toFixed(2)} ms</div>`);
   if (c.stages) {
     const s = Object.entries(c.stages).map(([k, v]) => `${escapeHtml(k)} ${v.toFixed(2)}`).join('<br>');
@@ -115,6 +137,7 @@ function overlay(paneIndex, content, side) {
   const variants = document.createElement('select');
   variants.className = 'variant';
   fillSelect(variants, [REFERENCE, ...state.variants], state.panes[paneIndex].variant, variantLabel);
+  variants.title = variantLabel(state.panes[paneIndex].variant);
   variants.addEventListener('change', () => {
     state.panes[paneIndex].variant = variants.value;
     render();
@@ -132,7 +155,11 @@ function overlay(paneIndex, content, side) {
     render();
   });
   div.appendChild(layers);
-  div.insertAdjacentHTML('beforeend', infoHtml(content) + (content.layer.legend ? legendHtml(content.layer.legend) : ''));
+  const layer = content.layer;
+  let legend = '';
+  if (layer.legend) legend = legendHtml(layer.legend, mapRange(layer), state.sharedScale);
+  else if (layer.id.startsWith('debug:')) legend = debugLegendHtml(layer.id.slice('debug:'.length), escapeHtml);
+  div.insertAdjacentHTML('beforeend', infoHtml(content) + legend);
   const inspector = document.createElement('div');
   inspector.className = 'inspector';
   div.appendChild(inspector);
@@ -148,7 +175,32 @@ function image(paneIndex, content, cls) {
   img.alt = `${content.title} ${content.layer.name}`;
   img.draggable = false;
   img.src = content.layer.file;
+  img.dataset.drawn = 'png';
+  redraw(img, content.layer, content.height);
   return img;
+}
+
+// Images drawn from their linear data under the exposure and transform, and error maps coloured
+// over the shared scale: the PNG first, replaced when the data has loaded.
+function redraw(img, layer, height) {
+  const file = layer.file;
+  if (layer.id === 'image' && !isIdentity(state.ev, state.display)) {
+    const ev = state.ev;
+    const display = state.display;
+    linearData(file, results.linearScripts[file]).then((data) => {
+      if (!data || !img.isConnected || ev !== state.ev || display !== state.display) return;
+      img.src = drawLinear(file, data, ev, display);
+      img.dataset.drawn = `ev ${ev} ${display}`;
+    });
+  } else if (layer.legend && state.sharedScale && !sameRange(mapRange(layer), layer.legend.range)) {
+    const range = mapRange(layer);
+    const table = results.colormaps[layer.legend.colormap];
+    pixelData(file, results.pixelScripts[file]).then((data) => {
+      if (!data || !table || !img.isConnected) return;
+      img.src = recolour(file, data, table, layer.legend.range, range, height);
+      img.dataset.drawn = `scale ${range.join(' ')}`;
+    });
+  }
 }
 
 function render() {
@@ -160,6 +212,12 @@ function render() {
   document.title = `hybridlab viewer: ${sel.scene} ${sel.size} ${sel.view}` + (frame >= 0 ? ` @ ${frame}` : '');
   const container = $('panes');
   container.innerHTML = '';
+  const n = slots().length;
+  container.style.gridTemplateColumns = `repeat(${n <= 4 ? n : Math.ceil(n / 2)}, minmax(0, 1fr))`;
+  $('ev').value = String(state.ev);
+  $('ev-label').textContent = `EV ${state.ev >= 0 ? '+' : ''}${state.ev.toFixed(1)}`;
+  $('transform').value = state.display;
+  $('shared-scale').checked = state.sharedScale;
   let first = null;
   slots().forEach((sources, slot) => {
     const pane = document.createElement('div');
@@ -285,11 +343,18 @@ function inspect(p) {
     const where = `(${p.x}, ${p.y})`;
     out.textContent = where;
     const layer = content.layer;
-    pixelData(layer.file, results.pixelScripts[layer.file]).then((data) => {
+    const linear = layer.id === 'image' ? linearData(layer.file, results.linearScripts[layer.file]) : Promise.resolve(null);
+    Promise.all([pixelData(layer.file, results.pixelScripts[layer.file]), linear]).then(([data, lin]) => {
       if (state.pixel !== p || !out.isConnected) return;
       const rgba = rgbaAt(data, p.x, p.y);
-      if (!rgba) return;
-      if (layer.legend && results.colormaps[layer.legend.colormap]) {
+      const rgb = linearAt(lin, p.x, p.y);
+      if (rgb) {
+        // The displayed colour (under the exposure and transform) beside the linear value.
+        const d = displayRgb(rgb, state.ev, state.display);
+        out.textContent = `${where} RGB ${d[0]} ${d[1]} ${d[2]} | linear ${rgb.map((v) => v.toPrecision(4)).join(' ')}`;
+      } else if (!rgba) {
+        return;
+      } else if (layer.legend && results.colormaps[layer.legend.colormap]) {
         out.textContent = `${where} ${layer.id} ${mapValue(rgba, results.colormaps[layer.legend.colormap], layer.legend.range).toPrecision(3)}`;
       } else {
         out.textContent = `${where} RGB ${rgba[0]} ${rgba[1]} ${rgba[2]}`;
@@ -354,6 +419,25 @@ function pickVariant(n) {
   }
 }
 
+function setExposure(ev) {
+  state.ev = Math.max(-EV_LIMIT, Math.min(EV_LIMIT, Math.round(ev / EV_STEP) * EV_STEP));
+  render();
+}
+
+function toggleSharedScale() {
+  state.sharedScale = !state.sharedScale;
+  render();
+}
+
+// The searchable list: a variant by its menu label (or its name) into the active pane.
+function findVariant(text) {
+  const v = [REFERENCE, ...state.variants].find((x) => variantLabel(x) === text || x === text);
+  if (!v) return false;
+  state.panes[state.active].variant = v;
+  render();
+  return true;
+}
+
 function toggleHelp(show) {
   const help = $('help');
   help.innerHTML = helpHtml(escapeHtml);
@@ -372,6 +456,10 @@ const ACTIONS = {
   swipe: () => setMode('swipe'),
   fit: refit,
   overlays: () => document.body.classList.toggle('no-overlays'),
+  brighter: () => setExposure(state.ev + EV_STEP),
+  darker: () => setExposure(state.ev - EV_STEP),
+  scale: toggleSharedScale,
+  find: () => $('find').focus(),
 };
 
 document.addEventListener('keydown', (e) => {
@@ -408,6 +496,16 @@ $('frame').addEventListener('input', () => {
   render();
 });
 $('play').addEventListener('click', togglePlay);
+fillSelect($('transform'), DISPLAY_TRANSFORMS.map((t) => t.id), state.display, (id) => DISPLAY_TRANSFORMS.find((t) => t.id === id).name);
+$('ev').addEventListener('input', () => setExposure(Number($('ev').value)));
+$('transform').addEventListener('change', () => {
+  state.display = $('transform').value;
+  render();
+});
+$('shared-scale').addEventListener('change', toggleSharedScale);
+$('find').addEventListener('change', () => {
+  if (findVariant($('find').value)) $('find').value = '';
+});
 $('fit').addEventListener('click', ACTIONS.fit);
 $('help-button').addEventListener('click', () => toggleHelp());
 window.addEventListener('hashchange', openFromHash);

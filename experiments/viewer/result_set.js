@@ -18,6 +18,7 @@ export class ResultSet {
     this.runs = manifest.runs;
     this.colormaps = manifest.colormaps;
     this.pixelScripts = manifest.pixel_scripts;
+    this.linearScripts = manifest.linear_scripts || {};
     this.referenceParameters = manifest.reference_parameters;
     this.byId = new Map(this.runs.map((r) => [r.id, r]));
     this.byKey = new Map(this.runs.map((r) => [keyOf(r.scene, r.size, r.view, r.frame, r.variant), r]));
@@ -46,6 +47,24 @@ export class ResultSet {
 
   variants(sel) {
     return distinct(this.group(sel).map((r) => r.variant)).sort(naturalOrder);
+  }
+
+  // One setting per technique, techniques in the order they first appear: the one run with the
+  // technique's defaults (no parameters) where there is one, else the first in name order. Settings
+  // the report found not applicable to the scene (they change nothing there) are left out.
+  defaultVariants(sel) {
+    const byTechnique = new Map();
+    for (const r of this.group(sel)) {
+      if (r.not_applicable) continue;
+      const key = r.technique || r.label;
+      if (!byTechnique.has(key)) byTechnique.set(key, new Set());
+      byTechnique.get(key).add(r.variant);
+    }
+    return [...byTechnique.entries()].map(([, set]) => {
+      const names = [...set].sort();
+      const plain = this.group(sel).find((r) => set.has(r.variant) && !r.parameters_text);
+      return plain ? plain.variant : names[0];
+    });
   }
 
   run(sel, frame, variant) {

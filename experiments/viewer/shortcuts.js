@@ -12,6 +12,10 @@ export const SHORTCUTS = [
   { keys: ['w', 'W'], label: 'W', help: 'swipe mode (drag the divider)', action: 'swipe' },
   { keys: ['0'], label: '0', help: 'fit the image to the panes', action: 'fit' },
   { keys: ['i', 'I'], label: 'I', help: 'hide or show the panes\' overlays', action: 'overlays' },
+  { keys: ['+', '='], label: '+', help: 'exposure up half a stop (EV)', action: 'brighter' },
+  { keys: ['-', '_'], label: '-', help: 'exposure down half a stop (EV)', action: 'darker' },
+  { keys: ['m', 'M'], label: 'M', help: 'error maps: one scale shared by every pane, or each pane its own', action: 'scale' },
+  { keys: ['/'], label: '/', help: 'find a technique setting by name (every one, beyond 1 ... 9)', action: 'find' },
   { keys: ['Escape'], label: 'Esc', help: 'close this help', action: 'close' },
 ];
 

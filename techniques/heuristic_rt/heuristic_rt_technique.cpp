@@ -138,7 +138,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     FrameResult result;
     StageClock clock(result);
 
-    // rast: the G-buffer and the P-buffer.
+    // raster: the G-buffer and the P-buffer.
     RasterRequest request = frame.rasterRequest();
     request.readback = kGBufferSurfaceTargets;
     request.lighting = true;
@@ -146,9 +146,9 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     request.occlusionQueries = visiblePixelsByQueries_;
     context.rasterizer().render(request, raster_);
     const GBuffer& g = raster_.gbuffer;
-    clock.lap("rast");
+    clock.lap("raster");
 
-    // heur: the selection, then the heuristic mask.
+    // heuristic: the selection, then the heuristic mask.
     const Selection selection = selectObjects(
         scene, frame, visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : visiblePixelsFromIds(g, scene.objects.size()));
     const std::size_t pixels = g.pixelCount();
@@ -160,11 +160,11 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         pixelEffects_[i] = selection.effectsByObject[static_cast<std::size_t>(o)];
         masked += pixelEffects_[i] != 0;
     }
-    clock.lap("heur");
+    clock.lap("heuristic");
 
     const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
-    // rayt: Listings 8a-8d from the G-buffer, for masked pixels only.
+    // trace: Listings 8a-8d from the G-buffer, for masked pixels only.
     const WhittedTracer tracer(rays, tracer_);
     parts_.resize(pixels);
     const Image& lighting = raster_.lighting;
@@ -185,7 +185,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         }
         parts_[i] = p;
     });
-    clock.lap("rayt");
+    clock.lap("trace");
 
     // blend: Listing 10 (eqs. 4-6), or the shading model's composition, over the P-buffer (moved: the next frame's
     // read-back reallocates it).
@@ -196,7 +196,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     clock.lap("blend");
 
     double rayTracingMs = 0.0, otherMs = 0.0;
-    for (const StageTime& s : result.stages) (s.name == "rayt" ? rayTracingMs : otherMs) += s.milliseconds;
+    for (const StageTime& s : result.stages) (s.name == "trace" ? rayTracingMs : otherMs) += s.milliseconds;
     if (frameTimeBudget_) {
         result.counters["target_ms"] = frameTimeBudget_->targetMilliseconds();
         result.counters["predicted_ms"] = frameTimeBudget_->predictedMilliseconds(selection.costSelected);

@@ -1,10 +1,11 @@
 #pragma once
 // `heuristic_rt`: heuristic-selected hybrid ray tracing (Walewski 2019 §3, with Sabino 2012's
-// selection graph). Four timed stages per frame, as Walewski's Table 5:
-//   rast  the shared G-buffer and deferred lighting (the P-buffer);
-//   heur  per visible object A, P, D, V, Q, C, R (eqs. 1-3), the selection graph and the selection
-//         loop of Listing 6 against the budget T; its output is the heuristic mask;
-//   rayt  Embree, for masked pixels only, from the G-buffer (no primary rays): shadow rays,
+// selection graph). Four timed stages per frame, as Walewski's Table 5 (its RAST, HEUR, RAYT, BLEND
+// under the names every technique uses):
+//   raster    the shared G-buffer and deferred lighting (the P-buffer);
+//   heuristic per visible object A, P, D, V, Q, C, R (eqs. 1-3), the selection graph and the
+//         selection loop of Listing 6 against the budget T; its output is the heuristic mask;
+//   trace Embree, for masked pixels only, from the G-buffer (no primary rays): shadow rays,
 //         reflection and refraction recursive to max_depth with the importance cut-off, the sky on
 //         a miss (Listings 8a-8d);
 //   blend Listing 10: unmasked pixels keep the P-buffer; masked ones compose the traced terms with

@@ -219,7 +219,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
                                                         : ReflectionSource::Missing;
         texels[i] = {parts, true};
     });
-    clock.lap("ray_trace");
+    clock.lap("trace");
 
     const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_, blurRange_);
     clock.lap("seam_blur");

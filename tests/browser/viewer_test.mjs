@@ -1,9 +1,12 @@
 // The viewer in a real browser: the runner makes a small result set (whitted-classic at 64x36,
 // three frames of the orbit path, two techniques), `hybridlab report` writes viewer.html, and
-// headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks
-// what the viewer promises: every pane's image loads, a wheel event zooms all panes alike, flip changes the
-// image and back, the FLIP map layer shows the map's file, the frame slider moves every pane to the
-// new frame, the inspector shows the same pixel in every pane; and no console error on the way.
+// headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks:
+// every pane's image loads, a wheel event zooms all panes alike, flip changes the image and back,
+// the FLIP map layer shows the map's file, the frame slider moves every pane to the new frame, the
+// inspector shows the same pixel in every pane, exposure changes the pixels drawn (and the inspector
+// shows linear values), two panes' difference maps share one scale in their legends, every variant
+// can be picked from the searchable list, and the report's verdict names the known answer (rt_only
+// at 0.01 is the fastest, indeed the only, setting reaching SSIM 0.99); no console error on the way.
 //
 //   node viewer_test.mjs HYBRIDLAB_BIN WORK_DIR
 //
@@ -61,6 +64,7 @@ params = { max_depth = 1 }
 
 [[techniques]]
 name = "rt_only"
+params = { importance_cutoff = 0.01 }
 `;
 
 function hybridlabRun(args) {
@@ -270,12 +274,109 @@ try {
     await panesLoaded();
   });
 
+  await check('exposure changes the pixels drawn; the inspector shows linear values beside display ones', async () => {
+    const mean = () =>
+      page.$eval('#panes img.image[data-pane="1"]', (img) => {
+        const c = document.createElement('canvas');
+        c.width = img.naturalWidth;
+        c.height = img.naturalHeight;
+        const ctx = c.getContext('2d');
+        ctx.drawImage(img, 0, 0);
+        const d = ctx.getImageData(0, 0, c.width, c.height).data;
+        let sum = 0;
+        for (let i = 0; i < d.length; i += 4) sum += d[i] + d[i + 1] + d[i + 2];
+        return sum / (d.length / 4) / 3;
+      });
+    const drawnAt = (ev) => page.waitForFunction((e) => [...document.querySelectorAll('#panes img.image')].every((i) => i.dataset.drawn === `ev ${e} srgb` && i.complete), ev);
+    await page.locator('body').click({ position: { x: 5, y: 790 } });
+    await page.keyboard.press('e'); // from the FLIP maps back to the images
+    await page.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.dataset.layer === 'image'));
+    for (let i = 0; i < 4; i += 1) await page.keyboard.press('-');
+    await drawnAt(-2);
+    const darker = await mean();
+    for (let i = 0; i < 8; i += 1) await page.keyboard.press('+');
+    await drawnAt(2);
+    const brighter = await mean();
+    assert.equal(await page.textContent('#ev-label'), 'EV +2.0');
+    assert.ok(brighter > darker + 20, `mean display value ${darker} at EV -2, ${brighter} at EV +2`);
+    const box = await viewport(1).boundingBox();
+    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.waitForFunction(() => /RGB \d+ \d+ \d+ \| linear [\d.e+-]+ [\d.e+-]+ [\d.e+-]+$/.test(document.querySelector('#panes .overlay[data-pane="1"] .inspector').textContent));
+    // The display value is the linear one times 2^EV, clipped and sRGB-encoded.
+    const text = await page.textContent('#panes .overlay[data-pane="1"] .inspector');
+    const [, r, , , lr] = /RGB (\d+) (\d+) (\d+) \| linear ([\d.e+-]+)/.exec(text);
+    const x = Math.min(1, Math.max(0, Number(lr) * 4));
+    const enc = x <= 0.0031308 ? 12.92 * x : 1.055 * x ** (1 / 2.4) - 0.055;
+    assert.ok(Math.abs(Number(r) - 255 * enc) <= 1.5, text);
+    for (let i = 0; i < 4; i += 1) await page.keyboard.press('-');
+    await page.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.dataset.drawn === 'png'));
+    assert.deepEqual((await shown()).map((i) => i.src.startsWith('file:')), [true, true, true]);
+  });
+
+  await check("two panes' difference maps share one scale, shown in their legends; M gives each its own", async () => {
+    await page.keyboard.press('e');
+    await panesLoaded();
+    const highs = () => page.$$eval('#panes .legend .hi', (es) => es.map((e) => e.textContent));
+    const frame = Number(await page.$eval('#frame', (s) => s.value));
+    const runs = variants.map((v) => runAt(frames[frame], v));
+    const shared = Math.max(...manifest.runs.map((r) => r.maps.diff.range[1]));
+    assert.deepEqual(await highs(), [shared.toPrecision(3), shared.toPrecision(3)]);
+    await page.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].slice(1).every((i) => i.dataset.drawn === 'png' || i.dataset.drawn.startsWith('scale ')));
+    await page.keyboard.press('m');
+    await panesLoaded();
+    assert.deepEqual(await highs(), runs.map((r) => r.maps.diff.range[1].toPrecision(3)));
+    await page.keyboard.press('m');
+    await page.keyboard.press('e');
+    await page.keyboard.press('e');
+    await page.keyboard.press('e');
+    await panesLoaded();
+  });
+
+  await check('every variant can be selected from the searchable list', async () => {
+    const frame = frames[Number(await page.$eval('#frame', (s) => s.value))];
+    const options = await page.$$eval('#variant-list option', (os) => os.map((o) => o.value));
+    assert.equal(options.length, 1 + variants.length);
+    await viewport(1).click();
+    for (const v of variants) {
+      const label = options.find((o) => o.endsWith(`: ${v}`));
+      assert.ok(label, v);
+      await page.fill('#find', label);
+      await page.$eval('#find', (e) => e.dispatchEvent(new Event('change')));
+      await panesLoaded();
+      assert.equal((await shown())[1].file, runAt(frame, v).image, v);
+    }
+  });
+
   await page.screenshot({ path: path.join(work, 'viewer.png') });
 
   await check("the report's table and charts open the viewer on a run", async () => {
     const report = await browser.newPage({ viewport: { width: 1400, height: 800 } });
     report.on('pageerror', (e) => consoleErrors.push(e.message));
     await report.goto(pathToFileURL(path.join(reportDir, 'index.html')).href);
+    // The verdict: rt_only at 0.01 is the only setting reaching SSIM 0.99 on this scene (max_depth = 1
+    // loses the glass sphere's refraction), so the fastest reaching it.
+    const fastest99 = manifest.runs.filter((r) => r.metrics.ssim >= 0.99).map((r) => r.variant);
+    assert.deepEqual([...new Set(fastest99)], ['rt_only [importance_cutoff=0.01]']);
+    const verdictRow = await report.$$eval('table.verdict.thresholds tr', (trs) =>
+      trs.map((tr) => [...tr.cells].map((c) => c.textContent)).find((cells) => cells[0] === 'SSIM >= 0.99, whole image'));
+    assert.equal(verdictRow[1], 'rt_only [importance_cutoff=0.01]');
+    // Its frame time is the median of its runs' medians, its speed-up the reference's median over it.
+    const median = (xs) => {
+      const v = [...xs].sort((x, y) => x - y);
+      return v.length % 2 ? v[(v.length - 1) / 2] : (v[v.length / 2 - 1] + v[v.length / 2]) / 2;
+    };
+    const rtRuns = manifest.runs.filter((r) => r.variant === 'rt_only [importance_cutoff=0.01]');
+    const rtMs = median(rtRuns.map((r) => r.frame_ms));
+    assert.equal(verdictRow[2], rtMs.toFixed(2));
+    assert.equal(verdictRow[3], (median(manifest.runs.map((r) => r.reference_ms)) / rtMs).toFixed(2));
+    assert.equal(verdictRow[4], '1.00');
+    assert.match(await report.textContent('#verdict ~ p.sentence'), /SSIM 0\.99 on the whole image is rt_only \[importance_cutoff=0\.01\]/);
+    // The device: named where experiment.json records it, "device not recorded" where it does not.
+    const experiment = JSON.parse(fs.readFileSync(path.join(resultDir, 'experiment.json'), 'utf8'));
+    const deviceText = await report.textContent('table.device');
+    if (experiment.device) assert.ok(deviceText.includes(experiment.device.vulkan_device), deviceText);
+    else assert.match(deviceText, /device not recorded/);
+    assert.match(deviceText, /ray backend\s*embree/);
     const hrefs = await report.$$eval('table.runs a[href^="viewer.html#run="]', (as) => as.map((a) => a.getAttribute('href')));
     assert.deepEqual(hrefs.sort(), manifest.runs.map((r) => `viewer.html#run=${r.id}`).sort());
     const target = runAt(40, variants[1]);
@@ -284,11 +385,49 @@ try {
     await report.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.complete && i.naturalWidth > 0));
     const files = await report.$$eval('#panes img.image', (imgs) => imgs.map((i) => i.dataset.file));
     assert.deepEqual(files.slice(0, 2), [target.reference, target.image]);
+    // A path figure's points are runs; a speed-accuracy point is a setting, which opens its first run.
+    const firstRun = manifest.runs.find((r) => r.variant === target.variant);
     for (const svg of fs.readdirSync(path.join(reportDir, 'figures')).filter((f) => /^(speed-accuracy|path)-.*\.svg$/.test(f))) {
       const text = fs.readFileSync(path.join(reportDir, 'figures', svg), 'utf8');
-      assert.ok(text.includes(`target="_top" xlink:href="../viewer.html#run=${target.id}"`), svg);
+      const linked = svg.startsWith('path-') ? target : firstRun;
+      assert.ok(text.includes(`target="_top" xlink:href="../viewer.html#run=${linked.id}"`), svg);
     }
     await report.close();
+  });
+
+  await check('a raster on a software Vulkan device is flagged at the top of the report', async () => {
+    const file = path.join(resultDir, 'experiment.json');
+    const original = fs.readFileSync(file, 'utf8');
+    const experiment = JSON.parse(original);
+    experiment.device = {
+      cpu_model: 'Test CPU 9000', cpu_cores: 2, vulkan_device: 'llvmpipe (LLVM 19.1.7, 256 bits)', vulkan_device_type: 'cpu',
+      vulkan_driver: 'Mesa 25.0.7', vulkan_api_version: '1.4.305', embree_version: '3.13.5', tbb_threads: 2, lp_num_threads: 2,
+      os: 'Debian GNU/Linux 12', program_version: 'test',
+    };
+    fs.writeFileSync(file, JSON.stringify(experiment));
+    const deviceReport = path.join(work, 'device-report');
+    try {
+      hybridlabRun(['report', resultDir, '--out', deviceReport]);
+    } finally {
+      fs.writeFileSync(file, original);
+    }
+    const page = fs.readFileSync(path.join(deviceReport, 'index.html'), 'utf8');
+    assert.ok(page.indexOf('Test CPU 9000 (2 cores)') < page.indexOf('id="verdict"'));
+    assert.match(page, /llvmpipe \(LLVM 19\.1\.7, 256 bits\) \(cpu\)/);
+    assert.match(page, /class="warning">Warning: The raster ran on a software Vulkan device/);
+    assert.match(fs.readFileSync(path.join(deviceReport, 'report.md'), 'utf8'), /\*\*Warning:\*\* The raster ran on a software Vulkan device/);
+  });
+
+  await check('a damaged image in the result set: exit status 2, a message naming it, no report', async () => {
+    const damaged = path.join(work, 'damaged');
+    fs.cpSync(resultDir, damaged, { recursive: true, filter: (f) => !f.startsWith(reportDir) });
+    const exr = path.join(damaged, manifest.runs[1].exr.replace(/^\.\.\//, ''));
+    fs.writeFileSync(exr, fs.readFileSync(exr).subarray(0, 1000));
+    const out = path.join(work, 'damaged-report');
+    const r = spawnSync(hybridlab, ['report', damaged, '--out', out], { encoding: 'utf8' });
+    assert.equal(r.status, 2, r.stderr);
+    assert.ok(r.stderr.includes(exr), r.stderr);
+    assert.ok(!fs.existsSync(out));
   });
 } finally {
   await browser.close();

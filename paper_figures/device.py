@@ -1,0 +1,56 @@
+"""The device a result set was measured on, for the top of the report: experiment.json's `device`
+record (processor, Vulkan device and driver, Embree, threads, system) and the ray backend of the
+runs (their parameter `rays`; Embree where a run does not name one). A raster that ran on a
+software Vulkan device (vulkan_device_type "cpu", e.g. Mesa's lavapipe) is flagged: its frame times
+are not a GPU's."""
+import html
+import json
+import os
+
+FIELDS = (("processor", ("cpu_model", "cpu_cores"), "%s (%s cores)"),
+          ("Vulkan device", ("vulkan_device", "vulkan_device_type"), "%s (%s)"),
+          ("Vulkan driver", ("vulkan_driver", "vulkan_api_version"), "%s, Vulkan %s"),
+          ("Embree", ("embree_version",), "%s"),
+          ("threads", ("tbb_threads", "lp_num_threads"), "TBB %s, lavapipe %s"),
+          ("system", ("os",), "%s"),
+          ("program", ("program_version",), "%s"))
+
+
+def device_record(result_dir):
+    """experiment.json's `device` object, or None where the result set has none."""
+    path = os.path.join(result_dir, "experiment.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f).get("device")
+
+
+def ray_backends(records):
+    return sorted({str(r.get("parameters", {}).get("rays", "embree")) for r in records})
+
+
+def lines(result_dir, records):
+    """(label, text) pairs and a warning (or None)."""
+    device = device_record(result_dir)
+    rows = [("ray backend", ", ".join(ray_backends(records)))]
+    if not device:
+        return [("device", "device not recorded")] + rows, None
+    for label, keys, spec in FIELDS:
+        if any(k in device for k in keys):
+            rows.append((label, spec % tuple(device.get(k, "?") for k in keys)))
+    warning = None
+    if device.get("vulkan_device_type") == "cpu":
+        warning = ("The raster ran on a software Vulkan device (%s): its frame times are a CPU's, not a GPU's, and the "
+                   "rasterizing techniques' speed-ups are not what a GPU would give." % device.get("vulkan_device", "?"))
+    return rows, warning
+
+
+def write(result_dir, records):
+    """The device block as (HTML, Markdown lines)."""
+    rows, warning = lines(result_dir, records)
+    page = '<table class="device">' + "".join("<tr><th>%s</th><td>%s</td></tr>" % (html.escape(k), html.escape(v)) for k, v in rows) + "</table>"
+    md = ["", "Measured on: " + "; ".join("%s: %s" % kv for kv in rows) + "."]
+    if warning:
+        page += '<p class="warning">Warning: %s</p>' % html.escape(warning)
+        md += ["", "**Warning:** " + warning]
+    return page, md
