@@ -79,3 +79,52 @@ TEST(TechniqueDeterminism, EveryTechniqueRendersTheSameFramesTwice) {
 
 }  // namespace
 }  // namespace hybridlab
+
+namespace hybridlab {
+namespace {
+
+// A run's counters and image are a function of the run alone: the same whitted frame rendered in a
+// fresh context, and after other techniques rendered other frames in the same context (the ray
+// scene built at another time and moved about, the rasterizer created), as an experiment's runs
+// follow one another. On an animated scene, where the ray scene's top level is rebuilt per frame.
+TEST(TechniqueDeterminism, CountersDoNotDependOnWhatTheContextRenderedBefore) {
+    const Scene scene = loadSceneFile(findSceneFile("selection-popping"));
+    const CameraPath& path = *scene.findCameraPath("fly-by");
+    constexpr int kWidth = 64, kHeight = 36;
+    auto frame = [&](int f) { return FrameRequest{path.evaluate(path.frameTime(f), scene.camera), path.frameTime(f), kWidth, kHeight}; };
+    auto whittedIn = [&](SceneContext& context) {
+        auto t = createTechnique("whitted", {});
+        t->prepare(context);
+        return t->render(context, frame(20));
+    };
+    SceneContext fresh(scene);
+    const FrameResult alone = whittedIn(fresh);
+
+    SceneContext used(scene);
+    used.rayScene(path.frameTime(40));  // built at another time than the whitted frame's
+    for (const char* predecessor : {"rt_only", "raster", "heuristic_rt"}) {
+        try {
+            auto t = createTechnique(predecessor, {});
+            t->prepare(used);
+            t->render(used, frame(5));
+            t->render(used, frame(40));
+        } catch (const VulkanUnavailable&) {
+            std::printf("[ skipped  ] %s: no Vulkan device\n", predecessor);
+        }
+    }
+    const FrameResult after = whittedIn(used);
+    EXPECT_TRUE(sameBytes(alone.image, after.image));
+    std::size_t compared = 0;
+    for (const auto& [name, value] : alone.counters) {
+        if (isTime(name)) continue;
+        SCOPED_TRACE("counter " + name);
+        ASSERT_TRUE(after.counters.count(name));
+        EXPECT_EQ(value, after.counters.at(name));
+        ++compared;
+    }
+    EXPECT_GT(alone.counters.at("rays_shadow"), 0.0);
+    std::printf("[ determin ] whitted after rt_only, raster, heuristic_rt in one context: image and %zu counters as alone\n", compared);
+}
+
+}  // namespace
+}  // namespace hybridlab
