@@ -71,18 +71,13 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
 }
 
 void writeReportFiles(const fs::path& dir, const MetricReport& report, const ReportSources& sources) {
-    fs::create_directories(dir);
+    createDirectories(dir);
     for (const HeatmapSpec& h : reportHeatmaps(report)) {
         const Image picture = heatmapWithLegend(*h.values, h.range, h.colorMap, h.title);
-        writeAtomically(dir / h.file, [&](const fs::path& tmp) { writePng(tmp, picture); });
+        writePng(dir / h.file, picture);
     }
     const std::string text = reportJson(report, sources).dump(2) + "\n";
-    writeAtomically(dir / "metrics.json", [&](const fs::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-    });
+    writeFileAtomically(dir / "metrics.json", text);
 }
 
 }  // namespace hybridlab

@@ -423,7 +423,7 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithout
         {"unknown-scene", "[[scenes]]\nscene = \"atlantis\"\nresolutions = [[32, 18]]\n" + technique, "unknown scene 'atlantis'"},
         {"unknown-path", scene + "[[scenes.views]]\npath = \"spiral\"\n" + technique, "has no camera path 'spiral' (paths: orbit)"},
         {"frames-out-of-range", scene + "[[scenes.views]]\npath = \"orbit\"\nframes = [0, 500]\n" + technique, "path 'orbit' has 61 frames"},
-        {"tiny-resolution", "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[8, 8]]\n" + technique, "each side must be in [11, 16384]"},
+        {"tiny-resolution", "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[8, 8]]\n" + technique, "resolutions: expected an integer in [11, 16384], got 8"},
         {"no-techniques", scene, "an experiment needs at least one technique"},
         {"no-scenes", technique, "an experiment needs at least one scene"},
         {"unknown-metric", "[experiment]\nmetrics = [\"ssim\", \"lpips\"]\n" + scene + technique,

@@ -318,8 +318,13 @@ TEST(GltfLoader, UnreadableFilesAreErrors) {
     b.document()["accessors"][pos]["count"] = 300;
     b.setRoots({b.addNode({{"mesh", b.addMesh("short", pos)}})});
     b.writeGltf(dir / "short.gltf");
-    EXPECT_CONTAINS(loadError(dir / "short.gltf"),
-                    (dir / "short.gltf").string() + ": mesh 'short' primitive 0 POSITION: accessor reads past the end of its buffer");
+    EXPECT_CONTAINS(loadError(dir / "short.gltf"), (dir / "short.gltf").string() +
+                                                       ": mesh 'short' primitive 0 POSITION: accessor's 300 elements of 12 bytes (stride 12, "
+                                                       "offset 0) read past the end of its ");
+    // A count that would allocate exabytes (2^60) is the same error, before any allocation.
+    b.document()["accessors"][pos]["count"] = 1ULL << 60;
+    b.writeGltf(dir / "huge.gltf");
+    EXPECT_CONTAINS(loadError(dir / "huge.gltf"), "POSITION: accessor's 1152921504606846976 elements of 12 bytes");
 
     // Broken JSON.
     test::writeTextFile(dir / "broken.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ ");

@@ -1,38 +1,140 @@
 #include "common/core/atomic_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
-#include <fstream>
-#include <stdexcept>
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <limits>
+#include <string>
 #include <system_error>
 
-namespace hybridlab {
+#include "common/core/io_error.h"
 
-void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
-    namespace fs = std::filesystem;
-    const fs::path tmp = path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-    try {
-        write(tmp);
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
+namespace hybridlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kTemporaryPrefix = ".tmp-";
+
+// The bytes this process may still write under HYBRIDLAB_TEST_WRITE_LIMIT (see the header).
+std::atomic<long long>& writeBudget() {
+    static std::atomic<long long> budget = [] {
+        const char* limit = std::getenv("HYBRIDLAB_TEST_WRITE_LIMIT");
+        return limit && *limit ? std::atoll(limit) : std::numeric_limits<long long>::max();
+    }();
+    return budget;
+}
+
+// write(2) all of `bytes`; false with errno set on failure.
+bool writeAll(int fd, std::string_view bytes) {
+    while (!bytes.empty()) {
+        std::size_t chunk = bytes.size();
+        const long long left = writeBudget().fetch_sub(static_cast<long long>(chunk));
+        if (left < static_cast<long long>(chunk)) {
+            chunk = static_cast<std::size_t>(std::max(0LL, left));
+            if (chunk == 0) {
+                errno = ENOSPC;
+                return false;
+            }
+        }
+        const ssize_t n = ::write(fd, bytes.data(), chunk);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        bytes.remove_prefix(static_cast<std::size_t>(n));
     }
+    return true;
+}
+
+// The target must be a file name we may replace: not a folder (rename would fail with a
+// confusing reason, or succeed on an empty one).
+void checkTarget(const fs::path& path) {
     std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(path.string() + ": cannot write (" + ec.message() + ")");
+    if (fs::is_directory(path, ec)) throw IoError(path.string() + ": cannot write (it is a directory)");
+}
+
+void renameOver(const fs::path& tmp, const fs::path& path) {
+    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int error = errno;
+        ::unlink(tmp.c_str());
+        throw IoError::fromErrno(path, "write", error);
     }
 }
 
-void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
-    writeAtomically(path, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << contents;
-        out.flush();
-        if (!out) throw std::runtime_error(path.string() + ": cannot write");
-    });
+// The PID of a temporary file's name, or 0 when the name is not one of ours.
+pid_t temporaryOwner(const std::string& name) {
+    if (name.rfind(kTemporaryPrefix, 0) != 0) return 0;
+    std::size_t i = kTemporaryPrefix.size();
+    long long pid = 0;
+    for (; i < name.size() && name[i] >= '0' && name[i] <= '9' && pid < (1LL << 31); ++i) pid = pid * 10 + (name[i] - '0');
+    if (i == kTemporaryPrefix.size() || i >= name.size() || name[i] != '-' || pid <= 0 || pid >= (1LL << 31)) return 0;
+    return static_cast<pid_t>(pid);
+}
+
+}  // namespace
+
+fs::path temporaryPathFor(const fs::path& path) {
+    return path.parent_path() / (std::string(kTemporaryPrefix) + std::to_string(::getpid()) + "-" + path.filename().string());
+}
+
+void writeFileAtomically(const fs::path& path, std::string_view bytes) {
+    checkTarget(path);
+    const fs::path tmp = temporaryPathFor(path);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw IoError::fromErrno(path, "write", errno);
+    const bool written = writeAll(fd, bytes);
+    int error = written ? 0 : errno;
+    // close() reports what a write-back cache deferred (NFS, quotas).
+    if (::close(fd) != 0 && written) error = errno;
+    if (error != 0) {
+        ::unlink(tmp.c_str());
+        throw IoError::fromErrno(path, "write", error);
+    }
+    renameOver(tmp, path);
+}
+
+void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    checkTarget(path);
+    const fs::path tmp = temporaryPathFor(path);
+    try {
+        write(tmp);
+    } catch (...) {
+        ::unlink(tmp.c_str());
+        throw;
+    }
+    struct stat st {};
+    if (::stat(tmp.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+        const int error = errno ? errno : EIO;
+        ::unlink(tmp.c_str());
+        throw IoError::fromErrno(path, "write", error);
+    }
+    renameOver(tmp, path);
+}
+
+void createDirectories(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError(dir.string() + ": cannot create folder (" + ec.message() + ")");
+}
+
+std::size_t removeStaleTemporaries(const fs::path& dir) {
+    std::size_t removed = 0;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const pid_t pid = temporaryOwner(it->path().filename().string());
+        if (pid == 0 || !it->is_regular_file()) continue;
+        // Our own, or a live process's: not stale. kill(pid, 0) fails with ESRCH when none runs.
+        if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+        std::error_code removeError;
+        if (fs::remove(it->path(), removeError)) ++removed;
+    }
+    return removed;
 }
 
 }  // namespace hybridlab

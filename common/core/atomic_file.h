@@ -1,17 +1,37 @@
 #pragma once
-// Files that are either absent or complete: write to a temporary name beside the target (unique
-// to this process, keeping the extension last so that writers that choose a format by it still
-// can), then rename over the target. A process killed mid-write leaves the old file intact; a
-// writer that throws leaves nothing behind.
+// Every file the program writes goes through here: written to a temporary name beside the target
+// (".tmp-PID-NAME", unique to this process), every step checked (open, each write, close), then
+// renamed over the target. So a file under its final name is either absent, the old one, or
+// complete; a process killed mid-write leaves only a ".tmp-PID-*" behind, which
+// removeStaleTemporaries() collects. Failures throw IoError naming the target and the OS reason.
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace hybridlab {
 
-// `write` writes the complete file at the path it is given.
+// Writes `bytes` as the complete file at `path`.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+// For a writer that must be given a path (an encoder that writes the file itself): `write` writes
+// the complete file at the temporary path it is given and throws on failure; the file it leaves
+// must exist and be a regular file, else the target is not touched.
 void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
 
-void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
+// fs::create_directories, failing with IoError naming `dir` and the reason.
+void createDirectories(const std::filesystem::path& dir);
+
+// The temporary name writeFileAtomically uses for `path` in this process.
+std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
+
+// Removes the ".tmp-PID-*" files under `dir` (recursively) whose process PID no longer runs on
+// this machine; returns how many it removed.
+std::size_t removeStaleTemporaries(const std::filesystem::path& dir);
+
+// Tests only: HYBRIDLAB_TEST_WRITE_LIMIT=N makes the process's writes fail with ENOSPC ("No space
+// left on device") once N bytes in all have been written, as a full disk would (the bytes up to
+// the limit are written first). Unset, there is no limit.
 
 }  // namespace hybridlab

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "common/core/input_error.h"
+#include "common/core/number_check.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
@@ -33,6 +33,7 @@ std::string commaSeparated(const std::vector<std::string>& items) {
 
 TomlDocument::TomlDocument(const fs::path& file) : file_(file) {
     if (!fs::exists(file)) throw InputError(file.string() + ": file not found");
+    if (fs::is_directory(file)) throw InputError(file.string() + ": is a directory, expected a TOML file");
     try {
         table_ = std::make_shared<toml::table>(toml::parse_file(file.string()));
     } catch (const toml::parse_error& e) {
@@ -101,11 +102,7 @@ double TomlTable::number(const std::string& key, double fallback, NumberRange ra
     const toml::node* n = get(key);
     if (!n) return fallback;
     double v = parseNumber(key, *n);
-    if (v < range.min || v > range.max) {
-        std::ostringstream s;
-        s << "expected a number in [" << range.min << ", " << range.max << "], got " << v;
-        fail(key, s.str());
-    }
+    if (std::string problem = numberProblem(v, range.min, range.max); !problem.empty()) fail(key, problem);
     return v;
 }
 
@@ -116,12 +113,13 @@ double TomlTable::requiredNumber(const std::string& key, NumberRange range) cons
 
 int TomlTable::integer(const std::string& key, int fallback, int min, int max) const {
     const toml::node* n = get(key);
-    if (!n) return fallback;
-    auto i = n->as_integer();
-    if (!i) fail(key, std::string("expected an integer, got ") + typeName(*n));
-    if (i->get() < min || i->get() > max) {
-        fail(key, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(i->get()));
-    }
+    return n ? integerValue(key, *n, min, max) : fallback;
+}
+
+int TomlTable::integerValue(const std::string& key, const toml::node& n, int min, int max) const {
+    auto i = n.as_integer();
+    if (!i) fail(key, std::string("expected an integer, got ") + typeName(n));
+    if (std::string problem = integerProblem(i->get(), min, max); !problem.empty()) fail(key, problem);
     return static_cast<int>(i->get());
 }
 

@@ -54,6 +54,9 @@ public:
     double number(const std::string& key, double fallback, NumberRange range = {}) const;
     double requiredNumber(const std::string& key, NumberRange range = {}) const;
     int integer(const std::string& key, int fallback, int min, int max) const;
+    // `n`, a value at `key` (or an element of its array), as an integer in [min, max]; a value
+    // outside is an error at `key`, never wrapped.
+    int integerValue(const std::string& key, const toml::node& n, int min, int max) const;
     bool boolean(const std::string& key, bool fallback) const;
     glm::vec2 vec2(const std::string& key, glm::vec2 fallback) const;
     glm::vec3 vec3(const std::string& key, glm::vec3 fallback) const;

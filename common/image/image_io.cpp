@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <memory>
 #include <system_error>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
+#include "common/core/number_check.h"
 #include "common/image/color.h"
 
 namespace hybridlab {
@@ -62,12 +64,34 @@ Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode
 
 }  // namespace
 
-Image readImage(const fs::path& path, ColorEncoding decode) {
+namespace {
+
+// The file opened as an image with its header read: a regular file, of a format OpenImageIO knows,
+// with a size the header states within limits::kImageSide a side.
+std::unique_ptr<ImageInput> openImage(const fs::path& path) {
     if (!fs::exists(path)) throw InputError(path.string() + ": image file not found");
+    if (fs::is_directory(path)) throw InputError(path.string() + ": is a directory, expected an image file");
     const ImageSpec config = unassociatedAlphaConfig();
     auto in = ImageInput::open(path.string(), &config);
     if (!in) throw InputError(path.string() + ": cannot read image (" + OIIO::geterror() + ")");
+    const ImageSpec& spec = in->spec();
+    if (spec.width > limits::kImageSide || spec.height > limits::kImageSide)
+        throw InputError(path.string() + ": image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                         " pixels exceeds the limit of " + std::to_string(limits::kImageSide) + " a side");
+    return in;
+}
+
+}  // namespace
+
+Image readImage(const fs::path& path, ColorEncoding decode) {
+    auto in = openImage(path);
     return decodeOpened(*in, path.string(), decode);
+}
+
+void checkImageFile(const fs::path& path) {
+    auto in = openImage(path);
+    const ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path.string() + ": image has no pixels");
 }
 
 Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name,
@@ -87,15 +111,24 @@ Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const st
 
 namespace {
 
+// Encodes into memory, so that the bytes reach the disk through writeFileAtomically, which checks
+// every step: OpenImageIO's PNG writer does not report a failed write (a full disk left truncated
+// PNGs behind).
 void writePixels(const fs::path& path, const Image& img, TypeDesc type, const std::vector<float>& rgba) {
     auto out = ImageOutput::create(path.string());
     if (!out) throw std::runtime_error(path.string() + ": no image writer (" + OIIO::geterror() + ")");
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
     ImageSpec spec(img.width(), img.height(), 4, type);
     spec.attribute("oiio:UnassociatedAlpha", 1);  // see unassociatedAlphaConfig()
-    if (!out->open(path.string(), spec)) throw std::runtime_error(path.string() + ": " + out->geterror());
-    if (!out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {
-        throw std::runtime_error(path.string() + ": " + out->geterror());
+    // No write time in the file (EXR capDate, PNG tIME): same pixels, same bytes.
+    spec.attribute("DateTime", "");
+    void* proxy = &memory;
+    spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
+    if (!out->open(path.string(), spec) || !out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {
+        throw std::runtime_error(path.string() + ": cannot encode image (" + out->geterror() + ")");
     }
+    writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 std::vector<float> flatten(const Image& img, glm::vec4 (*map)(glm::vec4)) {
@@ -130,10 +163,8 @@ void writeImageAtomically(const fs::path& path, const Image& linear) {
     if (ext != ".exr" && ext != ".png") {
         throw InputError(path.string() + ": unsupported image extension '" + ext + "' (expected .exr or .png)");
     }
-    writeAtomically(path, [&](const fs::path& tmp) {
-        if (ext == ".exr") writeExr(tmp, linear);
-        else writeDisplayPng(tmp, linear);
-    });
+    if (ext == ".exr") writeExr(path, linear);
+    else writeDisplayPng(path, linear);
 }
 
 }  // namespace hybridlab

@@ -13,6 +13,13 @@ enum class ColorEncoding { Linear, Srgb };
 // expanded to RGB; missing alpha is 1. Throws InputError naming the file on failure.
 Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear);
 
+// What readImage checks before decoding, without decoding: the file is an image OpenImageIO can
+// open, with pixels, within the size limit. For commands that check a scene without rendering it.
+void checkImageFile(const std::filesystem::path& path);
+
+// Every writer writes the complete file or nothing (common/core/atomic_file.h; failures throw
+// IoError), with no write time in it, so that the same pixels give the same bytes.
+
 // Writes linear pixels as they are (EXR, 32-bit float).
 void writeExr(const std::filesystem::path& path, const Image& linear);
 
@@ -23,8 +30,7 @@ void writeDisplayPng(const std::filesystem::path& path, const Image& linear, int
 // that are already display values).
 void writePng(const std::filesystem::path& path, const Image& display, int bits = 8);
 
-// Writes `linear` to `path` choosing by extension: .exr linear, .png display sRGB. The file is
-// written to a temporary name beside it and renamed, so no partial file is ever left behind.
+// Writes `linear` to `path` choosing by extension: .exr linear, .png display sRGB.
 void writeImageAtomically(const std::filesystem::path& path, const Image& linear);
 
 }  // namespace hybridlab

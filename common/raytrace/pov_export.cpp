@@ -76,7 +76,9 @@
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
+#include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "common/raytrace/whitted_tracer.h"
 
@@ -274,11 +276,6 @@ void writeMesh(std::ostream& os, const std::string& id, const Mesh& mesh, const 
 
 // ---- files ------------------------------------------------------------------------------------
 
-// A temporary name beside `path` that keeps its extension last (image writers choose by it).
-fs::path temporaryBeside(const fs::path& path) {
-    return path.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + path.filename().string());
-}
-
 // Removes the temporary files on failure.
 struct TemporaryFiles {
     std::vector<fs::path> paths;
@@ -444,23 +441,17 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
     }
 
     // Write everything under temporary names, then rename: no partial output.
-    if (!dir.empty()) fs::create_directories(dir);
+    if (!dir.empty()) createDirectories(dir);
     TemporaryFiles temporaries;
     std::vector<std::pair<fs::path, fs::path>> renames;
-    const fs::path tmpPov = temporaryBeside(out);
+    const fs::path tmpPov = temporaryPathFor(out);
     temporaries.paths.push_back(tmpPov);
-    {
-        std::ofstream f(tmpPov, std::ios::binary);
-        const std::string text = sdl.str();
-        f.write(text.data(), static_cast<std::streamsize>(text.size()));
-        f.close();
-        if (!f) throw InputError(out.string() + ": cannot write");
-    }
+    writeFileAtomically(tmpPov, sdl.str());
     renames.emplace_back(tmpPov, out);
     for (const auto& p : plans) {
         if (!p.used || !p.textured) continue;
         const fs::path png = dir / p.pngName;
-        const fs::path tmp = temporaryBeside(png);
+        const fs::path tmp = temporaryPathFor(png);
         temporaries.paths.push_back(tmp);
         writePng(tmp, p.pigmentImage, 16);
         renames.emplace_back(tmp, png);
@@ -468,7 +459,7 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
     for (const auto& [from, to] : renames) {
         std::error_code ec;
         fs::rename(from, to, ec);
-        if (ec) throw InputError(to.string() + ": cannot write (" + ec.message() + ")");
+        if (ec) throw IoError(to.string() + ": cannot write (" + ec.message() + ")");
         result.files.push_back(to);
     }
     return result;

@@ -28,7 +28,7 @@ public:
     std::vector<float> floats(int index, int components, const std::string& what) const {
         const auto& acc = accessor(index, what);
         if (tinygltf::GetNumComponentsInType(acc.type) != components) fail(what + ": wrong accessor type");
-        std::vector<float> out(acc.count * components);
+        std::vector<float> out(elementCount(acc, what) * components);
         forEachElement(acc, what, [&](std::size_t i, const unsigned char* p) {
             for (int c = 0; c < components; ++c) {
                 float v = 0.0f;
@@ -52,7 +52,7 @@ public:
 
     std::vector<std::uint32_t> indices(int index, const std::string& what) const {
         const auto& acc = accessor(index, what);
-        std::vector<std::uint32_t> out(acc.count);
+        std::vector<std::uint32_t> out(elementCount(acc, what));
         forEachElement(acc, what, [&](std::size_t i, const unsigned char* p) {
             switch (acc.componentType) {
             case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
@@ -73,19 +73,40 @@ private:
         return acc;
     }
 
-    template <typename F>
-    void forEachElement(const tinygltf::Accessor& acc, const std::string& what, F&& f) const {
+    // The accessor's element count, once its elements are known to lie inside its buffer: the
+    // count comes from the file, and it sizes the allocation (a count of 2^60 is an error here,
+    // not std::bad_alloc). The arithmetic cannot overflow: count - 1 <= (size - start - elemSize) / stride.
+    std::size_t elementCount(const tinygltf::Accessor& acc, const std::string& what) const {
         if (acc.bufferView >= static_cast<int>(model_.bufferViews.size())) fail(what + ": buffer view out of range");
         const auto& view = model_.bufferViews[acc.bufferView];
         if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(what + ": buffer out of range");
-        const auto& buf = model_.buffers[view.buffer].data;
-        const int elemSize = tinygltf::GetComponentSizeInBytes(acc.componentType) * tinygltf::GetNumComponentsInType(acc.type);
-        const std::size_t stride = view.byteStride ? view.byteStride : static_cast<std::size_t>(elemSize);
+        const std::size_t size = model_.buffers[view.buffer].data.size();
+        const int componentSize = tinygltf::GetComponentSizeInBytes(acc.componentType);
+        const int components = tinygltf::GetNumComponentsInType(acc.type);
+        if (componentSize <= 0 || components <= 0) fail(what + ": unsupported accessor component type or type");
+        const std::size_t elemSize = static_cast<std::size_t>(componentSize) * components;
+        const std::size_t stride = view.byteStride ? view.byteStride : elemSize;
         const std::size_t start = view.byteOffset + acc.byteOffset;
-        if (acc.count > 0 && start + stride * (acc.count - 1) + elemSize > buf.size()) {
-            fail(what + ": accessor reads past the end of its buffer");
+        if (acc.count == 0) return 0;
+        const bool fits = start <= size && elemSize <= size - start && (acc.count - 1) <= (size - start - elemSize) / stride;
+        if (!fits) {
+            fail(what + ": accessor's " + std::to_string(acc.count) + " elements of " + std::to_string(elemSize) + " bytes (stride " +
+                 std::to_string(stride) + ", offset " + std::to_string(start) + ") read past the end of its " + std::to_string(size) +
+                 "-byte buffer");
         }
-        for (std::size_t i = 0; i < acc.count; ++i) f(i, buf.data() + start + stride * i);
+        return acc.count;
+    }
+
+    template <typename F>
+    void forEachElement(const tinygltf::Accessor& acc, const std::string& what, F&& f) const {
+        const std::size_t count = elementCount(acc, what);
+        const auto& view = model_.bufferViews[acc.bufferView];
+        const auto& buf = model_.buffers[view.buffer].data;
+        const std::size_t elemSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(acc.componentType)) *
+                                     tinygltf::GetNumComponentsInType(acc.type);
+        const std::size_t stride = view.byteStride ? view.byteStride : elemSize;
+        const std::size_t start = view.byteOffset + acc.byteOffset;
+        for (std::size_t i = 0; i < count; ++i) f(i, buf.data() + start + stride * i);
     }
 
     const tinygltf::Model& model_;
@@ -296,12 +317,16 @@ private:
             fs::path p = file_.parent_path() / img.uri;
             if (!fs::exists(p)) reader_.fail("image '" + img.uri + "' not found (looked for " + p.string() + ")");
             out_.sourceFiles.push_back(p);
-            if (opt_.decodeTextures) t = loadTexture(p, srgb);
-            else t.source = p.string();
+            if (opt_.decodeTextures) {
+                t = loadTexture(p, srgb);
+            } else {
+                checkImageFile(p);  // not decoded, but checked
+                t.source = p.string();
+            }
         } else if (img.bufferView >= 0 && img.bufferView < static_cast<int>(model_.bufferViews.size())) {
             const auto& view = model_.bufferViews[img.bufferView];
             const auto& buf = model_.buffers.at(view.buffer).data;
-            if (view.byteOffset + view.byteLength > buf.size()) reader_.fail("image " + std::to_string(src) + " reads past its buffer");
+            if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset) reader_.fail("image " + std::to_string(src) + " reads past its buffer");
             t.source = file_.string() + "#image" + std::to_string(src);
             t.image = readImageFromMemory(buf.data() + view.byteOffset, view.byteLength, t.source, img.mimeType,
                                           srgb ? ColorEncoding::Srgb : ColorEncoding::Linear);

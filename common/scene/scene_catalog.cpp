@@ -21,6 +21,7 @@ std::vector<fs::path> listSceneFiles() {
 fs::path findSceneFile(const std::string& nameOrPath) {
     fs::path p(nameOrPath);
     if (fs::exists(p) && fs::is_regular_file(p)) return p;
+    if (fs::is_directory(p)) throw InputError(nameOrPath + ": is a directory, expected a scene file (.toml) or a scene's name");
     if (p.extension() == ".toml" || nameOrPath.find('/') != std::string::npos) {
         throw InputError(nameOrPath + ": scene file not found");
     }

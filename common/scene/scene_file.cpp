@@ -7,8 +7,10 @@
 #include <glm/trigonometric.hpp>
 
 #include "common/core/input_error.h"
+#include "common/core/number_check.h"
 #include "common/core/log.h"
 #include "common/core/toml_reader.h"
+#include "common/image/image_io.h"
 #include "common/scene/assets.h"
 #include "common/scene/gltf_loader.h"
 #include "common/scene/primitives.h"
@@ -50,6 +52,7 @@ private:
     fs::path existingPath(const TomlTable& t, const std::string& key, const std::string& written) const {
         fs::path p = resolveScenePath(written, doc_.file());
         if (!fs::exists(p)) t.fail(key, missingAssetExplanation(written, p));
+        if (fs::is_directory(p)) t.fail(key, "'" + written + "' is a directory (" + p.string() + "), expected a file");
         return p;
     }
 
@@ -94,6 +97,12 @@ private:
                     t.fail(key, e.what());
                 }
             } else {
+                // Not decoded, but checked: a scene that passes scene-info also renders.
+                try {
+                    checkImageFile(p);
+                } catch (const InputError& e) {
+                    t.fail(key, e.what());
+                }
                 tex.source = p.string();
             }
         }
@@ -166,8 +175,16 @@ private:
                 o.source = t.choice("primitive", "", {"plane", "cube", "sphere", "cylinder"});
                 if (o.source == "plane") meshes.push_back(makePlane());
                 else if (o.source == "cube") meshes.push_back(makeCube());
-                else if (o.source == "sphere") meshes.push_back(makeSphere(t.integer("slices", 64, 3, 4096), t.integer("stacks", 32, 2, 4096)));
-                else meshes.push_back(makeCylinder(t.integer("slices", 64, 3, 4096)));
+                else if (o.source == "sphere") {
+                    const int slices = t.integer("slices", 64, 3, limits::kTessellation), stacks = t.integer("stacks", 32, 2, limits::kTessellation);
+                    // Each side is bounded, and so is their product: it is the memory and the build time.
+                    const long long vertices = static_cast<long long>(slices + 1) * (stacks + 1);
+                    if (vertices > limits::kPrimitiveVertices)
+                        t.fail("stacks", "slices " + std::to_string(slices) + " x stacks " + std::to_string(stacks) + " make " +
+                                             std::to_string(vertices) + " vertices, more than the limit of " +
+                                             std::to_string(limits::kPrimitiveVertices));
+                    meshes.push_back(makeSphere(slices, stacks));
+                } else meshes.push_back(makeCylinder(t.integer("slices", 64, 3, limits::kTessellation)));
                 if (!t.has("material")) t.fail("material", "missing (a primitive needs a material)");
                 meshes[0].material = materialId(t, "material");
             } else {
@@ -399,6 +416,10 @@ private:
             p.framesPerSecond = t.number("fps", 30.0, {1e-3, 1e4});
             p.up = t.vec3("up", p.up);
             auto keys = readKeys(t, "a camera path", p.times);
+            // Frame numbers are ints; a path's frame count must fit one with room to spare.
+            if (p.duration() * p.framesPerSecond >= limits::kFrame)
+                t.fail("fps", "the path's " + formatNumber(p.duration()) + " s at " + formatNumber(p.framesPerSecond) +
+                                  " fps make more frames than the limit of " + std::to_string(limits::kFrame));
             p.keysLookAt = keys[0].has("look_at");
             for (const auto& k : keys) {
                 glm::vec3 pos = k.requiredVec3("position");

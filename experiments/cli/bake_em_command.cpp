@@ -5,11 +5,13 @@
 #include <memory>
 #include <string>
 
+#include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/number_validators.h"
 #include "experiments/runner/progress.h"
 #include "techniques/layered_em/em_cache.h"
 
@@ -65,7 +67,7 @@ void requireViewpoint(const BakeEmOptions& o, const std::string& system, std::si
 
 // The inferred cube maps of one viewpoint sample, one cross per layer (EXR, and PNG for a look).
 void writeLayerImages(const std::filesystem::path& dir, const LayeredEm& em, int viewpoint) {
-    std::filesystem::create_directories(dir);
+    createDirectories(dir);
     for (std::size_t l = 0; l < em.layers.size(); ++l) {
         const Image cross = cubeMapCross(em.viewpoints.at(static_cast<std::size_t>(viewpoint)).maps[l]);
         for (const char* ext : {".exr", ".png"}) {
@@ -168,13 +170,13 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->add_option("--supersampling", s.records.supersampling, "n x n incoming rays a pixel")->check(CLI::Range(1, 8));
     cmd->add_option("--confidence-angle", s.records.confidenceAngleDegrees,
                     "theta_c of the confidence image (degrees; 0: the paper's 5 at 480 lines, scaled to the lens images' height)")
-        ->check(CLI::Range(0.0, 180.0));
+        ->check(numberIn(0.0, 180.0));
     cmd->add_option("--em-size", s.inference.size, "Cube-map texels a face side")->check(CLI::Range(2, 1024));
     cmd->add_option("--layers", s.layers, "EM layers (0: automatic)")->check(CLI::Range(0, 16));
     cmd->add_option("--max-layers", s.maxLayers, "Most layers the automatic choice takes")->check(CLI::Range(1, 16));
-    cmd->add_option("--tau", s.tessellation.tauPixels, "Adaptive tessellation: stop below this edge length (pixels)")->check(CLI::Range(0.5, 1000.0));
-    cmd->add_option("--step", s.viewpoints.stepDegrees, "Viewpoint circle: degrees between samples")->check(CLI::Range(0.5, 360.0));
-    cmd->add_option("--radius", s.viewpoints.radius, "Viewpoint circle radius (0: the scene camera's distance)")->check(CLI::Range(0.0, 1e6));
+    cmd->add_option("--tau", s.tessellation.tauPixels, "Adaptive tessellation: stop below this edge length (pixels)")->check(numberIn(0.5, 1000.0));
+    cmd->add_option("--step", s.viewpoints.stepDegrees, "Viewpoint circle: degrees between samples")->check(numberIn(0.5, 360.0));
+    cmd->add_option("--radius", s.viewpoints.radius, "Viewpoint circle radius (0: the scene camera's distance)")->check(numberIn(0.0, 1e6));
     cmd->add_option("--view-height", o->viewHeight, "Viewpoint circle height (world y; default: the scene camera's)");
     cmd->add_option("--camera-path", s.viewpoints.cameraPath, "Viewpoint samples: the frames of this camera path instead of a circle");
     cmd->add_option("--frame-stride", s.viewpoints.frameStride, "With --camera-path: every n-th frame")->check(CLI::Range(1, 100000));

@@ -4,10 +4,18 @@
 #include <string>
 
 #include "common/core/input_error.h"
+#include "common/core/io_error.h"
 #include "common/raster/vulkan_error.h"
 #include "experiments/cli/commands.h"
 
 namespace {
+
+// One message, one line: a reason that spans lines (a parser's) is joined with "; ".
+void printError(const char* kind, std::string message) {
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
+    std::fprintf(stderr, "hybridlab: %s: %s\n", kind, message.c_str());
+}
 
 bool isCommand(CLI::App& app, const std::string& name) {
     for (const auto* c : app.get_subcommands({}))
@@ -35,7 +43,7 @@ int main(int argc, char** argv) {
     if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
         std::string known;
         for (const auto* c : app.get_subcommands({})) known += (known.empty() ? "" : ", ") + c->get_name();
-        std::fprintf(stderr, "hybridlab: error: unknown command '%s' (commands: %s)\nRun with --help for usage.\n", argv[1], known.c_str());
+        printError("error", "unknown command '" + std::string(argv[1]) + "' (commands: " + known + "; hybridlab --help for usage)");
         return 2;
     }
     try {
@@ -46,17 +54,21 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // Bad arguments are bad input: one message, exit status 2.
-        std::fprintf(stderr, "hybridlab: error: %s\nRun with --help for usage.\n", e.what());
+        printError("error", std::string(e.what()) + " (hybridlab --help for usage)");
         return 2;
     } catch (const hybridlab::InputError& e) {
-        std::fprintf(stderr, "hybridlab: error: %s\n", e.what());
+        printError("error", e.what());
         return 2;
+    } catch (const hybridlab::IoError& e) {
+        // A file that could not be written or read: a full disk, a missing permission (exit 3).
+        printError("error", e.what());
+        return 3;
     } catch (const hybridlab::VulkanError& e) {
         // No usable Vulkan device, a missing format, out of memory: the machine, not the program.
-        std::fprintf(stderr, "hybridlab: error: %s\n", e.what());
+        printError("error", e.what());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "hybridlab: internal error: %s\n", e.what());
+        printError("internal error", e.what());
         return 1;
     }
     return 0;

@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
 #include "common/scene/scene_catalog.h"
@@ -41,6 +42,8 @@ std::pair<fs::path, fs::path> outputPaths(const std::string& out) {
     fs::path exr = p, png = p;
     exr.replace_extension(".exr");
     png.replace_extension(".png");
+    for (const auto& f : {exr, png})
+        if (fs::is_directory(f)) throw InputError("--out " + out + ": " + f.string() + " is a directory, expected an image file name");
     return {exr, png};
 }
 
@@ -52,7 +55,7 @@ void run(const RenderOptions& o) {
     auto technique = createTechnique(o.technique, params);
     Scene scene = loadSceneFile(findSceneFile(o.view.scene));
     View view = o.view.resolve(scene);
-    if (!exrPath.parent_path().empty()) fs::create_directories(exrPath.parent_path());
+    if (!exrPath.parent_path().empty()) createDirectories(exrPath.parent_path());
 
     std::optional<tbb::global_control> threadLimit;
     if (o.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);

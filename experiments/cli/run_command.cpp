@@ -70,6 +70,8 @@ void run(const RunOptions& o) {
     r.quiet = o.quiet;
     if (o.dryRun) return listRuns(config, r);
     const RunnerSummary s = runExperiment(config, r);
+    if (s.staleTemporariesRemoved > 0)
+        std::printf("removed %zu partial file(s) (.tmp-*) left by interrupted runs\n", s.staleTemporariesRemoved);
     std::printf("experiment %s (shard %d/%d): %zu runs, %zu rendered, %zu already done; references: %zu rendered, %zu from the cache (%s)\n",
                 config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
                 s.referenceCacheHits, r.cacheDir.string().c_str());

@@ -105,7 +105,7 @@ void addScenesCommand(CLI::App& app) {
 
 void addSceneInfoCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("scene-info", "Print one scene's summary and bounds");
-    auto* file = new std::string;  // lives as long as the app
+    auto file = std::make_shared<std::string>();
     cmd->add_option("scene", *file, "Scene file, or the name of a built-in scene")->required();
     auto json = std::make_shared<bool>(false);
     cmd->add_flag("--json", *json, "Print the summary as a JSON object instead");

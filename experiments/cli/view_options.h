@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/scene/view.h"
+#include "experiments/cli/number_validators.h"
 
 namespace hybridlab::cli {
 
@@ -22,10 +23,11 @@ struct ViewOptions {
     void addTo(CLI::App* cmd, const std::string& sizeNote = "") {
         cmd->add_option("--scene", scene, "Scene file, or the name of a built-in scene")->required();
         cmd->add_option("--camera-path", cameraPath, "A camera path of the scene (default: the scene's camera)");
-        cmd->add_option("--frame", frame, "Frame number on the camera path");
-        cmd->add_option("--time", time, "Scene time in seconds (animation, and position on the camera path)");
-        cmd->add_option("--width", width, "Image width" + sizeNote)->check(CLI::Range(1, 16384))->capture_default_str();
-        cmd->add_option("--height", height, "Image height" + sizeNote)->check(CLI::Range(1, 16384))->capture_default_str();
+        cmd->add_option("--frame", frame, "Frame number on the camera path")->check(integerIn(0, limits::kFrame));
+        cmd->add_option("--time", time, "Scene time in seconds (animation, and position on the camera path)")
+            ->check(numberIn(-limits::kSceneTime, limits::kSceneTime));
+        cmd->add_option("--width", width, "Image width" + sizeNote)->check(integerIn(1, limits::kImageSide))->capture_default_str();
+        cmd->add_option("--height", height, "Image height" + sizeNote)->check(integerIn(1, limits::kImageSide))->capture_default_str();
     }
 
     View resolve(const Scene& s) const { return resolveView(s, cameraPath, frame, time); }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/core/input_error.h"
+#include "common/core/number_check.h"
 #include "common/core/toml_reader.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
@@ -163,9 +164,9 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
             auto pair = r.as_array();
             if (!pair || pair->size() != 2 || !pair->get(0)->is_integer() || !pair->get(1)->is_integer())
                 t.fail("resolutions", "expected [width, height] pairs of integers");
-            int w = static_cast<int>(pair->get(0)->as_integer()->get()), h = static_cast<int>(pair->get(1)->as_integer()->get());
             // SSIM's 11 x 11 window needs at least that many pixels.
-            if (w < 11 || h < 11 || w > 16384 || h > 16384) t.fail("resolutions", "each side must be in [11, 16384], got " + std::to_string(w) + "x" + std::to_string(h));
+            const int w = t.integerValue("resolutions", *pair->get(0), 11, limits::kImageSide);
+            const int h = t.integerValue("resolutions", *pair->get(1), 11, limits::kImageSide);
             s.resolutions.emplace_back(w, h);
         }
         for (const auto& v : t.tableArray("views")) {
@@ -186,11 +187,13 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
                     auto fr = v.node("frames").as_array();
                     if (!fr || fr->size() != 2 || !fr->get(0)->is_integer() || !fr->get(1)->is_integer())
                         v.fail("frames", "expected [first, last] frame numbers");
-                    view.firstFrame = static_cast<int>(fr->get(0)->as_integer()->get());
-                    view.lastFrame = static_cast<int>(fr->get(1)->as_integer()->get());
-                    if (view.firstFrame < 0 || view.lastFrame > last || view.firstFrame > view.lastFrame)
+                    const long long first = fr->get(0)->as_integer()->get(), lastAsked = fr->get(1)->as_integer()->get();
+                    if (!integerProblem(first, 0, last).empty() || !integerProblem(lastAsked, 0, last).empty() || first > lastAsked)
                         v.fail("frames", "expected 0 <= first <= last <= " + std::to_string(last) + " (path '" + view.cameraPath + "' has " +
-                                             std::to_string(last + 1) + " frames)");
+                                             std::to_string(last + 1) + " frames), got [" + std::to_string(first) + ", " +
+                                             std::to_string(lastAsked) + "]");
+                    view.firstFrame = static_cast<int>(first);
+                    view.lastFrame = static_cast<int>(lastAsked);
                     v.node("frames");  // (marked as read above)
                 } else {
                     view.firstFrame = 0;

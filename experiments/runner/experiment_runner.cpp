@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/core/atomic_file.h"
+#include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
 #include "common/scene/scene_file.h"
@@ -107,8 +108,10 @@ std::string configChangedMessage(const ExperimentConfig& config, const fs::path&
            ". To keep those results, give this config another --out; to redo them with this config, remove the folder first";
 }
 
-// Refuses to touch a folder that is not this experiment's (or empty/new).
-void prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o, std::size_t runsTotal) {
+// Refuses to touch a folder that is not this experiment's (or empty/new), or one another runner
+// is writing; returns the lock that keeps others out while this runner writes.
+std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o, std::size_t runsTotal,
+                                                   RunnerSummary& summary) {
     const fs::path meta = o.outDir / "experiment.json";
     if (fs::exists(o.outDir)) {
         if (fs::exists(meta)) {
@@ -127,9 +130,13 @@ void prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o,
         }
     }
     ResultsStore(o.outDir).createLayout();
+    auto lock = std::make_unique<DirectoryLock>(o.outDir);
+    // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
+    if (o.resume) summary.staleTemporariesRemoved = removeStaleTemporaries(o.outDir);
     writeFileAtomically(meta, experimentJson(config, runsTotal, o.shardIndex, o.shardCount).dump(1) + "\n");
     std::ifstream in(config.file, std::ios::binary);
     writeFileAtomically(o.outDir / "config.toml", std::string(std::istreambuf_iterator<char>(in), {}));
+    return lock;
 }
 
 void writeReferenceCopy(const ResultsStore& store, const CachedReference& ref, bool withMask) {
@@ -182,11 +189,11 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     std::vector<const RunSpec*> mine;
     for (const auto& r : all)
         if (static_cast<int>(r.index % o.shardCount) == o.shardIndex) mine.push_back(&r);
-    prepareOutputFolder(config, o, all.size());
+    RunnerSummary summary;
+    const auto lock = prepareOutputFolder(config, o, all.size(), summary);
 
     const ResultsStore store(o.outDir);
     const ReferenceCache cache(o.cacheDir);
-    RunnerSummary summary;
     summary.runsPlanned = mine.size();
     Progress progress(mine.size(), o.quiet);
     ActiveScene active;

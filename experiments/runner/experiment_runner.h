@@ -24,11 +24,13 @@ struct RunnerSummary {
     std::size_t runsSkipped = 0;   // already recorded (--resume)
     std::size_t referencesRendered = 0;
     std::size_t referenceCacheHits = 0;
+    std::size_t staleTemporariesRemoved = 0;  // partial files of killed runs, removed on --resume
     bool complete = false;         // every run of the shard is recorded
 };
 
-// Throws InputError for an output folder that holds another experiment (or anything else), or
-// one that exists without --resume; nothing is written then.
+// Throws InputError for an output folder that holds another experiment (or anything else), one
+// that exists without --resume, or one another runner is writing (its lock file, DirectoryLock);
+// nothing is written then.
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options);
 
 // `hybridlab run --dry-run`: the runs of the shard, each with whether its reference is cached, and

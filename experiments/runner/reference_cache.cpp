@@ -50,7 +50,7 @@ std::optional<CachedReference> ReferenceCache::find(const std::string& key) cons
 }
 
 void ReferenceCache::store(const CachedReference& entry) const {
-    fs::create_directories(dir_);
+    createDirectories(dir_);
     writeImageAtomically(dir_ / (entry.key + ".exr"), entry.image);
     writeImageAtomically(dir_ / (entry.key + ".mask.exr"), entry.mask);
     // The metadata last: an entry counts only once all of it is there.

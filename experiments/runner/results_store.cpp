@@ -19,7 +19,7 @@ using nlohmann::json;
 ResultsStore::ResultsStore(fs::path dir) : dir_(std::move(dir)) {}
 
 void ResultsStore::createLayout() const {
-    for (const auto& d : {runsDir(), imagesDir(), mapsDir(), referencesDir()}) fs::create_directories(d);
+    for (const auto& d : {runsDir(), imagesDir(), mapsDir(), referencesDir()}) createDirectories(d);
 }
 
 bool ResultsStore::hasRecord(const std::string& id) const { return fs::exists(runsDir() / (id + ".json")); }

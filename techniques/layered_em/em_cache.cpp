@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <type_traits>
 
 #include "common/core/atomic_file.h"
@@ -15,7 +16,7 @@ constexpr char kMagic[8] = {'H', 'L', 'E', 'M', 'v', '3', 'g', '\0'};  // v3: th
 
 class Writer {
 public:
-    explicit Writer(std::ofstream& out) : out_(out) {}
+    explicit Writer(std::ostream& out) : out_(out) {}
     template <typename T>
     void pod(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -32,7 +33,7 @@ public:
     }
 
 private:
-    std::ofstream& out_;
+    std::ostream& out_;
 };
 
 class Reader {
@@ -91,9 +92,9 @@ std::string layeredEmCacheKey(const Scene& scene, const LensSystemInfo& system, 
 std::filesystem::path defaultLayeredEmCacheDir() { return cacheDir("layered-em"); }
 
 void writeLayeredEm(const std::filesystem::path& file, const LayeredEm& em) {
-    std::filesystem::create_directories(file.parent_path());
-    writeAtomically(file, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
+    createDirectories(file.parent_path());
+    {
+        std::ostringstream out(std::ios::binary);
         Writer w(out);
         out.write(kMagic, sizeof kMagic);
         w.str(em.system);
@@ -114,8 +115,8 @@ void writeLayeredEm(const std::filesystem::path& file, const LayeredEm& em) {
                 w.vec(m.texels);
             }
         }
-        if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    });
+        writeFileAtomically(file, std::move(out).str());
+    }
 }
 
 std::optional<LayeredEm> readLayeredEm(const std::filesystem::path& file) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/core/atomic_file.h"
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
@@ -104,7 +105,7 @@ void LayeredEmTechnique::prepare(SceneContext& context) {
             EmBakeStats stats;
             em = bakeLayeredEm(scene, info, bake_, stats);
             if (useCache_) {
-                std::filesystem::create_directories(dir);
+                createDirectories(dir);
                 writeLayeredEm(file, *em);
             }
         }

@@ -1,0 +1,30 @@
+#pragma once
+// Numbers that come from outside (command line, TOML, glTF) are checked here, so that every reader
+// says the same thing about the same mistake: finite, within [min, max], and within the type the
+// value is stored in (a 2^32 that would wrap to 0 in an int is out of range, not 0). The callers
+// add the position (file:line:column, or the option's name).
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace hybridlab {
+
+// Empty when `v` is finite and in [min, max]; else "expected a number in [min, max], got v".
+std::string numberProblem(double v, double min, double max);
+
+// Empty when `v` is in [min, max]; else "expected an integer in [min, max], got v".
+std::string integerProblem(long long v, long long min, long long max);
+
+// `v` as messages print numbers (shortest of %g's forms: 1e+06, 0.5, 30).
+std::string formatNumber(double v);
+
+// The bounds of values that drive memory or time, named so that messages and tests agree.
+namespace limits {
+inline constexpr int kImageSide = 16384;            // pixels a side (width, height, resolutions)
+inline constexpr double kSceneTime = 1e6;           // |seconds| of scene time (--time)
+inline constexpr int kTessellation = 4096;          // slices or stacks of a sphere or cylinder
+inline constexpr long long kPrimitiveVertices = 4'000'000;  // one tessellated primitive's vertices
+inline constexpr int kFrame = 10'000'000;           // a frame number on a camera path
+}  // namespace limits
+
+}  // namespace hybridlab

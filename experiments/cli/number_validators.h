@@ -1,0 +1,34 @@
+#pragma once
+// Command-line numbers through the same checks as TOML and glTF numbers (common/core/number_check.h):
+// CLI11's Range lets NaN through (every comparison with it is false), and its message differs.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "common/core/number_check.h"
+
+namespace hybridlab::cli {
+
+// A finite number in [min, max].
+inline CLI::Validator numberIn(double min, double max) {
+    return CLI::Validator(
+        [min, max](std::string& text) -> std::string {
+            double v = 0.0;
+            if (!CLI::detail::lexical_cast(text, v)) return "expected a number, got '" + text + "'";
+            return numberProblem(v, min, max);
+        },
+        "NUMBER", "numberIn");
+}
+
+// An integer in [min, max] (text that is not one, or would not fit, is refused, never wrapped).
+inline CLI::Validator integerIn(long long min, long long max) {
+    return CLI::Validator(
+        [min, max](std::string& text) -> std::string {
+            long long v = 0;
+            if (!CLI::detail::lexical_cast(text, v)) return "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" + text + "'";
+            return integerProblem(v, min, max);
+        },
+        "INT", "integerIn");
+}
+
+}  // namespace hybridlab::cli
