@@ -200,6 +200,12 @@ def markdown_summary(records):
     return "\n".join(lines)
 
 
+def device_header(result_dir, records):
+    """The device line of the report's header (results.device_line), as HTML and Markdown."""
+    line = rs.device_line(result_dir, records)
+    return "<p class=\"device\">%s</p>" % html.escape(line), line
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("result_dir")
@@ -234,13 +240,14 @@ def main():
         figure_html.append("<h2>%s at %s</h2>" % (html.escape(scene), res))
         figure_html += [figure_files.embed_html(f, a.out) for f in figs]
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
+    device_html, device_md = device_header(a.result_dir, records)
     page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
             "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
             "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}</style></head><body>"
-            "<h1>%s</h1><p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
+            "<h1>%s</h1>%s<p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
             "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
-            % (html.escape(title), html.escape(title), len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
+            % (html.escape(title), html.escape(title), device_html, len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
                html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
                ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
                "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
@@ -248,7 +255,7 @@ def main():
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
     viewer.write_viewer(records, a.out, a.result_dir, title)
-    md = ["# " + title, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
+    md = ["# " + title, "", device_md, "", "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records), markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
     md += failure_md
