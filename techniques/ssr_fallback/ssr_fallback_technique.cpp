@@ -77,6 +77,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
         ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
                         "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
                         "smears thin reflected detail)"),
+        GBufferSource::parameterSpec(),
     };
     for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend).
@@ -87,7 +88,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
             std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
 }
 
-SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)) {
+SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)), gbuffer_(p) {
     ssrOn_ = p.getBool("ssr");
     rayTracedShadows_ = p.getChoice("shadows") == "rt";
     const std::string& f = p.getChoice("fallback");
@@ -122,32 +123,37 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 }
 
 void SsrFallbackTechnique::prepare(SceneContext& context) {
-    context.rayScene(0.0);
+    const RayScene& rays = context.rayScene(0.0);
     if (!ssr_) ssr_ = std::make_unique<SsrPass>();
-    context.rasterizer().render(rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_);
+    RayStats unused;
+    gbuffer_.render(context.rasterizer(), &rays, rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_, unused);
 }
 
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
     Rasterizer& rasterizer = context.rasterizer();
     if (frame.width != warmWidth_ || frame.height != warmHeight_) {
         // New targets cost page faults and allocations the steady state does not pay.
-        rasterizer.render(rasterRequest(frame), raster_);
+        RayStats unused;
+        gbuffer_.render(rasterizer, &context.rayScene(frame.time), rasterRequest(frame), raster_, unused);
         warmWidth_ = frame.width;
         warmHeight_ = frame.height;
     }
     FrameResult result;
     StageClock clock(result);
-    rasterizer.render(rasterRequest(frame), raster_);
+    // With gbuffer = "rays" the G-buffer comes from primary rays (stage gbuffer_rays, after the BVH
+    // update it needs) and is uploaded for the lighting and SSR passes.
+    const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
+    RayStats primaryStats;
+    const GBuffer& g = gbuffer_.render(rasterizer, primaryRays, rasterRequest(frame), raster_, primaryStats, &clock);
     clock.lap("raster");
     // The SSR pass ran inside the rasterizer's command buffer: its GPU time is its own stage.
     const double ssrMs = raster_.gpuMilliseconds("ssr");
     result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
     result.stages.push_back({"ssr", ssrMs});
 
-    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
+    const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
 
     // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
-    const GBuffer& g = raster_.gbuffer;
     const Image& lit = raster_.lighting;
     const std::size_t n = g.pixelCount();
     const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
@@ -159,7 +165,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     std::vector<ReflectionSource> source(n, ReflectionSource::None);
     std::vector<std::uint8_t> refractive(n, 0);
     std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
-    const RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+    RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
         const std::size_t i = g.index(x, y);
         if (g.object(i) < 0) {
             result.image.at(x, y) = lit.at(x, y);  // the sky
@@ -252,6 +258,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         result.debugImages["ssr_confidence"] = std::move(confidence);
     }
 
+    stats += primaryStats;
     recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
     result.counters["reflective_pixels"] = static_cast<double>(reflective);
     result.counters["ssr_hits"] = static_cast<double>(ssrHits);
