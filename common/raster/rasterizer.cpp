@@ -165,7 +165,16 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     }
     for (RasterFramePass* pass : request.passes) pass->finish();
     frame.gpuStages.clear();
-    for (const GpuStageTime& s : r.timer.read()) frame.gpuStages.push_back({s.name, s.milliseconds});
+    for (const GpuStageTime& s : r.timer.read()) {
+        frame.gpuStages.push_back({s.name, s.milliseconds});
+        if (!s.statistics) continue;
+        RasterStageTime& t = frame.gpuStages.back();
+        t.counted = true;
+        t.inputPrimitives = s.statistics->inputPrimitives;
+        t.clippingPrimitives = s.statistics->clippingPrimitives;
+        t.fragmentInvocations = s.statistics->fragmentInvocations;
+        t.computeInvocations = s.statistics->computeInvocations;
+    }
     frame.unpackMilliseconds = millisecondsSince(start);
 }
 

@@ -42,6 +42,9 @@ struct RasterRequest {
 struct RasterStageTime {
     std::string name;
     double milliseconds = 0.0;
+    // The pass's work by pipeline-statistics query (gpu_timer.h), where the device counts it.
+    bool counted = false;
+    std::uint64_t inputPrimitives = 0, clippingPrimitives = 0, fragmentInvocations = 0, computeInvocations = 0;
 };
 
 struct RasterFrame {

@@ -184,6 +184,10 @@ void VulkanDevice::create() {
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     features.features.samplerAnisotropy = VK_TRUE;
     features.features.occlusionQueryPrecise = VK_TRUE;
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    pipelineStatistics_ = supported.pipelineStatisticsQuery == VK_TRUE;  // the work counts; optional
+    features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;

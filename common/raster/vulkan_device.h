@@ -33,6 +33,8 @@ public:
     std::string name() const { return properties_.deviceName; }
     bool isLavapipe() const { return lavapipe_; }
     VkPhysicalDeviceType type() const { return properties_.deviceType; }
+    // Whether pipeline-statistics queries are enabled (the device supports them; lavapipe does).
+    bool pipelineStatistics() const { return pipelineStatistics_; }
     // The driver's name and version text, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)".
     std::string driver() const { return std::string(driver_.driverName) + ", " + driver_.driverInfo; }
     float maxAnisotropy() const { return properties_.limits.maxSamplerAnisotropy; }
@@ -69,6 +71,7 @@ private:
     VkPhysicalDeviceMemoryProperties memory_{};
     VkPhysicalDeviceDriverProperties driver_{};
     bool lavapipe_ = false;
+    bool pipelineStatistics_ = false;
     UniqueCommandPool pool_;
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time

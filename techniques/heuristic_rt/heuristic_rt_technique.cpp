@@ -10,6 +10,7 @@
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
@@ -212,6 +213,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     }
     stats += primaryStats;
     recordRayCounters(stats, static_cast<double>(masked), result);
+    recordRasterWork(raster_, result);
     result.counters["objects_visible"] = static_cast<double>(selection.objectsVisible);
     result.counters["objects_selected"] = static_cast<double>(selection.objectsSelected);
     result.counters["cost_visible"] = selection.costVisible;

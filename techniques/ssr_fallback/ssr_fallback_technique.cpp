@@ -6,6 +6,7 @@
 
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/shared/shadow_parameters.h"
@@ -243,10 +244,15 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
 
     Image sourceImage(frame.width, frame.height), failures(frame.width, frame.height), confidence(frame.width, frame.height);
     std::map<std::uint32_t, std::size_t> failuresByReason;
+    std::uint64_t marchSteps = 0, marched = 0;
     for (std::size_t i = 0; i < n; ++i) {
         sourceImage.data()[i] = sourceColor(source[i], refractive[i] != 0);
         if (!ssr) continue;
         const SsrPixel& sp = ssr->pixels[i];
+        if (sp.traced()) {
+            ++marched;
+            marchSteps += static_cast<std::uint64_t>(sp.steps);
+        }
         failures.data()[i] = failureColor(sp.flags);
         confidence.data()[i] = glm::vec4(glm::vec3(sp.confidence), 1.0f);
         for (std::uint32_t bit = kSsrOffScreen; bit <= kSsrMaxDistance; bit <<= 1)
@@ -260,12 +266,16 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
 
     stats += primaryStats;
     recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
+    recordRasterWork(raster_, result);
     result.counters["reflective_pixels"] = static_cast<double>(reflective);
     result.counters["ssr_hits"] = static_cast<double>(ssrHits);
     result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
     result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
     result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
     result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
+    // SSR's work: march steps in all and per texel marched (the reflective texels SSR traced).
+    result.counters["ssr_march_steps"] = static_cast<double>(marchSteps);
+    result.counters["ssr_steps_per_reflective_pixel"] = marched > 0 ? static_cast<double>(marchSteps) / static_cast<double>(marched) : 0.0;
     result.counters["ssr_fail_off_screen"] = static_cast<double>(failuresByReason[kSsrOffScreen]);
     result.counters["ssr_fail_behind"] = static_cast<double>(failuresByReason[kSsrBehind]);
     result.counters["ssr_fail_out_of_steps"] = static_cast<double>(failuresByReason[kSsrOutOfSteps]);
