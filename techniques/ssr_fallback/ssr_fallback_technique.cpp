@@ -11,6 +11,7 @@
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
+#include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
@@ -81,8 +82,9 @@ TechniqueInfo SsrFallbackTechnique::info() {
         GBufferSource::parameterSpec(),
     };
     for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
-    // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend).
-    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(0.0)) specs.push_back(std::move(s));
+    // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
+    // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
+    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(kRtOnlyImportanceCutoff)) specs.push_back(std::move(s));
     return {"ssr_fallback",
             "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
             "texels SSR fails on, seam blur",
