@@ -185,7 +185,7 @@ def main():
     sizes = sorted({results.resolution(r) for r in rows if r["scene"] == "teapot-lens" and r["view"] == "camera"},
                    key=lambda s: int(s.split("x")[0]))
     tables = [line for size in sizes for line in results_table(rows, size)]
-    results.write_table(tables + figure8(rows) + figure9(rows) + em_resolution(rows), a.out)
+    results.write_table(tables + figure8(rows) + figure9(rows) + em_resolution(rows), a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

@@ -74,7 +74,7 @@ def main():
         lines += table(rows, number, family, what)
     if not lines:
         sys.exit("macedo_tables: %s has no bunnies-falling-N or teapots-deforming-N runs along a path" % a.result_dir)
-    results.write_table(lines, a.out)
+    results.write_table(lines, a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

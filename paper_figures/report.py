@@ -7,7 +7,8 @@ the figures as SVG and PDF.
 Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
 the Pareto front drawn and labelled and the reference's frame time marked (on the whole image, and
 on the reflective and refractive pixels where a scene has them); per scene the stage-time
-breakdown of every technique (Walewski 2019 Table 5 as a chart); along each camera path the frame
+breakdown of every technique (Walewski 2019 Table 5 as a chart) and SSIM against rays per pixel
+(the work, which carries over between machines); along each camera path the frame
 time, the error and the temporal error per frame; and "where methods fail" (failures.py): each
 technique setting's worst frames along every path against its median and against the baseline
 scene's path. Every run in the tables and every point in the
@@ -107,6 +108,29 @@ def speed_accuracy_figure(v, title):
                  color="dimgrey")
     fig.suptitle(title)
     return fig
+
+
+def rays_per_pixel(r):
+    """A run's rays per pixel (primary rays included where a technique casts them), None without counts."""
+    rays = r["counters"].get("rays_total")
+    return None if rays is None else rays / float(r["width"] * r["height"])
+
+
+def work_accuracy(records, out_dir, key, title):
+    """SSIM against rays per pixel: the speed-accuracy chart's second view, by work that carries over
+    between machines instead of this machine's milliseconds (runs without rays sit at 0)."""
+    col = palette.setting_colours(records)
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for v in sorted(col, key=rs.natural_key):
+        rows = [r for r in records if rs.variant(r) == v and rays_per_pixel(r) is not None and rs.metric(r, "whole", "ssim") is not None]
+        ax.scatter([rays_per_pixel(r) for r in rows], [rs.metric(r, "whole", "ssim") for r in rows], color=col[v], label=v, s=22,
+                   alpha=0.85).set_urls(point_links(rows))
+    ax.set_xlabel("rays per pixel")
+    ax.set_ylabel("SSIM (higher is better)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1), frameon=False)
+    fig.suptitle(title)
+    return save(fig, out_dir, "work-accuracy-" + key)
 
 
 def stage_breakdown(records, out_dir, key, title):
@@ -262,7 +286,8 @@ def main():
     for (scene, res), rows in sorted(by_scene.items()):
         key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
         figs = [speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res)),
-                stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res))]
+                stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res)),
+                work_accuracy(rows, a.out, key, "%s at %s: rays per pixel against accuracy" % (scene, res))]
         paths = collections.defaultdict(list)
         for r in rows:
             if r["frame"] >= 0:

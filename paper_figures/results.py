@@ -116,8 +116,51 @@ def table_script(doc, name, extra_arguments=()):
     return a, rows
 
 
-def write_table(lines, out_path=None):
-    """A table script's Markdown lines to standard output, and to `out_path` if given."""
+def device_summary(d):
+    """One line for a device record (experiment.json's "device"; DESIGN.md "Experiments and results")."""
+    if not d:
+        return "unknown device (recorded before result sets named theirs)"
+    g = lambda k: str(d.get(k, "?"))
+    return "%s [%s; %s; Vulkan %s], %s x %s cores, Embree %s, TBB %s threads, LP_NUM_THREADS %s, %s, hybridlab %s" % (
+        g("vulkan_device"), g("vulkan_device_type"), g("vulkan_driver"), g("vulkan_api_version"), g("cpu_model"), g("cpu_cores"),
+        g("embree_version"), g("tbb_threads"), g("lp_num_threads"), g("os"), g("program_version"))
+
+
+def devices(result_dir, rows=()):
+    """The devices a result set was measured on: each run's own where a merge kept them (shards from
+    several devices), else experiment.json's one; [None] when the set predates device records."""
+    own = []
+    for r in rows:
+        if "device" in r and r["device"] not in own:
+            own.append(r["device"])
+    if own:
+        return own
+    try:
+        with open(os.path.join(result_dir, "experiment.json")) as f:
+            return [json.load(f).get("device")]
+    except (OSError, ValueError):
+        return [None]
+
+
+def device_line(result_dir, rows=()):
+    """The line printed under a table: the device the times were measured on, or the devices, marked mixed."""
+    ds = devices(result_dir, rows)
+    if len(ds) == 1:
+        return "Measured on: " + device_summary(ds[0])
+    return "Measured on MIXED devices (times do not compare across them): " + "; ".join(
+        "(%d) %s" % (i + 1, device_summary(d)) for i, d in enumerate(ds))
+
+
+def write_table(lines, out_path=None, device=None):
+    """A table script's Markdown lines to standard output, and to `out_path` if given; with `device`
+    (device_line's), that line under each table."""
+    if device:
+        with_device = []
+        for i, line in enumerate(lines):
+            with_device.append(line)
+            if line.startswith("|") and (i + 1 == len(lines) or not lines[i + 1].startswith("|")):
+                with_device += ["", device]
+        lines = with_device
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     if out_path:

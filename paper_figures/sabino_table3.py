@@ -49,7 +49,7 @@ def table3(rows):
 
 def main():
     a, rows = results.table_script(__doc__, "sabino_table3")
-    results.write_table(table3(rows), a.out)
+    results.write_table(table3(rows), a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

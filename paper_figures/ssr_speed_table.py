@@ -67,7 +67,7 @@ def main():
     whitted = {key(r): r for r in rows if r["label"] == "whitted"}
     if not whitted:
         sys.exit("ssr_speed_table: %s has no whitted runs to compare with" % a.result_dir)
-    results.write_table(speed_table(rows, whitted) + bound_table(rows, whitted), a.out)
+    results.write_table(speed_table(rows, whitted) + bound_table(rows, whitted), a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

@@ -121,7 +121,7 @@ def main():
     a, rows = results.table_script(__doc__, "walewski_tables", [(("--target",), {
         "action": "store_true", "help": "report the frame-time target run (walewski2019_target.toml)"})])
     scenes = sorted({r["scene"] for r in rows})
-    results.write_table(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out)
+    results.write_table(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

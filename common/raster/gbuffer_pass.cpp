@@ -3,6 +3,7 @@
 #include <bit>
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -81,6 +82,14 @@ void unpackHalf4(const void* src, std::size_t texels, std::vector<glm::vec4>& ou
     });
 }
 
+// The inverse of unpackHalf4: the host's G-buffer into a 16-bit float target's staging memory.
+void packHalf4(const std::vector<glm::vec4>& in, void* dst) {
+    auto* h = static_cast<std::uint64_t*>(dst);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) h[i] = glm::packHalf4x16(in[i]);
+    });
+}
+
 }  // namespace
 
 GBufferPass::GBufferPass(const GpuScene& scene) : scene_(scene) {
@@ -131,10 +140,12 @@ void GBufferPass::resize(std::uint32_t width, std::uint32_t height) {
     const VulkanDevice& device = scene_.device();
     for (std::size_t i = 0; i < kFormats.size(); ++i) {
         color_[i] = GpuImage(device, {kFormats[i], width, height, 1, 1,
-                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT});
     }
     depth_ = GpuImage(device, {kDepthFormat, width, height, 1, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     for (auto& r : readback_) r = GpuBuffer();
+    for (auto& u : upload_) u = GpuBuffer();
     width_ = width;
     height_ = height;
 }
@@ -242,6 +253,35 @@ void GBufferPass::recordFinish(VkCommandBuffer cb) {
     transitionImage(cb, depth_.image(), depth_.aspect(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void GBufferPass::recordUpload(VkCommandBuffer cb, const GBuffer& host) {
+    if (host.width != static_cast<int>(width_) || host.height != static_cast<int>(height_) ||
+        !host.has(kGBufferPosition | kGBufferNormal | kGBufferMaterial | kGBufferObjectId)) {
+        throw VulkanError("G-buffer upload: the host G-buffer must be " + std::to_string(width_) + " x " + std::to_string(height_) +
+                          " and hold every colour target");
+    }
+    const VulkanDevice& device = scene_.device();
+    const std::size_t n = host.pixelCount();
+    const std::array<const std::vector<glm::vec4>*, kColorTargets> vec4Targets = {
+        &host.position, &host.normal, &host.emission, &host.ambient, &host.diffuse, &host.specular, &host.optical, nullptr};
+    for (int i = 0; i < kColorTargets; ++i) {
+        if (!upload_[i].valid())
+            upload_[i] = GpuBuffer(device, n * texelBytes(kFormats[i]), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuBuffer::Memory::HostVisible);
+        if (kFormats[i] == VK_FORMAT_R32_UINT) std::memcpy(upload_[i].mapped(), host.objectId.data(), n * sizeof(std::uint32_t));
+        else if (kFormats[i] == VK_FORMAT_R32G32B32A32_SFLOAT) std::memcpy(upload_[i].mapped(), vec4Targets[i]->data(), n * sizeof(glm::vec4));
+        else packHalf4(*vec4Targets[i], upload_[i].mapped());
+        transitionImage(cb, color_[i].image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {width_, height_, 1};
+        vkCmdCopyBufferToImage(cb, upload_[i].buffer(), color_[i].image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        transitionImage(cb, color_[i].image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+    }
 }
 
 void GBufferPass::recordReadback(VkCommandBuffer cb, GBufferTargets targets) {

@@ -35,6 +35,13 @@ public:
     // Moves the targets to GENERAL for sampling and copying.
     void recordFinish(VkCommandBuffer cb);
 
+    // Instead of record() and recordFinish(): fills the colour targets from a G-buffer made on the host
+    // (primary rays, techniques/shared/ray_cast_gbuffer.h; it must hold every colour target), packed
+    // into their formats and copied up, leaving them in VK_IMAGE_LAYOUT_GENERAL as recordFinish()
+    // does, for the lighting and a technique's passes. The depth buffer is not filled: no later
+    // pass reads it (SSR builds its depth pyramid from the position target).
+    void recordUpload(VkCommandBuffer cb, const GBuffer& host);
+
     // Copies `targets` into host-visible buffers (after recordFinish()); unpack() fills a GBuffer
     // from them once the commands completed.
     void recordReadback(VkCommandBuffer cb, GBufferTargets targets);
@@ -55,6 +62,7 @@ private:
     std::array<GpuImage, kColorTargets> color_;
     GpuImage depth_;
     std::array<GpuBuffer, kColorTargets + 1> readback_;  // by target bit index; allocated on first use
+    std::array<GpuBuffer, kColorTargets> upload_;        // recordUpload's staging, by target; allocated on first use
 };
 
 }  // namespace hybridlab

@@ -2,7 +2,10 @@
 // GPU timestamps around passes (vkCmdWriteTimestamp), read after the frame's submission and turned
 // into stage times with the device's timestamp period. On lavapipe they time the CPU threads that
 // execute the command buffer; either way they leave out recording and submission overheads, which
-// the caller times on the wall clock.
+// the caller times on the wall clock. Where the device has pipeline-statistics queries, each
+// stage also counts its work (primitives in and after clipping, fragment and compute shader
+// invocations): numbers that carry over between machines, as times do not.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,9 +14,18 @@
 
 namespace hybridlab {
 
+// A pass's work by Vulkan pipeline-statistics query.
+struct PipelineStatistics {
+    std::uint64_t inputPrimitives = 0;      // primitives the input assembler read
+    std::uint64_t clippingPrimitives = 0;   // primitives out of clipping (what is rasterized)
+    std::uint64_t fragmentInvocations = 0;  // fragment shader invocations
+    std::uint64_t computeInvocations = 0;   // compute shader invocations
+};
+
 struct GpuStageTime {
     std::string name;
     double milliseconds = 0.0;
+    std::optional<PipelineStatistics> statistics;  // where the device counts them
 };
 
 class GpuTimer {
@@ -30,6 +42,7 @@ public:
 private:
     const VulkanDevice& device_;
     UniqueQueryPool pool_;
+    UniqueQueryPool statistics_;  // one query a stage; null without pipeline statistics
     std::uint32_t capacity_;
     std::vector<std::string> names_;
 };

@@ -98,15 +98,24 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         frame.shadowMapsDrawn = r.shadows.record(cb, request.shadowSettings, moved || request.redrawShadowMaps);
         r.timer.end(cb);
     }
-    r.timer.begin(cb, "gbuffer");
-    frame.draws = r.gbuffer.record(cb, viewProj);
-    r.timer.end(cb);
-    if (request.occlusionQueries) {
-        r.timer.begin(cb, "visible_pixels");
-        r.gbuffer.recordVisiblePixelQueries(cb, viewProj, r.occlusion);
+    if (request.hostGBuffer) {
+        if (request.occlusionQueries) throw VulkanError("Rasterizer: no occlusion queries without the G-buffer pass");
+        r.timer.begin(cb, "gbuffer_upload");
+        r.gbuffer.recordUpload(cb, *request.hostGBuffer);
         r.timer.end(cb);
+        frame.draws = 0;
+    } else {
+        r.timer.begin(cb, "gbuffer");
+        frame.draws = r.gbuffer.record(cb, viewProj);
+        r.timer.end(cb);
+        if (request.occlusionQueries) {
+            r.timer.begin(cb, "visible_pixels");
+            r.gbuffer.recordVisiblePixelQueries(cb, viewProj, r.occlusion);
+            r.timer.end(cb);
+        }
+        r.gbuffer.recordFinish(cb);
     }
-    r.gbuffer.recordFinish(cb);
+    const GBufferTargets readback = request.hostGBuffer ? 0 : request.readback;
     if (request.lighting) {
         r.timer.begin(cb, "lighting");
         r.lighting.record(cb, request.camera, request.lightingOptions, request.shadowSettings);
@@ -128,7 +137,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         }
     }
     r.timer.begin(cb, "readback");
-    if (request.readback) r.gbuffer.recordReadback(cb, request.readback);
+    if (readback) r.gbuffer.recordReadback(cb, readback);
     if (request.lighting) r.lighting.recordReadback(cb);
     r.timer.end(cb);
     checkVk(vkEndCommandBuffer(cb), "recording the frame");
@@ -139,7 +148,8 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     frame.submitMilliseconds = millisecondsSince(start);
 
     start = Clock::now();
-    r.gbuffer.unpack(request.readback, frame.gbuffer);
+    if (request.hostGBuffer) frame.gbuffer = GBuffer{};  // the technique holds it
+    else r.gbuffer.unpack(readback, frame.gbuffer);
     if (request.lighting) r.lighting.unpack(frame.lighting);
     else frame.lighting = Image();
     frame.visiblePixelsByQuery.clear();
@@ -155,7 +165,16 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     }
     for (RasterFramePass* pass : request.passes) pass->finish();
     frame.gpuStages.clear();
-    for (const GpuStageTime& s : r.timer.read()) frame.gpuStages.push_back({s.name, s.milliseconds});
+    for (const GpuStageTime& s : r.timer.read()) {
+        frame.gpuStages.push_back({s.name, s.milliseconds});
+        if (!s.statistics) continue;
+        RasterStageTime& t = frame.gpuStages.back();
+        t.counted = true;
+        t.inputPrimitives = s.statistics->inputPrimitives;
+        t.clippingPrimitives = s.statistics->clippingPrimitives;
+        t.fragmentInvocations = s.statistics->fragmentInvocations;
+        t.computeInvocations = s.statistics->computeInvocations;
+    }
     frame.unpackMilliseconds = millisecondsSince(start);
 }
 

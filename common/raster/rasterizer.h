@@ -29,6 +29,11 @@ struct RasterRequest {
     ShadowSettings shadowSettings;      // when lightingOptions.shadows
     bool redrawShadowMaps = false;      // else shadow maps are redrawn only when something moved or the settings changed
     bool occlusionQueries = false;      // visible pixels per object by precise occlusion queries in a depth-equal pass
+    // A G-buffer made on the host (primary rays: techniques/shared/ray_cast_gbuffer.h), holding every
+    // colour target at the request's size: the G-buffer pass is skipped and these are uploaded in its
+    // place (stage "gbuffer_upload"); nothing of the G-buffer is read back and occlusion queries are
+    // not available. Null: the G-buffer pass.
+    const GBuffer* hostGBuffer = nullptr;
     // A technique's own passes (SSR, ...), recorded in order after the lighting pass and before the
     // read-back, each timed under its name; finish() is called on each after the frame completed.
     std::vector<RasterFramePass*> passes;
@@ -37,6 +42,9 @@ struct RasterRequest {
 struct RasterStageTime {
     std::string name;
     double milliseconds = 0.0;
+    // The pass's work by pipeline-statistics query (gpu_timer.h), where the device counts it.
+    bool counted = false;
+    std::uint64_t inputPrimitives = 0, clippingPrimitives = 0, fragmentInvocations = 0, computeInvocations = 0;
 };
 
 struct RasterFrame {
@@ -44,7 +52,7 @@ struct RasterFrame {
     Image lighting;                       // when RasterRequest::lighting: linear RGBA (the P-buffer)
     std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
     // GPU timestamps per pass, in order: shadow_maps (when shadows are on; near 0 when the maps were
-    // kept), gbuffer (depth pre-pass included), visible_pixels (when asked), lighting (when asked),
+    // kept), gbuffer (depth pre-pass included; gbuffer_upload instead with a host G-buffer), visible_pixels (when asked), lighting (when asked),
     // the request's own passes by name, readback (the copies).
     std::vector<RasterStageTime> gpuStages;
     // Wall clock: recording the commands, submission until completion, unpacking the read-back.

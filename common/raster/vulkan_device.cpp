@@ -70,6 +70,17 @@ std::optional<std::string> unsuitable(VkPhysicalDevice pd, std::uint32_t& queueF
     return std::string("has no graphics queue with timestamps");
 }
 
+// Discrete GPU, then integrated, then virtual, then a CPU device (lavapipe), then anything else.
+int typePreference(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+        default: return 0;
+    }
+}
+
 }  // namespace
 
 std::shared_ptr<VulkanDevice> VulkanDevice::shared() {
@@ -125,7 +136,9 @@ void VulkanDevice::create() {
     std::vector<VkPhysicalDevice> devices(count);
     vkEnumeratePhysicalDevices(instance_, &count, devices.data());
     const char* wanted = std::getenv("HYBRIDLAB_VULKAN_DEVICE");
-    // Lavapipe first when present (the project's reference device), then any other device that qualifies.
+    // The most capable kind of device that qualifies (a GPU when there is one: lavapipe would time
+    // the CPU), the first of a kind as the loader lists them; HYBRIDLAB_VULKAN_DEVICE narrows the
+    // choice to the devices whose name holds it.
     std::string rejected;
     int bestScore = -1;
     for (VkPhysicalDevice pd : devices) {
@@ -140,13 +153,15 @@ void VulkanDevice::create() {
         VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
         vkGetPhysicalDeviceProperties2(pd, &p2);
         const bool isLavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
-        int score = wanted && *wanted ? (std::strstr(p.deviceName, wanted) ? 2 : 0) : (isLavapipe ? 2 : 1);
-        if (wanted && *wanted && score == 0) continue;
+        if (wanted && *wanted && !std::strstr(p.deviceName, wanted)) continue;
+        const int score = typePreference(p.deviceType);
         if (score > bestScore) {
             bestScore = score;
             physical_ = pd;
             queueFamily_ = family;
             lavapipe_ = isLavapipe;
+            driver_ = driver;
+            driver_.pNext = nullptr;
         }
     }
     if (physical_ == VK_NULL_HANDLE) {
@@ -169,6 +184,10 @@ void VulkanDevice::create() {
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     features.features.samplerAnisotropy = VK_TRUE;
     features.features.occlusionQueryPrecise = VK_TRUE;
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    pipelineStatistics_ = supported.pipelineStatisticsQuery == VK_TRUE;  // the work counts; optional
+    features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;

@@ -1,7 +1,8 @@
 #pragma once
 // The headless Vulkan 1.3 device of the raster core: no window, no swapchain, offscreen images
-// only. It prefers Mesa lavapipe (the software rasteriser every machine of the project has) and
-// works on any conforming device; HYBRIDLAB_VULKAN_DEVICE=<part of a device name> picks another.
+// only. It prefers a discrete GPU, then an integrated one, then a CPU device (Mesa lavapipe, the
+// software rasteriser every machine of the project has); HYBRIDLAB_VULKAN_DEVICE=<part of a device
+// name> picks by name (the tests pick lavapipe, "llvmpipe", whose results they were calibrated on).
 // Validation layers are on in debug builds (or with HYBRIDLAB_VULKAN_VALIDATION=1) when installed.
 #include <cstdint>
 #include <functional>
@@ -31,6 +32,11 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
     bool isLavapipe() const { return lavapipe_; }
+    VkPhysicalDeviceType type() const { return properties_.deviceType; }
+    // Whether pipeline-statistics queries are enabled (the device supports them; lavapipe does).
+    bool pipelineStatistics() const { return pipelineStatistics_; }
+    // The driver's name and version text, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)".
+    std::string driver() const { return std::string(driver_.driverName) + ", " + driver_.driverInfo; }
     float maxAnisotropy() const { return properties_.limits.maxSamplerAnisotropy; }
     // Nanoseconds per timestamp tick.
     double timestampPeriod() const { return properties_.limits.timestampPeriod; }
@@ -63,7 +69,9 @@ private:
     std::uint32_t queueFamily_ = 0;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memory_{};
+    VkPhysicalDeviceDriverProperties driver_{};
     bool lavapipe_ = false;
+    bool pipelineStatistics_ = false;
     UniqueCommandPool pool_;
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time

@@ -5,8 +5,10 @@
 
 #include "common/core/input_error.h"
 #include "common/core/io_error.h"
+#include "common/core/program_version.h"
 #include "common/raster/vulkan_error.h"
 #include "experiments/cli/commands.h"
+#include "experiments/runner/device_record.h"
 
 namespace {
 
@@ -39,6 +41,11 @@ int main(int argc, char** argv) {
     hybridlab::cli::addExportPovCommand(app);
     hybridlab::cli::addCompareCommand(app);
     hybridlab::cli::addBakeEmCommand(app);
+    app.add_flag("--version")->description("Print the program version and this machine's device record (as result sets store it), then exit");
+    if (argc == 2 && std::string(argv[1]) == "--version") {
+        std::printf("hybridlab %s\n%s\n", hybridlab::programVersion().c_str(), hybridlab::deviceRecord().dump(1).c_str());
+        return 0;
+    }
     // CLI11 would only say "a subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
         std::string known;

@@ -98,12 +98,14 @@ void addRunCommand(CLI::App& app) {
 
     auto out = std::make_shared<std::string>();
     auto shards = std::make_shared<std::vector<std::string>>();
+    auto mixed = std::make_shared<bool>(false);
     auto* merge = app.add_subcommand("merge", "Join the shard folders of one experiment into one result set");
     merge->add_option("--out", *out, "Folder for the merged result set (new or empty)")->required();
     merge->add_option("shards", *shards, "Shard folders written by `hybridlab run --shard i/n`")->required();
-    merge->callback([out, shards] {
+    merge->add_flag("--allow-mixed-devices", *mixed, "Merge shards measured on different devices; each run keeps its device");
+    merge->callback([out, shards, mixed] {
         std::vector<std::filesystem::path> dirs(shards->begin(), shards->end());
-        mergeShards(dirs, *out);
+        mergeShards(dirs, *out, *mixed);
         std::printf("merged %zu shards into %s\n", dirs.size(), out->c_str());
     });
 }

@@ -17,6 +17,7 @@
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
 #include "experiments/runner/parameter_json.h"
+#include "experiments/runner/device_record.h"
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
@@ -66,7 +67,8 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, int s
             {"runs_total", runsTotal},
             {"shard", {{"index", shardIndex}, {"count", shardCount}}},
             {"metrics", metricNames(config)},
-            {"program", programVersionHash()}};
+            {"program", programVersionHash()},
+            {"device", deviceRecord()}};
 }
 
 json readJson(const fs::path& p) {
@@ -335,10 +337,11 @@ ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOption
     return plan;
 }
 
-void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir) {
+void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir, bool allowMixedDevices) {
     if (shardDirs.empty()) throw InputError("merge: no shard folders given");
     json first;
     std::vector<bool> seen;
+    std::vector<json> deviceByShard;
     for (const auto& d : shardDirs) {
         const fs::path meta = d / "experiment.json";
         if (!fs::exists(meta)) throw InputError(d.string() + ": not an experiment folder (no experiment.json)");
@@ -353,6 +356,14 @@ void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir)
         const auto i = m.at("shard").at("index").get<std::size_t>();
         if (seen.at(i)) throw InputError(d.string() + ": shard " + std::to_string(i) + " given twice");
         seen[i] = true;
+        deviceByShard.resize(seen.size());
+        deviceByShard[i] = m.value("device", json());
+        if (!allowMixedDevices && !sameDevice(deviceByShard[i], first.value("device", json()))) {
+            throw InputError("merge: " + d.string() + " was measured on another device than " + shardDirs.front().string() + ":\n  " +
+                             shardDirs.front().string() + ": " + deviceSummary(first.value("device", json())) + "\n  " + d.string() + ": " +
+                             deviceSummary(deviceByShard[i]) + "\ntimes from two devices do not compare; pass --allow-mixed-devices to merge them "
+                             "anyway (each run then keeps its device)");
+        }
     }
     for (std::size_t i = 0; i < seen.size(); ++i)
         if (!seen[i]) throw InputError("merge: shard " + std::to_string(i) + "/" + std::to_string(seen.size()) + " is missing");
@@ -375,6 +386,19 @@ void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir)
     if (records.size() != first.at("runs_total").get<std::size_t>()) {
         throw InputError("merge: the shards hold " + std::to_string(records.size()) + " of " + std::to_string(first.at("runs_total").get<std::size_t>()) +
                          " runs (finish them with `hybridlab run --resume --shard i/n` first)");
+    }
+    // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
+    bool mixed = false;
+    for (const json& d : deviceByShard) mixed |= !sameDevice(d, deviceByShard.front());
+    if (mixed) {
+        json devices = json::array();
+        for (const json& d : deviceByShard)
+            if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, d); })) devices.push_back(d);
+        meta["devices"] = devices;
+        for (json& r : records) {
+            r["device"] = deviceByShard.at(r.at("index").get<std::size_t>() % deviceByShard.size());
+            out.writeRecord(r);
+        }
     }
     // Without "temporal" in the config's metrics (older result sets list none: they all had it).
     const json metrics = first.value("metrics", json::array({"temporal"}));

@@ -49,7 +49,9 @@ ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOption
 
 // `hybridlab merge`: joins shard folders of one experiment into `outDir`, as one unsharded run
 // would have written it. Throws InputError when they are not shards of the same experiment or
-// runs are missing.
-void mergeShards(const std::vector<std::filesystem::path>& shardDirs, const std::filesystem::path& outDir);
+// runs are missing, or (unless `allowMixedDevices`) when they were measured on different devices
+// (device_record.h); with it, each record keeps its shard's device as "device".
+void mergeShards(const std::vector<std::filesystem::path>& shardDirs, const std::filesystem::path& outDir,
+                 bool allowMixedDevices = false);
 
 }  // namespace hybridlab

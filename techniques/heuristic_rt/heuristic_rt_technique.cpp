@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <limits>
 
+#include "common/core/input_error.h"
 #include "techniques/heuristic_rt/heuristic.h"
 #include "techniques/heuristic_rt/object_observations.h"
 #include "techniques/heuristic_rt/selection_graph.h"
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
@@ -49,6 +51,7 @@ TechniqueInfo HeuristicRtTechnique::info() {
         ParamSpec::choice("raster_shadows", "map", {"map", "off"},
                           "shadows of pixels not ray traced: shadow maps, or none (as the paper's P-buffer)"),
         ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"),
+        GBufferSource::parameterSpec(),
     };
     for (ParamSpec& s : tracerParameterSpecs()) specs.push_back(std::move(s));
     return {"heuristic_rt",
@@ -65,7 +68,11 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
       perEffect_(p.getBool("per_effect")),
       visiblePixelsByQueries_(p.getChoice("visible_pixels") == "queries"),
       rasterShadows_(p.getChoice("raster_shadows") == "map"),
-      debugImages_(p.getBool("debug_images")) {
+      debugImages_(p.getBool("debug_images")),
+      gbuffer_(p) {
+    if (gbuffer_.rays() && visiblePixelsByQueries_)
+        throw InputError("heuristic_rt: visible_pixels = \"queries\" needs the rasterizer's G-buffer (gbuffer = \"raster\"); "
+                         "with gbuffer = \"rays\" the visible pixels come from the object ids");
     if (p.getFloat("target_ms") > 0.0) frameTimeBudget_.emplace(p.getFloat("target_ms"));
 }
 
@@ -138,14 +145,16 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     FrameResult result;
     StageClock clock(result);
 
-    // raster: the G-buffer and the P-buffer.
+    // raster: the G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays
+    // (stage gbuffer_rays, after the BVH update it needs).
     RasterRequest request = frame.rasterRequest();
     request.readback = kGBufferSurfaceTargets;
     request.lighting = true;
     request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
     request.occlusionQueries = visiblePixelsByQueries_;
-    context.rasterizer().render(request, raster_);
-    const GBuffer& g = raster_.gbuffer;
+    const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
+    RayStats primaryStats;
+    const GBuffer& g = gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
     clock.lap("raster");
 
     // heuristic: the selection, then the heuristic mask.
@@ -162,13 +171,13 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     }
     clock.lap("heuristic");
 
-    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
+    const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
 
     // trace: Listings 8a-8d from the G-buffer, for masked pixels only.
     const WhittedTracer tracer(rays, tracer_);
     parts_.resize(pixels);
     const Image& lighting = raster_.lighting;
-    const RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+    RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
         const std::size_t i = g.index(x, y);
         if (pixelEffects_[i] == 0) return;
         const GBufferSurface surface(g, i, frame.camera);
@@ -202,7 +211,9 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         result.counters["predicted_ms"] = frameTimeBudget_->predictedMilliseconds(selection.costSelected);
         frameTimeBudget_->observe(selection.costSelected, rayTracingMs, otherMs);
     }
+    stats += primaryStats;
     recordRayCounters(stats, static_cast<double>(masked), result);
+    recordRasterWork(raster_, result);
     result.counters["objects_visible"] = static_cast<double>(selection.objectsVisible);
     result.counters["objects_selected"] = static_cast<double>(selection.objectsSelected);
     result.counters["cost_visible"] = selection.costVisible;

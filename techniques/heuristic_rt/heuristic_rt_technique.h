@@ -21,6 +21,7 @@
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/heuristic_rt/frame_time_budget.h"
+#include "techniques/shared/gbuffer_source.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -54,6 +55,7 @@ private:
 
     std::vector<Aabb> localBounds_;          // per object, object space (for P and D)
     RasterFrame raster_;
+    GBufferSource gbuffer_;
     std::vector<ShadingParts> parts_;        // per pixel, for masked pixels
     std::vector<std::uint8_t> pixelEffects_; // per pixel: the heuristic mask (effect bits)
     std::vector<bool> selectedLastFrame_;    // S, per object

@@ -7,6 +7,7 @@
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
 
@@ -181,6 +182,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     result.counters["pixels_ray_traced"] = 0.0;
     // What "other" holds: the rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
     for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
+    recordRasterWork(raster_, result);
     result.counters["raster_wall_ms"] = raster_.wallMilliseconds();
     result.debugImages["lens"] = lens;
     return result;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/shadow_parameters.h"
 
 namespace hybridlab {
@@ -63,6 +64,7 @@ FrameResult RasterTechnique::render(SceneContext& context, const FrameRequest& f
     result.stages.push_back({"overhead", frame_.recordMilliseconds + std::max(0.0, frame_.submitMilliseconds - gpu)});
     result.image = std::move(frame_.lighting);
     result.counters["draws"] = static_cast<double>(frame_.draws);
+    recordRasterWork(frame_, result);
     result.counters["shadow_maps_drawn"] = frame_.shadowMapsDrawn ? 1.0 : 0.0;
     result.counters["wall_ms"] = frame_.wallMilliseconds();
     result.counters["rays_total"] = 0.0;

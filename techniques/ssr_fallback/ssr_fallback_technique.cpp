@@ -6,10 +6,12 @@
 
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
+#include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
@@ -77,17 +79,19 @@ TechniqueInfo SsrFallbackTechnique::info() {
         ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
                         "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
                         "smears thin reflected detail)"),
+        GBufferSource::parameterSpec(),
     };
     for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
-    // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend).
-    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(0.0)) specs.push_back(std::move(s));
+    // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
+    // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
+    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(kRtOnlyImportanceCutoff)) specs.push_back(std::move(s));
     return {"ssr_fallback",
             "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
             "texels SSR fails on, seam blur",
             std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
 }
 
-SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)) {
+SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)), gbuffer_(p) {
     ssrOn_ = p.getBool("ssr");
     rayTracedShadows_ = p.getChoice("shadows") == "rt";
     const std::string& f = p.getChoice("fallback");
@@ -122,32 +126,37 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 }
 
 void SsrFallbackTechnique::prepare(SceneContext& context) {
-    context.rayScene(0.0);
+    const RayScene& rays = context.rayScene(0.0);
     if (!ssr_) ssr_ = std::make_unique<SsrPass>();
-    context.rasterizer().render(rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_);
+    RayStats unused;
+    gbuffer_.render(context.rasterizer(), &rays, rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_, unused);
 }
 
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
     Rasterizer& rasterizer = context.rasterizer();
     if (frame.width != warmWidth_ || frame.height != warmHeight_) {
         // New targets cost page faults and allocations the steady state does not pay.
-        rasterizer.render(rasterRequest(frame), raster_);
+        RayStats unused;
+        gbuffer_.render(rasterizer, &context.rayScene(frame.time), rasterRequest(frame), raster_, unused);
         warmWidth_ = frame.width;
         warmHeight_ = frame.height;
     }
     FrameResult result;
     StageClock clock(result);
-    rasterizer.render(rasterRequest(frame), raster_);
+    // With gbuffer = "rays" the G-buffer comes from primary rays (stage gbuffer_rays, after the BVH
+    // update it needs) and is uploaded for the lighting and SSR passes.
+    const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
+    RayStats primaryStats;
+    const GBuffer& g = gbuffer_.render(rasterizer, primaryRays, rasterRequest(frame), raster_, primaryStats, &clock);
     clock.lap("raster");
     // The SSR pass ran inside the rasterizer's command buffer: its GPU time is its own stage.
     const double ssrMs = raster_.gpuMilliseconds("ssr");
     result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
     result.stages.push_back({"ssr", ssrMs});
 
-    const RayScene& rays = updateRayScene(context, frame.time, clock, result);
+    const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
 
     // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
-    const GBuffer& g = raster_.gbuffer;
     const Image& lit = raster_.lighting;
     const std::size_t n = g.pixelCount();
     const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
@@ -159,7 +168,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     std::vector<ReflectionSource> source(n, ReflectionSource::None);
     std::vector<std::uint8_t> refractive(n, 0);
     std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
-    const RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+    RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
         const std::size_t i = g.index(x, y);
         if (g.object(i) < 0) {
             result.image.at(x, y) = lit.at(x, y);  // the sky
@@ -237,10 +246,15 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
 
     Image sourceImage(frame.width, frame.height), failures(frame.width, frame.height), confidence(frame.width, frame.height);
     std::map<std::uint32_t, std::size_t> failuresByReason;
+    std::uint64_t marchSteps = 0, marched = 0;
     for (std::size_t i = 0; i < n; ++i) {
         sourceImage.data()[i] = sourceColor(source[i], refractive[i] != 0);
         if (!ssr) continue;
         const SsrPixel& sp = ssr->pixels[i];
+        if (sp.traced()) {
+            ++marched;
+            marchSteps += static_cast<std::uint64_t>(sp.steps);
+        }
         failures.data()[i] = failureColor(sp.flags);
         confidence.data()[i] = glm::vec4(glm::vec3(sp.confidence), 1.0f);
         for (std::uint32_t bit = kSsrOffScreen; bit <= kSsrMaxDistance; bit <<= 1)
@@ -252,13 +266,18 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         result.debugImages["ssr_confidence"] = std::move(confidence);
     }
 
+    stats += primaryStats;
     recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
+    recordRasterWork(raster_, result);
     result.counters["reflective_pixels"] = static_cast<double>(reflective);
     result.counters["ssr_hits"] = static_cast<double>(ssrHits);
     result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
     result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
     result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
     result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
+    // SSR's work: march steps in all and per texel marched (the reflective texels SSR traced).
+    result.counters["ssr_march_steps"] = static_cast<double>(marchSteps);
+    result.counters["ssr_steps_per_reflective_pixel"] = marched > 0 ? static_cast<double>(marchSteps) / static_cast<double>(marched) : 0.0;
     result.counters["ssr_fail_off_screen"] = static_cast<double>(failuresByReason[kSsrOffScreen]);
     result.counters["ssr_fail_behind"] = static_cast<double>(failuresByReason[kSsrBehind]);
     result.counters["ssr_fail_out_of_steps"] = static_cast<double>(failuresByReason[kSsrOutOfSteps]);

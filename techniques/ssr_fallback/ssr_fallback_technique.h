@@ -11,6 +11,7 @@
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/ssr_fallback/seam_blur.h"
+#include "techniques/shared/gbuffer_source.h"
 #include "techniques/ssr_fallback/ssr_pass.h"
 #include "techniques/technique.h"
 
@@ -43,6 +44,7 @@ private:
     WhittedSettings tracerSettings_;
     std::unique_ptr<SsrPass> ssr_;
     RasterFrame raster_;  // reused between frames
+    GBufferSource gbuffer_;
     int warmWidth_ = 0, warmHeight_ = 0;
 };
 

@@ -1,0 +1,100 @@
+// The device record: every key in every result set's experiment.json, `hybridlab --version`, and
+// `hybridlab merge` refusing shards from two devices unless --allow-mixed-devices.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "runner_checks.h"
+#include "experiments/runner/device_record.h"
+#include "experiments/runner/experiment_runner.h"
+#include "test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const char* const kDeviceKeys[] = {"cpu_model",          "cpu_cores",      "vulkan_device", "vulkan_device_type",
+                                   "vulkan_driver",      "vulkan_api_version", "embree_version", "tbb_threads",
+                                   "lp_num_threads",     "os",             "program_version"};
+
+json readJsonFile(const fs::path& p) { return json::parse(test::readTextFile(p)); }
+
+TEST(DeviceRecord, HasEveryKeyAndVersionPrintsIt) {
+    const json d = deviceRecord();
+    for (const char* k : kDeviceKeys) EXPECT_TRUE(d.contains(k)) << k;
+    EXPECT_EQ(d.size(), std::size(kDeviceKeys));
+    EXPECT_GT(d.at("cpu_cores").get<int>(), 0);
+    EXPECT_GT(d.at("tbb_threads").get<int>(), 0);
+    EXPECT_EQ(d.at("program_version").get<std::string>().rfind("0.1.0 (git ", 0), 0u) << d;
+    EXPECT_EQ(d.at("embree_version").get<std::string>().rfind("3.", 0), 0u) << d;
+    EXPECT_NE(d.at("cpu_model").get<std::string>(), "unknown");
+
+    // `hybridlab --version`: the version, then this machine's record as JSON.
+    const test::CliResult r = test::runHybridlab({"--version"});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    const std::string first = r.out.substr(0, r.out.find('\n'));
+    EXPECT_EQ(first, "hybridlab " + d.at("program_version").get<std::string>());
+    EXPECT_EQ(json::parse(r.out.substr(first.size() + 1)), d);
+}
+
+TEST(DeviceRecord, MergeRefusesShardsFromTwoDevicesUnlessAllowed) {
+    test::TempDir dir;
+    const fs::path config = dir.path() / "two.toml";
+    test::writeTextFile(config, R"(
+[experiment]
+name = "two"
+warmup_frames = 0
+repeats = 1
+metrics = ["ssim"]
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[32, 18]]
+[[techniques]]
+name = "whitted"
+params = { max_depth = [0, 1] }
+)");
+    std::vector<fs::path> shards;
+    for (int i = 0; i < 2; ++i) {
+        RunnerOptions o = test::quietRunnerOptions(dir.path() / ("shard" + std::to_string(i)), dir.path() / "cache");
+        o.shardIndex = i;
+        o.shardCount = 2;
+        ASSERT_TRUE(runExperiment(loadExperimentConfig(config), o).complete);
+        shards.push_back(o.outDir);
+        EXPECT_EQ(readJsonFile(o.outDir / "experiment.json").at("device"), deviceRecord());
+    }
+    // Shard 1 as if measured on another machine; a rebuilt program alone is the same device.
+    json meta = readJsonFile(shards[1] / "experiment.json");
+    const std::string here = meta["device"]["vulkan_device"];
+    json other = meta;
+    other["device"]["program_version"] = "0.0.9 (git 000000000000)";
+    test::writeTextFile(shards[1] / "experiment.json", other.dump(1));
+    test::CliResult same = test::runHybridlab({"merge", "--out", (dir.path() / "same").string(), shards[0].string(), shards[1].string()});
+    EXPECT_EQ(same.exitStatus, 0) << same.err;
+    other["device"]["vulkan_device"] = "Imaginary GPU 9000";
+    other["device"]["vulkan_device_type"] = "discrete_gpu";
+    test::writeTextFile(shards[1] / "experiment.json", other.dump(1));
+
+    const fs::path refused = dir.path() / "refused";
+    test::CliResult r = test::runHybridlab({"merge", "--out", refused.string(), shards[0].string(), shards[1].string()});
+    EXPECT_EQ(r.exitStatus, 2) << r.err;
+    EXPECT_NE(r.err.find(here), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Imaginary GPU 9000"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--allow-mixed-devices"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(refused));
+
+    const fs::path mixed = dir.path() / "mixed";
+    r = test::runHybridlab({"merge", "--allow-mixed-devices", "--out", mixed.string(), shards[0].string(), shards[1].string()});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    const auto rows = test::readResults(mixed);
+    ASSERT_EQ(rows.size(), 2u);
+    for (const json& row : rows) {
+        // Run i was shard i's.
+        EXPECT_EQ(row.at("device").at("vulkan_device"), row.at("index").get<int>() == 1 ? "Imaginary GPU 9000" : here) << row.at("id");
+    }
+    EXPECT_EQ(readJsonFile(mixed / "experiment.json").at("devices").size(), 2u);
+}
+
+}  // namespace
+}  // namespace hybridlab
