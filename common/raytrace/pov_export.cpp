@@ -64,9 +64,10 @@
 // ambient index (listed when two transparent objects' bounds overlap); a camera inside a medium
 // starts, in ours, outside every medium (listed).
 // Sky: background colour; misses return it unchanged (no ambient). Depth: max_trace_level 11
-// (POV-Ray counts the camera ray as level 1 and returns black past the limit; our depth-10 rays
-// return their local colour, POV-Ray's their local colour without what would come from further
-// rays); adc_bailout 0 (no ray is cut for low weight); assumed_gamma 1.
+// (POV-Ray counts the camera ray as level 1 and returns black past the limit, so a depth-10 hit
+// gives its local colour without what would come from further rays: the reference's
+// depth_limit = "weighted", its default; "local" differs there); adc_bailout 0 (no ray is cut for
+// low weight); assumed_gamma 1.
 #include "common/raytrace/pov_export.h"
 
 #include <unistd.h>

@@ -79,7 +79,13 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
     parts.reflectivity = om;
     if (om <= 0.0f && orr <= 0.0f) return parts;
-    if (depth >= settings_.maxDepth) return parts;  // the depth limit returns the local colour
+    if (depth >= settings_.maxDepth) {
+        if (settings_.depthLimit == DepthLimit::Local) return parts;  // C alone
+        // Weighted: the rays not traced count 0 (the same under total internal reflection, where
+        // C's weight is (1 - o_m)(1 - o_r) too).
+        parts.composes = true;
+        return parts;
+    }
     parts.composes = true;
 
     glm::vec3 refracted;

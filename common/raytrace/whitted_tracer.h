@@ -14,8 +14,19 @@
 
 namespace hybridlab {
 
+// What a hit at the depth limit returns. Weighted: its local colour C weighted as the composition
+// weights it, (1 - o_m)(1 - o_r) C, the reflected and refracted rays it would trace counting 0: the
+// ray tree truncated at the limit, the sum over every path up to it. Raising the limit only adds
+// paths, so the image converges from below, and the error is the weight of the paths cut off;
+// POV-Ray does the same (black past max_trace_level), so the two agree exactly. Local: C with
+// weight 1, standing in for everything beyond (what the reference did first): an estimate that
+// assumes the rest looks like the surface, neither a bound nor convergent (a mirror's dull local
+// colour counts fully). Weighted is the default for that reason.
+enum class DepthLimit { Weighted, Local };
+
 struct WhittedSettings {
-    int maxDepth = 10;             // secondary bounces; a hit at this depth returns its local colour
+    int maxDepth = 10;             // secondary bounces; a hit at this depth returns what depthLimit says
+    DepthLimit depthLimit = DepthLimit::Weighted;
     float importanceCutoff = 0.0f; // a secondary ray whose weight in the pixel falls below this is not
                                    // traced and the surface's local colour stands in, as at the depth
                                    // limit (0: the full ray tree)
@@ -43,7 +54,7 @@ struct ShadingParts {
     float reflectivity = 0.0f;  // o_m (the Fresnel reflectance for dielectrics)
     float transparency = 0.0f;  // o_r = 1 - opacity
     bool composes = false;      // false: the surface neither reflects nor refracts, or the depth limit was
-                                // reached; its radiance is C alone
+                                // reached with DepthLimit::Local; its radiance is C alone
 
     glm::vec3 composed(BlendRule rule) const {
         return composes ? compose(reflectivity, transparency, reflected, refracted, local, rule) : local;

@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "techniques/layered_em/two_term_tracer.h"
+#include "techniques/shared/depth_limit_parameter.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -17,6 +18,7 @@ std::vector<ParamSpec> WhittedTechnique::recursionParameterSpecs(double defaultI
                         "do not trace secondary rays whose weight in the pixel is below this (0: full ray tree)"),
         ParamSpec::choice("blend", "design", {"design", "walewski2019"},
                           "composition rule: DESIGN.md's, or Walewski 2019 eqs. (5)-(6) averaged"),
+        depthLimitParameterSpec(),
     };
 }
 
@@ -45,6 +47,7 @@ WhittedSettings WhittedTechnique::recursionSettings(const ParameterSet& p) {
     s.maxDepth = static_cast<int>(p.getInt("max_depth"));
     s.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
     s.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+    s.depthLimit = depthLimitSetting(p);
     return s;
 }
 
