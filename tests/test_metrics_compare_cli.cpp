@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -139,6 +140,47 @@ TEST(CompareCommand, WritesTheMetricsAndMapsAndRejectsBadInputWritingNothing) {
         EXPECT_CONTAINS(b.err, bad[i].fragment);
     }
     EXPECT_FALSE(fs::exists(badOut));
+}
+
+// Writes `values` as a 16-bit PNG as they are, tagged with `colorSpace` (OpenImageIO writes
+// "linear" as a gAMA chunk of 1.0, as POV-Ray's File_Gamma=1.0 does; "" writes no tag).
+void writeTaggedPng16(const fs::path& path, const Image& values, const std::string& colorSpace) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(values.width(), values.height(), 3, OIIO::TypeDesc::UINT16);
+    if (!colorSpace.empty()) spec.attribute("oiio:ColorSpace", colorSpace);
+    std::vector<float> rgb;
+    for (std::size_t i = 0; i < values.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) rgb.push_back(values.data()[i][c]);
+    ASSERT_TRUE(out->open(path.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
+    ASSERT_TRUE(out->close());
+}
+
+TEST(CompareCommand, ALinearPngScoresAsTheSameImageInExrAndEachInputSaysWhatItWasTakenAs) {
+    Files f;
+    // Linear values that 16 bits hold exactly, so that the PNG and the EXR carry the same numbers.
+    Image linear = f.testImage;
+    for (std::size_t i = 0; i < linear.pixelCount(); ++i) {
+        glm::vec4& p = linear.data()[i];
+        for (int c = 0; c < 3; ++c) p[c] = std::round(std::clamp(p[c], 0.0f, 1.0f) * 65535.0f) / 65535.0f;
+    }
+    const fs::path exr = f.dir / "linear.exr", png = f.dir / "linear.png", untagged = f.dir / "untagged.png";
+    writeExr(exr, linear);
+    writeTaggedPng16(png, linear, "linear");
+    writeTaggedPng16(untagged, linear, "");
+    const std::vector<CliResult> r = runHybridlabAll({{{"compare", png.string(), f.reference.string()}, {}},
+                                                     {{"compare", exr.string(), f.reference.string()}, {}},
+                                                     {{"compare", untagged.string(), f.reference.string()}, {}}});
+    for (const CliResult& c : r) ASSERT_EQ(c.exitStatus, 0) << c.err;
+    // The same numbers, line for line, after the two lines that name the inputs.
+    auto metrics = [](const std::string& out) { return out.substr(out.find('\n', out.find('\n') + 1)); };
+    EXPECT_EQ(metrics(r[0].out), metrics(r[1].out));
+    EXPECT_CONTAINS(r[0].out, "linear.png  [linear (colour-space metadata: linear)]");
+    EXPECT_CONTAINS(r[1].out, "linear.exr  [linear (floating point)]");
+    // Without metadata a PNG is sRGB, as before: the same values then score differently.
+    EXPECT_CONTAINS(r[2].out, "untagged.png  [sRGB");
+    EXPECT_NE(metrics(r[2].out), metrics(r[1].out));
 }
 
 }  // namespace

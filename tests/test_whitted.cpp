@@ -157,16 +157,30 @@ Scene halfMirrorUnderTheSun() {
     return b.scene();
 }
 
-TEST(Whitted, DepthLimitReturnsTheLocalColour) {
-    // The half-mirror reflects the sky. With max_depth 0 the hit returns its local colour C; with
-    // 1, 0.5 sky + 0.5 C.
+TEST(Whitted, DepthLimitReturnsTheWeightedOrTheLocalColour) {
+    // The half-mirror reflects the sky. With max_depth 0 the hit returns its local colour weighted
+    // as the composition weights it, 0.5 C (the reflected ray counting 0), or with depth_limit
+    // "local" C alone; with 1, 0.5 sky + 0.5 C either way.
     const Scene scene = halfMirrorUnderTheSun();
     const glm::vec3 C(0.5f);
     WhittedSettings s;
+    EXPECT_EQ(s.depthLimit, DepthLimit::Weighted);
     s.maxDepth = 0;
-    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), C, 1e-6f, "depth 0");
-    s.maxDepth = 1;
-    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
+    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), 0.5f * C, 1e-6f, "depth 0, weighted");
+    s.depthLimit = DepthLimit::Local;
+    expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), C, 1e-6f, "depth 0, local");
+    for (DepthLimit limit : {DepthLimit::Weighted, DepthLimit::Local}) {
+        s.depthLimit = limit;
+        s.maxDepth = 1;
+        expectNear(trace(scene, {0, 1, 0}, {0, -1, 0}, s), 0.5f * glm::vec3(0, 0, 1) + 0.5f * C, 1e-6f, "depth 1");
+    }
+}
+
+TEST(Whitted, DepthLimitParameterReachesEveryRayTracingTechnique) {
+    for (const char* name : {"whitted", "rt_only", "heuristic_rt", "ssr_fallback"}) {
+        EXPECT_NO_THROW(createTechnique(name, {{"depth_limit", std::string("local")}})) << name;
+        EXPECT_THROW(createTechnique(name, {{"depth_limit", std::string("black")}}), InputError) << name;
+    }
 }
 
 TEST(Whitted, ALocalColourTheCallerHasIsComposedAsIsWithoutShadowRays) {

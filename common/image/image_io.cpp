@@ -4,11 +4,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <memory>
 #include <system_error>
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
 
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
@@ -32,7 +35,36 @@ ImageSpec unassociatedAlphaConfig() {
     return config;
 }
 
-Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode) {
+// The transfer function of integer channels: none (linear), sRGB, or a power `gamma`.
+struct Transfer {
+    enum class Kind { Linear, Srgb, Power } kind = Transfer::Kind::Linear;
+    float gamma = 1.0f;
+    std::string description;
+};
+
+Transfer transferOf(const ImageSpec& spec, bool integer, ColorEncoding decode) {
+    if (!integer) return {Transfer::Kind::Linear, 1.0f, "linear (floating point)"};
+    if (decode == ColorEncoding::Linear) return {Transfer::Kind::Linear, 1.0f, "as stored"};
+    if (decode == ColorEncoding::Srgb) return {Transfer::Kind::Srgb, 1.0f, "sRGB"};
+    const std::string tag(spec.get_string_attribute("oiio:ColorSpace"));
+    std::string space = tag;
+    std::transform(space.begin(), space.end(), space.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
+    if (space == "linear" || space == "scene_linear" || space == "lin_srgb" || gamma == 1.0f) {
+        return {Transfer::Kind::Linear, 1.0f, "linear (colour-space metadata: linear)"};
+    }
+    if (space == "srgb" || space.empty()) {
+        return {Transfer::Kind::Srgb, 1.0f, space.empty() ? "sRGB (no colour-space metadata)" : "sRGB (colour-space metadata: sRGB)"};
+    }
+    if (gamma > 0.0f) {
+        char text[96];
+        std::snprintf(text, sizeof text, "gamma %.4g (colour-space metadata: %s)", gamma, tag.c_str());
+        return {Transfer::Kind::Power, gamma, text};
+    }
+    return {Transfer::Kind::Srgb, 1.0f, "sRGB (unrecognised colour-space metadata '" + tag + "')"};
+}
+
+Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode, std::string* assumed = nullptr) {
     const ImageSpec& spec = in.spec();
     const int w = spec.width, h = spec.height, nc = spec.nchannels;
     if (w <= 0 || h <= 0 || nc <= 0) throw InputError(name + ": image has no pixels");
@@ -42,7 +74,8 @@ Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode
     }
     const bool integer = spec.format.basetype != TypeDesc::FLOAT && spec.format.basetype != TypeDesc::HALF &&
                          spec.format.basetype != TypeDesc::DOUBLE;
-    const bool toLinear = decode == ColorEncoding::Srgb && integer;
+    const Transfer transfer = transferOf(spec, integer, decode);
+    if (assumed) *assumed = transfer.description;
     Image img(w, h);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
@@ -55,7 +88,8 @@ Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode
                 c.r = p[0], c.g = p[1], c.b = p[2];
                 if (nc > 3) c.a = p[3];
             }
-            if (toLinear) c = glm::vec4(srgbToLinear(glm::vec3(c)), c.a);
+            if (transfer.kind == Transfer::Kind::Srgb) c = glm::vec4(srgbToLinear(glm::vec3(c)), c.a);
+            else if (transfer.kind == Transfer::Kind::Power) c = glm::vec4(glm::pow(glm::vec3(c), glm::vec3(transfer.gamma)), c.a);
             img.at(x, y) = c;
         }
     }
@@ -83,9 +117,9 @@ std::unique_ptr<ImageInput> openImage(const fs::path& path) {
 
 }  // namespace
 
-Image readImage(const fs::path& path, ColorEncoding decode) {
+Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed) {
     auto in = openImage(path);
-    return decodeOpened(*in, path.string(), decode);
+    return decodeOpened(*in, path.string(), decode, assumed);
 }
 
 void checkImageFile(const fs::path& path) {

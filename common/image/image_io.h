@@ -1,17 +1,24 @@
 #pragma once
 // Image files through OpenImageIO: linear EXR (half or float) and display PNG (8 or 16 bit sRGB).
 #include <filesystem>
+#include <string>
 
 #include "common/image/image.h"
 
 namespace hybridlab {
 
-enum class ColorEncoding { Linear, Srgb };
+// How 8/16-bit colour channels are decoded. Tagged: as the file's metadata says, as OpenImageIO
+// reports it from PNG's sRGB, gAMA and cICP chunks (oiio:ColorSpace, oiio:Gamma): "linear" (or
+// gamma 1) as stored, another gamma g as v^g, sRGB or no such metadata as sRGB. Float formats
+// (EXR) are always taken as stored.
+enum class ColorEncoding { Linear, Srgb, Tagged };
 
 // Reads any format OpenImageIO knows. Pixel values are returned as stored; with `decode =
-// ColorEncoding::Srgb` 8/16-bit colour channels are decoded from sRGB to linear. Grey images are
-// expanded to RGB; missing alpha is 1. Throws InputError naming the file on failure.
-Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear);
+// ColorEncoding::Srgb` 8/16-bit colour channels are decoded from sRGB to linear, with Tagged as
+// the file says. Grey images are expanded to RGB; missing alpha is 1. `assumed`, when given,
+// receives what the values were taken as ("linear (float)", "sRGB (no colour-space metadata)", ...).
+// Throws InputError naming the file on failure.
+Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear, std::string* assumed = nullptr);
 
 // What readImage checks before decoding, without decoding: the file is an image OpenImageIO can
 // open, with pixels, within the size limit. For commands that check a scene without rendering it.

@@ -55,12 +55,19 @@
 // that cast no shadow get no_shadow and no twin.
 //
 // Interior: ior = material ior / scene ambient ior (POV-Ray's surrounding medium has index 1 and
-// it uses only ratios); absorption (Beer-Lambert along every path inside, as ours) as media
-// absorption, which POV-Ray computes only inside hollow objects (hence `hollow on`).
+// it uses only ratios); absorption as media absorption, which POV-Ray computes only inside hollow
+// objects (hence `hollow on`). POV-Ray keeps the list of interiors a ray is in and integrates the
+// media of all of them along every segment, eye rays and (with `media_attenuation on` on each
+// light, and the interior on the shadow twin, since shadow rays skip the no_shadow visible object)
+// shadow rays: the rule of medium_stack.h. Where transparent objects nest or overlap,
+// POV-Ray refracts at their shared surfaces with the ratio of the two indices, ours against the
+// ambient index (listed when two transparent objects' bounds overlap); a camera inside a medium
+// starts, in ours, outside every medium (listed).
 // Sky: background colour; misses return it unchanged (no ambient). Depth: max_trace_level 11
-// (POV-Ray counts the camera ray as level 1 and returns black past the limit; our depth-10 rays
-// return their local colour, POV-Ray's their local colour without what would come from further
-// rays); adc_bailout 0 (no ray is cut for low weight); assumed_gamma 1.
+// (POV-Ray counts the camera ray as level 1 and returns black past the limit, so a depth-10 hit
+// gives its local colour without what would come from further rays: the reference's
+// depth_limit = "weighted", its default; "local" differs there); adc_bailout 0 (no ray is cut for
+// low weight); assumed_gamma 1.
 #include "common/raytrace/pov_export.h"
 
 #include <unistd.h>
@@ -75,6 +82,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
@@ -100,6 +108,18 @@ std::string num(double v) {
 }
 
 std::string vec(glm::dvec3 v) { return "<" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ">"; }
+
+// Full double precision, for the camera's vectors: rounded to 9 digits an orthogonal basis is no
+// longer orthogonal to POV-Ray's tolerance, and it warns that they are not perpendicular.
+std::string exactVec(glm::dvec3 v) {
+    auto exact = [](double x) {
+        if (x == 0.0) return std::string("0");
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", x);
+        return std::string(buf);
+    };
+    return "<" + exact(v.x) + ", " + exact(v.y) + ", " + exact(v.z) + ">";
+}
 
 // Right-handed (ours) to left-handed (POV-Ray): mirror z.
 glm::dvec3 pov(glm::dvec3 v) { return {v.x, v.y, -v.z}; }
@@ -234,10 +254,6 @@ std::string materialSdl(const Scene& scene, std::size_t index, const MaterialPla
     const glm::dvec3 absorption(m.absorption);
     if (plan.absorbs) {
         sdl += "  media { absorption rgb " + vec(absorption) + " }\n";
-        if (att > 0.0) {
-            approximations.push_back(who + ": POV-Ray also absorbs the shadow rays of points lit inside it, which "
-                                           "matters where its own inner surfaces have colour (opacity > 0)");
-        }
     }
     sdl += "};\n\n";
     return sdl;
@@ -355,12 +371,12 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
     if (camera.projection == Camera::Projection::Perspective) {
         const double halfTan = std::tan(glm::radians(static_cast<double>(camera.fovYDegrees)) * 0.5);
         sdl << "camera {\n  perspective\n  location " << vec(pov(glm::dvec3(camera.position))) << "\n  direction "
-            << vec(pov(forward * (0.5 / halfTan))) << "\n  right " << vec(pov(right * aspect)) << "\n  up " << vec(pov(up))
+            << exactVec(pov(forward * (0.5 / halfTan))) << "\n  right " << exactVec(pov(right * aspect)) << "\n  up " << exactVec(pov(up))
             << "\n}\n\n";
     } else {
         const double h = camera.orthoHeight;
         sdl << "camera {\n  orthographic\n  location " << vec(pov(glm::dvec3(camera.position))) << "\n  direction "
-            << vec(pov(forward)) << "\n  right " << vec(pov(right * (h * aspect))) << "\n  up " << vec(pov(up * h)) << "\n}\n\n";
+            << exactVec(pov(forward)) << "\n  right " << exactVec(pov(right * (h * aspect))) << "\n  up " << exactVec(pov(up * h)) << "\n}\n\n";
     }
 
     // Lights.
@@ -388,6 +404,8 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             }
             sdl << "  fade_distance " << num(kFadeDistance) << "\n  fade_power 2\n";
         }
+        // Shadow rays through absorbing media are attenuated, as ours (medium_stack.h).
+        sdl << "  media_attenuation on\n";
         if (!l.castsShadows) {
             sdl << "  shadowless\n";
             result.approximations.push_back("light '" + l.name + "' casts no shadows: POV-Ray's shadowless lights add no "
@@ -428,10 +446,43 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             // POV-Ray computes interior media only along rays inside hollow objects.
             if (p.absorbs) sdl << "  hollow on\n";
             sdl << "}\n";
-            if (p.shadowTwin) sdl << "object { " << id << " texture { " << mat << "_Shadow } no_image no_reflection }\n";
+            if (p.shadowTwin) {
+                // POV-Ray's shadow rays skip no_shadow objects, interiors included: the twin carries the
+                // media that absorb them.
+                sdl << "object { " << id << " texture { " << mat << "_Shadow }";
+                if (p.absorbs) sdl << " interior { " << mat << "_Interior } hollow on";
+                sdl << " no_image no_reflection }\n";
+            }
             sdl << "\n";
         }
     }
+    // Media: what the interior list of POV-Ray does that ours does not (see the top of this file).
+    auto overlap = [](const Aabb& a, const Aabb& b) {
+        return a.valid() && b.valid() && glm::all(glm::lessThanEqual(a.lo, b.hi)) && glm::all(glm::lessThanEqual(b.lo, a.hi));
+    };
+    auto absorbs = [&](std::size_t o) {
+        for (auto meshIndex : scene.objects[o].meshes)
+            if (plans[scene.meshes[meshIndex].material].absorbs) return true;
+        return false;
+    };
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        if (!scene.objectIsRefractive(i)) continue;
+        const Aabb bi = scene.objectBounds(i, time);
+        if (absorbs(i) && bi.valid() && glm::all(glm::lessThanEqual(bi.lo, camera.position)) &&
+            glm::all(glm::lessThanEqual(camera.position, bi.hi))) {
+            result.approximations.push_back("the camera is inside the bounds of absorbing object '" + scene.objects[i].name +
+                                            "': if inside the object, POV-Ray absorbs along camera rays from the start, ours "
+                                            "starts them outside every medium");
+        }
+        for (std::size_t j = i + 1; j < scene.objects.size(); ++j) {
+            if (!scene.objectIsRefractive(j) || !overlap(bi, scene.objectBounds(j, time))) continue;
+            result.approximations.push_back("transparent objects '" + scene.objects[i].name + "' and '" + scene.objects[j].name +
+                                            "' have overlapping bounds: where one nests in or overlaps the other, POV-Ray "
+                                            "refracts at their shared surfaces with the ratio of their indices, ours each "
+                                            "against the ambient index");
+        }
+    }
+
     // One note per distinct approximation.
     std::sort(result.approximations.begin(), result.approximations.end());
     result.approximations.erase(std::unique(result.approximations.begin(), result.approximations.end()), result.approximations.end());

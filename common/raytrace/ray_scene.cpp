@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/raytrace/medium_stack.h"
 #include "common/raytrace/shading.h"
 
 namespace hybridlab {
@@ -42,7 +43,18 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
         ctx->distance[ctx->crossings] = t;
         ++ctx->crossings;
     }
-    ctx->transmittance *= occluderTransmittance(*static_cast<const Material*>(args->geometryUserPtr));
+    const Material& m = *static_cast<const Material*>(args->geometryUserPtr);
+    if (m.absorption != glm::vec3(0.0f)) {
+        // Ray and normal are in the same (instance) space; the normal follows the winding as
+        // SurfaceHit::geometricNormal does, so a negative cosine is a front face: entering.
+        const float cosine = RTCRayN_dir_x(args->ray, args->N, 0) * RTCHitN_Ng_x(args->hit, args->N, 0) +
+                             RTCRayN_dir_y(args->ray, args->N, 0) * RTCHitN_Ng_y(args->hit, args->N, 0) +
+                             RTCRayN_dir_z(args->ray, args->N, 0) * RTCHitN_Ng_z(args->hit, args->N, 0);
+        const bool entering = cosine < 0.0f;
+        if (std::isfinite(ctx->tmax)) ctx->opticalDepth += (entering ? 1.0f : -1.0f) * m.absorption * (ctx->tmax - t);
+        else ctx->opticalDepth += (entering ? -1.0f : 1.0f) * m.absorption * t;
+    }
+    ctx->transmittance *= occluderTransmittance(m);
     if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
 }
 
@@ -227,10 +239,11 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     return true;
 }
 
-glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) const {
+glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, glm::vec3 startAbsorption) const {
     if (log_) log_->record({origin, dir, 0.0f, tmax, true});
     ShadowRayContext ctx;
     rtcInitIntersectContext(&ctx.base);
+    ctx.tmax = tmax;
     RTCRay r;
     r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
     r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
@@ -242,7 +255,11 @@ glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) c
     r.flags = 0;
     rtcOccluded1(top_, &ctx.base, &r);
     // Embree sets tfar to -inf when a hit was accepted: an opaque caster, or transmittance gone.
-    return r.tfar == -std::numeric_limits<float>::infinity() ? glm::vec3(0.0f) : ctx.transmittance;
+    if (r.tfar == -std::numeric_limits<float>::infinity()) return glm::vec3(0.0f);
+    if (std::isfinite(tmax)) ctx.opticalDepth += startAbsorption * tmax;
+    if (ctx.opticalDepth == glm::vec3(0.0f)) return ctx.transmittance;
+    // Negative only where crossings do not pair up (an open or overlapping mesh): no absorption.
+    return ctx.transmittance * segmentTransmittance(glm::max(ctx.opticalDepth, glm::vec3(0.0f)), 1.0f);
 }
 
 void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {

@@ -40,6 +40,11 @@ struct SurfaceHit {
 struct ShadowRayContext {
     RTCIntersectContext base;  // first: Embree hands the filter a pointer to it
     glm::vec3 transmittance{1.0f};
+    // Beer-Lambert absorption (medium_stack.h): the ray's length, and the optical depth that the
+    // absorbing surfaces it crosses add (entering ones +a (tmax - t), leaving ones -a (tmax - t);
+    // towards a light at infinity -a t and +a t).
+    float tmax = 0.0f;
+    glm::vec3 opticalDepth{0.0f};
     // Surfaces already counted, so that a ray through an edge shared by two triangles (which a
     // watertight intersector reports twice) is attenuated once.
     static constexpr int kMaxCrossings = 16;
@@ -72,8 +77,10 @@ public:
 
     // Shadow ray: the transmittance from `origin` along unit `dir` up to `tmax`. Opaque shadow
     // casters stop it (0); transparent ones multiply it by their occluderTransmittance (the any-hit
-    // rule of Walewski 2019 Listing 8b); materials that cast no shadow are ignored.
-    glm::vec3 transmittance(glm::vec3 origin, glm::vec3 dir, float tmax) const;
+    // rule of Walewski 2019 Listing 8b); materials that cast no shadow are ignored. Absorbing media
+    // attenuate the part of the ray inside them (medium_stack.h), `startAbsorption` being that of
+    // the media around `origin`.
+    glm::vec3 transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, glm::vec3 startAbsorption = glm::vec3(0.0f)) const;
 
     // For benchmarks that trace the same rays with bare rtcIntersect1 / rtcOccluded1: the
     // top-level scene, and a log that records every ray traced while it is set (null: off).

@@ -14,26 +14,25 @@ WhittedTracer::WhittedTracer(const RayScene& rays, WhittedSettings settings) : r
     for (const Light& l : rays.scene().lights) cones_.push_back(spotCone(l));
 }
 
-glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone) const {
+glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone,
+                                  const MediumStack& media) const {
     SurfaceHit hit;
-    if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) return skyRadiance(rays_.scene(), ray.direction);
-    return radianceAtHit(ray, hit, depth, importance, stats, cone);
+    if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) {
+        if (media.depth() > 0) ++stats.mediumErrors;  // left the scene inside a closed object: an open mesh
+        return skyRadiance(rays_.scene(), ray.direction);
+    }
+    return radianceAtHit(ray, hit, depth, importance, stats, cone, media);
 }
 
 glm::vec3 WhittedTracer::radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats,
-                                       RayCone cone) const {
-    glm::vec3 L = shade(hit, ray.direction, depth, importance, stats, cone.at(hit.t));
-    // A ray that meets the back of a surface travelled inside its object: Beer-Lambert absorption
-    // of thick glass (Hakura & Snyder's G).
-    const glm::vec3& a = hit.material->absorption;
-    if ((a.x > 0.0f || a.y > 0.0f || a.z > 0.0f) && glm::dot(ray.direction, hit.geometricNormal) > 0.0f) {
-        L *= glm::exp(-a * hit.t);
-    }
-    return L;
+                                       RayCone cone, const MediumStack& media) const {
+    const glm::vec3 L = shade(hit, ray.direction, depth, importance, stats, cone.at(hit.t), media);
+    // Beer-Lambert absorption of the media the segment ran through (medium_stack.h).
+    return media.absorbs() ? L * segmentTransmittance(media.absorption(), hit.t) : L;
 }
 
 glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm::vec3 geometricNormal, glm::vec3 toViewer,
-                                    RayStats& stats, bool shadowRays, float uvLod) const {
+                                    RayStats& stats, bool shadowRays, float uvLod, glm::vec3 mediumAbsorption) const {
     const Scene& scene = rays_.scene();
     const SurfacePoint sp{hit.position, normal, hit.uv, hit.material};
     const glm::vec3 tex = diffuseTextureValue(*hit.material, rays_.textureMips(hit.material->diffuseTexture), hit.uv, uvLod);
@@ -46,7 +45,7 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
         if (direct == glm::vec3(0.0f)) continue;  // facing away, or outside a spot cone: no ray needed
         if (light.castsShadows && settings_.shadows && shadowRays) {
             ++stats.shadow;
-            direct *= rays_.transmittance(shadowOrigin, ls.toLight, ls.distance);
+            direct *= rays_.transmittance(shadowOrigin, ls.toLight, ls.distance, mediumAbsorption);
         }
         c += direct;
     }
@@ -54,13 +53,13 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
 }
 
 glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                               RayCone footprint) const {
-    return shadeParts(hit, incoming, depth, importance, stats, {}, footprint).composed(settings_.blend);
+                               RayCone footprint, const MediumStack& media) const {
+    return shadeParts(hit, incoming, depth, importance, stats, {}, footprint, std::nullopt, nullptr, media).composed(settings_.blend);
 }
 
 ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                        TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local,
-                                       EnvironmentTerms* environment) const {
+                                       EnvironmentTerms* environment, const MediumStack& media) const {
     if (!settings_.rayCones) footprint = {};  // point-sampled textures (texture_filter = "none"), at every depth
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
@@ -72,7 +71,7 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     ShadingParts parts;
     parts.local = local ? *local
                                 : localColor(hit, n, ng, -incoming, stats, effects.shadows,
-                                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal));
+                                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal), media.absorption());
     parts.transparency = 1.0f - m.opacity;
     const float orr = parts.transparency;
     const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;
@@ -80,7 +79,13 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
     parts.reflectivity = om;
     if (om <= 0.0f && orr <= 0.0f) return parts;
-    if (depth >= settings_.maxDepth) return parts;  // the depth limit returns the local colour
+    if (depth >= settings_.maxDepth) {
+        if (settings_.depthLimit == DepthLimit::Local) return parts;  // C alone
+        // Weighted: the rays not traced count 0 (the same under total internal reflection, where
+        // C's weight is (1 - o_m)(1 - o_r) too).
+        parts.composes = true;
+        return parts;
+    }
     parts.composes = true;
 
     glm::vec3 refracted;
@@ -103,7 +108,7 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
         parts.reflected = sky.reflected;
     } else if (worthTracing(weightM)) {
         ++stats.reflection;
-        parts.reflected = radiance({offsetRayOrigin(hit.position, ng), reflected}, depth + 1, importance * weightM, stats, footprint);
+        parts.reflected = radiance({offsetRayOrigin(hit.position, ng), reflected}, depth + 1, importance * weightM, stats, footprint, media);
     }
     if (tir) {
         parts.refracted = parts.reflected;
@@ -111,7 +116,10 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
         parts.refracted = sky.refracted;
     } else if (worthTracing(weightR)) {
         ++stats.refraction;
-        parts.refracted = radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats, footprint);
+        MediumStack inside = media;
+        if (!(entering ? inside.enter(hit.object, m.absorption) : inside.leave(hit.object))) ++stats.mediumErrors;
+        parts.refracted =
+            radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats, footprint, inside);
     }
     return parts;
 }

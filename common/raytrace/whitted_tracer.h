@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/raytrace/medium_stack.h"
 #include "common/raytrace/ray_cone.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
@@ -13,8 +14,19 @@
 
 namespace hybridlab {
 
+// What a hit at the depth limit returns. Weighted: its local colour C weighted as the composition
+// weights it, (1 - o_m)(1 - o_r) C, the reflected and refracted rays it would trace counting 0: the
+// ray tree truncated at the limit, the sum over every path up to it. Raising the limit only adds
+// paths, so the image converges from below, and the error is the weight of the paths cut off;
+// POV-Ray does the same (black past max_trace_level), so the two agree exactly. Local: C with
+// weight 1, standing in for everything beyond (what the reference did first): an estimate that
+// assumes the rest looks like the surface, neither a bound nor convergent (a mirror's dull local
+// colour counts fully). Weighted is the default for that reason.
+enum class DepthLimit { Weighted, Local };
+
 struct WhittedSettings {
-    int maxDepth = 10;             // secondary bounces; a hit at this depth returns its local colour
+    int maxDepth = 10;             // secondary bounces; a hit at this depth returns what depthLimit says
+    DepthLimit depthLimit = DepthLimit::Weighted;
     float importanceCutoff = 0.0f; // a secondary ray whose weight in the pixel falls below this is not
                                    // traced and the surface's local colour stands in, as at the depth
                                    // limit (0: the full ray tree)
@@ -42,7 +54,7 @@ struct ShadingParts {
     float reflectivity = 0.0f;  // o_m (the Fresnel reflectance for dielectrics)
     float transparency = 0.0f;  // o_r = 1 - opacity
     bool composes = false;      // false: the surface neither reflects nor refracts, or the depth limit was
-                                // reached; its radiance is C alone
+                                // reached with DepthLimit::Local; its radiance is C alone
 
     glm::vec3 composed(BlendRule rule) const {
         return composes ? compose(reflectivity, transparency, reflected, refracted, local, rule) : local;
@@ -65,16 +77,21 @@ public:
 
     // Radiance arriving along `ray` whose hit would be at recursion depth `depth` (camera rays: 0).
     // `importance` is the ray's weight in the pixel; `cone` its footprint (pixelCone() for camera
-    // rays), which filters textures (none: level 0's bilinear lookup).
-    glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {}) const;
+    // rays), which filters textures (none: level 0's bilinear lookup); `media` the media it travels
+    // in (medium_stack.h; camera rays: none), which absorb along it up to its hit.
+    glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {},
+                       const MediumStack& media = MediumStack{}) const;
     // radiance() for a ray whose first hit the caller has already found.
-    glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {}) const;
+    glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {},
+                            const MediumStack& media = MediumStack{}) const;
 
     // Full Whitted shading of a surface hit seen along unit direction `incoming` (towards the
     // surface): local colour with ray-traced shadows, composed with recursive reflection and
     // refraction.
-    // `footprint` is the ray's cone at the hit.
-    glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {}) const;
+    // `footprint` is the ray's cone at the hit; `media` those the incoming ray travelled in (the
+    // refracted ray enters or leaves the hit object's).
+    glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {},
+                    const MediumStack& media = MediumStack{}) const;
 
     // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
     // everything), so that a hybrid technique can substitute or blend its own. `local`: the surface's
@@ -84,14 +101,15 @@ public:
     // given, receives both (where parts.composes).
     ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                             TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt,
-                            EnvironmentTerms* environment = nullptr) const;
+                            EnvironmentTerms* environment = nullptr, const MediumStack& media = MediumStack{}) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a
-    // footprint of 2^uvLod uv units (ray_cone.h).
+    // footprint of 2^uvLod uv units (ray_cone.h). `mediumAbsorption`: that of the media on the
+    // viewer's side of the surface, where the shadow rays start (MediumStack::absorption()).
     glm::vec3 localColor(const SurfaceHit& hit, glm::vec3 normal, glm::vec3 geometricNormal, glm::vec3 toViewer,
                          RayStats& stats, bool shadowRays = true,
-                         float uvLod = -std::numeric_limits<float>::infinity()) const;
+                         float uvLod = -std::numeric_limits<float>::infinity(), glm::vec3 mediumAbsorption = glm::vec3(0.0f)) const;
 
 private:
     const RayScene& rays_;

@@ -100,10 +100,12 @@ void run(const CompareOptions& o) {
     if (!o.out.empty() && fs::exists(o.out) && !fs::is_directory(o.out)) {
         throw InputError("--out " + o.out + ": exists and is not a folder");
     }
-    // PNGs are decoded to linear, so that every input is what a technique renders; the metrics
-    // then see the display values again.
-    const Image test = readImage(o.test, ColorEncoding::Srgb);
-    const Image reference = readImage(o.reference, ColorEncoding::Srgb);
+    // PNGs are decoded to linear as their colour-space metadata says (a linear PNG, as POV-Ray
+    // writes with File_Gamma=1.0, stays linear; none: sRGB), so that every input is what a
+    // technique renders; the metrics then see the display values again.
+    std::string testSpace, referenceSpace;
+    const Image test = readImage(o.test, ColorEncoding::Tagged, &testSpace);
+    const Image reference = readImage(o.reference, ColorEncoding::Tagged, &referenceSpace);
     requireSameSize(test, o.test, reference, o.reference);
     std::optional<PixelMask> mask;
     if (!o.mask.empty()) {
@@ -116,7 +118,8 @@ void run(const CompareOptions& o) {
     options.pixelsPerDegree = o.pixelsPerDegree;
     const MetricReport report = computeMetrics(test, reference, options, mask ? &*mask : nullptr);
 
-    std::printf("test       %s\nreference  %s\n", o.test.c_str(), o.reference.c_str());
+    std::printf("test       %s  [%s]\nreference  %s  [%s]\n", o.test.c_str(), testSpace.c_str(), o.reference.c_str(),
+                referenceSpace.c_str());
     if (mask) std::printf("mask       %s\n", o.mask.c_str());
     std::printf("%dx%d; SSIM on %s; RMSE and PSNR on %s values; FLIP at %g pixels per degree\n", report.width, report.height,
                 o.perChannel ? "R, G, B (mean)" : "luma", valueSpaceName(options.errorSpace), options.pixelsPerDegree);

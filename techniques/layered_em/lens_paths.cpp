@@ -11,31 +11,32 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// Beer-Lambert attenuation of a segment that ended on the back of a surface (it ran inside that
-// object), the rule of the reference tracer.
-glm::vec3 segmentAbsorption(const SurfaceHit& hit, glm::vec3 direction) {
-    const glm::vec3& a = hit.material->absorption;
-    if (glm::dot(direction, hit.geometricNormal) <= 0.0f) return glm::vec3(1.0f);
-    return glm::exp(-a * hit.t);
-}
-
 Ray childRay(const SurfaceHit& hit, const InterfaceSplit& s, bool reflect) {
     return reflect ? Ray{offsetRayOrigin(hit.position, s.sideNormal), s.reflectDir}
                    : Ray{offsetRayOrigin(hit.position, -s.sideNormal), s.refractDir};
 }
 
-// Follows `path` from the child ray `ray` of interface number path.interfaces - 1, greedily.
-void propagate(const RayScene& lens, Ray ray, const LensPathSettings& settings, LensRayCounter& counter, LensPath& path) {
+// The media of the child ray: a refraction enters or leaves the hit object (medium_stack.h).
+void crossInterface(const SurfaceHit& hit, const InterfaceSplit& s, bool reflect, MediumStack& media, LensRayCounter& counter) {
+    if (reflect) return;
+    if (!(s.entering ? media.enter(hit.object, hit.material->absorption) : media.leave(hit.object))) ++counter.mediumErrors;
+}
+
+// Follows `path` from the child ray `ray` of interface number path.interfaces - 1, in `media`, greedily.
+void propagate(const RayScene& lens, Ray ray, MediumStack media, const LensPathSettings& settings, LensRayCounter& counter,
+               LensPath& path) {
     const Scene& scene = lens.scene();
     for (;;) {
         SurfaceHit hit;
         ++counter.queries;
         if (!lens.intersect(ray, 0.0f, kInfinity, hit)) {
+            if (media.depth() > 0) ++counter.mediumErrors;
             path.exitOrigin = ray.origin;
             path.exitDirection = ray.direction;
             return;
         }
-        path.absorption *= segmentAbsorption(hit, ray.direction);
+        // Beer-Lambert along the segment, the reference tracer's rule.
+        if (media.absorbs()) path.absorption *= segmentTransmittance(media.absorption(), hit.t);
         if (path.interfaces >= settings.maxInterfaces) {
             path.truncated = true;
             path.exitOrigin = ray.origin;
@@ -47,6 +48,7 @@ void propagate(const RayScene& lens, Ray ray, const LensPathSettings& settings, 
         if (reflect) path.choices |= 1u << path.interfaces;
         ++path.interfaces;
         path.fresnel *= reflect ? s.reflected : s.refracted;
+        crossInterface(hit, s, reflect, media, counter);
         ray = childRay(hit, s, reflect);
         if (path.fresnel <= 0.0f) {  // an opaque surface that neither reflects nor transmits ends it
             path.exitOrigin = ray.origin;
@@ -99,7 +101,9 @@ TwoTermPaths traceTwoTermPaths(const RayScene& lens, const SurfaceHit& first, gl
         p.exists = true;
         p.interfaces = 1;
         p.choices = reflect ? 1u : 0u;
-        propagate(lens, childRay(first, s, reflect), settings, counter, p);
+        MediumStack media;  // the viewpoint is outside the lens system
+        crossInterface(first, s, reflect, media, counter);
+        propagate(lens, childRay(first, s, reflect), media, settings, counter, p);
     }
     return paths;
 }

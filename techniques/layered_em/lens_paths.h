@@ -4,12 +4,14 @@
 // the refraction; at every later interface a path continues along the child with the larger
 // Fresnel coefficient until it leaves the system. Each path carries the product F of the Fresnel
 // coefficients it took and the transparency attenuation G of the glass it crossed (Kay &
-// Greenberg: a per-channel constant to the power of the thickness, here exp(-absorption * d), the
-// reference tracer's Beer-Lambert term). The shading is T F_T G_T + R F_R G_R.
+// Greenberg: a per-channel constant to the power of the thickness, here exp(-absorption * d) along
+// every segment inside, the reference tracer's rule of medium_stack.h). The shading is
+// T F_T G_T + R F_R G_R.
 #include <cstdint>
 
 #include <glm/vec3.hpp>
 
+#include "common/raytrace/medium_stack.h"
 #include "common/raytrace/ray_scene.h"
 
 namespace hybridlab {
@@ -47,6 +49,7 @@ struct TwoTermPaths {
 // Ray queries made into the lens system's scene.
 struct LensRayCounter {
     std::uint64_t queries = 0;
+    std::uint64_t mediumErrors = 0;  // as RayStats::mediumErrors
 };
 
 // The two paths starting at a known first interface `first` (a hit, or a lens vertex with its

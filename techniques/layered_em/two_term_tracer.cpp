@@ -38,6 +38,7 @@ glm::vec3 TwoTermTracer::radiance(const WhittedTracer& tracer, const RayScene& r
     TwoTermPaths paths;
     const bool hit = traceTwoTermPaths(lens.lensRays(), ray, paths_, counter, paths);
     stats.refraction += counter.queries;
+    stats.mediumErrors += counter.mediumErrors;
     if (!hit) return tracer.radianceAtHit(ray, first, 0, 1.0f, stats, cone);
     if (lensPixel) *lensPixel = true;
     glm::vec3 sum(0.0f);

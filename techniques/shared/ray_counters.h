@@ -12,6 +12,7 @@ inline void recordRayCounters(const RayStats& rays, double pixelsRayTraced, Fram
     result.counters["rays_refraction"] = static_cast<double>(rays.refraction);
     result.counters["rays_total"] = static_cast<double>(rays.total());
     result.counters["pixels_ray_traced"] = pixelsRayTraced;
+    result.counters["medium_errors"] = static_cast<double>(rays.mediumErrors);
 }
 
 }  // namespace hybridlab

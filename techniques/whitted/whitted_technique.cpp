@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "techniques/layered_em/two_term_tracer.h"
+#include "techniques/shared/depth_limit_parameter.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -18,6 +19,7 @@ std::vector<ParamSpec> WhittedTechnique::recursionParameterSpecs(double defaultI
         ParamSpec::choice("blend", "design", {"design", "walewski2019"},
                           "composition rule: design = o_m*M + (1-o_m)*(o_r*R + (1-o_r)*C) (o_m reflectivity or Fresnel, "
                           "o_r 1-opacity), or walewski2019 = that averaged with the other order (Walewski 2019 eqs. (5)-(6))"),
+        depthLimitParameterSpec(),
     };
 }
 
@@ -46,6 +48,7 @@ WhittedSettings WhittedTechnique::recursionSettings(const ParameterSet& p) {
     s.maxDepth = static_cast<int>(p.getInt("max_depth"));
     s.importanceCutoff = static_cast<float>(p.getFloat("importance_cutoff"));
     s.blend = p.getChoice("blend") == "walewski2019" ? BlendRule::Walewski2019 : BlendRule::Design;
+    s.depthLimit = depthLimitSetting(p);
     return s;
 }
 
