@@ -182,6 +182,38 @@ TEST(DeviceRays, WhittedAgreesWithEmbreeOnThePaperScenes) {
     expectBackendsAgree("teapot-lens", "whitted", 160, 90);
 }
 
+// Frame 1 at time 0, frame 2 at `time` in the same context: the device's instances move (rigid) or
+// its bottom levels refit (deforming) rather than being built at `time`.
+void expectBackendsAgreeAfterAnUpdate(const std::string& sceneName, double time) {
+    SCOPED_TRACE(sceneName);
+    const Scene scene = loadSceneFile(findSceneFile(sceneName));
+    auto secondFrame = [&](const std::string& rays) {
+        SceneContext context(scene);
+        auto t = createTechnique("whitted", {{"rays", rays}});
+        t->prepare(context);
+        t->render(context, {scene.camera, 0.0, 96, 54});
+        return t->render(context, {scene.camera, time, 96, 54});
+    };
+    const FrameResult embree = secondFrame("embree"), device = secondFrame("vulkan");
+    const double ssim = computeMetrics(device.image, embree.image).whole.ssim;
+    EXPECT_GE(ssim, 0.995);
+    for (const char* counter : {"bvh_triangles", "bvh_moving_triangles", "bvh_refit_triangles"})
+        EXPECT_EQ(device.counters.at(counter), embree.counters.at(counter)) << counter;
+    for (const char* kind : {"rays_primary", "rays_shadow", "rays_reflection", "rays_refraction"}) {
+        const double e = embree.counters.at(kind), d = device.counters.at(kind);
+        EXPECT_LE(std::abs(d - e), 0.005 * e) << kind << ": vulkan " << d << ", embree " << e;
+    }
+    std::printf("[ backends ] %s at t = %.1f s after t = 0: SSIM %.5f, moving %.0f, refit %.0f triangles\n", sceneName.c_str(), time, ssim,
+                device.counters.at("bvh_moving_triangles"), device.counters.at("bvh_refit_triangles"));
+}
+
+TEST(DeviceRays, RigidAndDeformingAnimationUpdateTheAccelerationStructures) {
+    REQUIRE_ASSETS();
+    REQUIRE_RAY_TRACING_DEVICE();
+    expectBackendsAgreeAfterAnUpdate("bunnies-falling-5", 1.5);
+    expectBackendsAgreeAfterAnUpdate("teapots-deforming-5", 1.5);
+}
+
 TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     REQUIRE_RAY_TRACING_DEVICE();
     // The driver plays one without the ray-tracing pipeline: exit 2 before anything renders, one
