@@ -230,5 +230,20 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
+TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    // A device of 0.1 MiB: whitted-classic's 7938 triangles need about 1 MiB. Exit 2 before
+    // rendering, the scene's size in the message, nothing written.
+    test::TempDir dir;
+    const test::CliResult r = test::runHybridlab(
+        {"render", "--scene", "whitted-classic", "--technique", "rt_only", "--param", "rays=vulkan", "--width", "64", "--height", "36",
+         "--out", (dir / "frame.exr").string()},
+        {{"HYBRIDLAB_VULKAN_DEVICE_MEMORY_BYTES", "100000"}});
+    EXPECT_EQ(r.exitStatus, 2) << r.err;
+    EXPECT_CONTAINS(r.err, "scene whitted-classic (7938 triangles) needs");
+    EXPECT_CONTAINS(r.err, "has 0.1 MiB");
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
 }  // namespace
 }  // namespace hybridlab

@@ -1,6 +1,7 @@
 #include "common/device_rays/device_ray_scene.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -191,9 +192,14 @@ DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene
     }
     deviceBytes_ = structureBytes + scratchBytes + vertices_.size() + indices_.size() + materials_.size() + instances_.size();
     if (deviceBytes_ > dev.deviceLocalBytes()) {
-        throw InputError("scene " + scene.name + " (" + std::to_string(triangles_) + " triangles) needs " +
-                         std::to_string(deviceBytes_ >> 20) + " MiB of device memory for its acceleration structures and buffers; " +
-                         dev.name() + " has " + std::to_string(dev.deviceLocalBytes() >> 20) + " MiB");
+        auto mib = [](VkDeviceSize bytes) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1 << 20));
+            return std::string(text);
+        };
+        throw InputError("scene " + scene.name + " (" + std::to_string(triangles_) + " triangles) needs " + mib(deviceBytes_) +
+                         " of device memory for its acceleration structures and buffers; " + dev.name() + " has " +
+                         mib(dev.deviceLocalBytes()));
     }
     scratch_ = GpuBuffer(dev, scratchBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, Memory::DeviceLocal);
     for (BottomLevel& b : bottomLevels_) {
