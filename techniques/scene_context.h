@@ -4,6 +4,7 @@
 // they share.
 #include <memory>
 
+#include "common/device_rays/device_ray_scene.h"
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/scene/scene.h"
@@ -23,12 +24,19 @@ public:
     // Created at first call (uploads the scene to the GPU); throws VulkanUnavailable without a device.
     Rasterizer& rasterizer();
 
+    // The scene on the ray-tracing Vulkan device (techniques with rays = "vulkan"): built at first
+    // call (on VulkanDevice::shared({.rayTracing = true})), then moved to `time`. Throws
+    // VulkanUnavailable when the device has no ray tracing.
+    DeviceRayScene& deviceRayScene(double time);
+    bool hasDeviceRayScene() const { return deviceRays_ != nullptr; }
+
 private:
     const Scene& scene_;
     // Shared by the ray scene and the rasterizer: a hybrid frame deforms each object once.
     DeformedMeshCache deformedMeshes_;
     std::unique_ptr<RayScene> rays_;
     std::unique_ptr<Rasterizer> rasterizer_;
+    std::unique_ptr<DeviceRayScene> deviceRays_;
 };
 
 }  // namespace hybridlab

@@ -16,6 +16,12 @@ RayScene& SceneContext::rayScene(double time) {
     return *rays_;
 }
 
+DeviceRayScene& SceneContext::deviceRayScene(double time) {
+    if (!deviceRays_) deviceRays_ = std::make_unique<DeviceRayScene>(VulkanDevice::shared({.rayTracing = true}), scene_, deformedMeshes_, time);
+    else deviceRays_->setTime(time);
+    return *deviceRays_;
+}
+
 Rasterizer& SceneContext::rasterizer() {
     if (!rasterizer_) rasterizer_ = std::make_unique<Rasterizer>(scene_, &deformedMeshes_);
     return *rasterizer_;

@@ -17,7 +17,7 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     buffer_ = UniqueBuffer(d, b);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(d, b, &req);
-    memory_ = device.allocate(req, memory, "buffer");
+    memory_ = device.allocate(req, memory, "buffer", (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0);
     checkVk(vkBindBufferMemory(d, b, memory_, 0), "binding buffer memory");
     if (memory == Memory::HostVisible) checkVk(vkMapMemory(d, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
 }
@@ -32,6 +32,12 @@ GpuBuffer GpuBuffer::withData(const VulkanDevice& device, const void* data, VkDe
         vkCmdCopyBuffer(cb, staging.buffer(), b.buffer(), 1, &copy);
     });
     return b;
+}
+
+VkDeviceAddress GpuBuffer::deviceAddress(const VulkanDevice& device) const {
+    VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    info.buffer = buffer_;
+    return vkGetBufferDeviceAddress(device.device(), &info);
 }
 
 void GpuBuffer::write(const void* data, VkDeviceSize size, VkDeviceSize offset) {

@@ -23,6 +23,8 @@ public:
     bool valid() const { return static_cast<bool>(buffer_); }
     // Host-visible buffers only (coherent: no flush needed).
     void* mapped() const { return mapped_; }
+    // Buffers created with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT only.
+    VkDeviceAddress deviceAddress(const VulkanDevice& device) const;
     void write(const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
 
 private:

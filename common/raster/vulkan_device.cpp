@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
+#include <map>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "common/raster/vulkan_error.h"
@@ -83,22 +86,59 @@ int typePreference(VkPhysicalDeviceType t) {
 
 }  // namespace
 
-std::shared_ptr<VulkanDevice> VulkanDevice::shared() {
+// The extensions ray tracing needs (buffer device addresses and descriptor indexing are Vulkan 1.2 core).
+const std::vector<const char*> kRayTracingExtensions = {
+    VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+    VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
+    VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME,
+};
+
+std::shared_ptr<VulkanDevice> VulkanDevice::shared(DeviceFeatures features) {
     static std::mutex mutex;
-    static std::shared_ptr<VulkanDevice> device;
-    static std::optional<std::string> failure;
+    static std::map<DeviceFeatures, std::shared_ptr<VulkanDevice>> devices;
+    static std::map<DeviceFeatures, std::string> failures;
     std::lock_guard lock(mutex);
-    if (device) return device;
-    if (failure) throw VulkanUnavailable(*failure);
+    if (auto it = devices.find(features); it != devices.end()) return it->second;
+    if (auto it = failures.find(features); it != failures.end()) throw VulkanUnavailable(it->second);
     try {
-        std::shared_ptr<VulkanDevice> d(new VulkanDevice());
+        std::shared_ptr<VulkanDevice> d(new VulkanDevice(features));
         d->create();
-        device = d;
-        return device;
+        devices[features] = d;
+        return d;
     } catch (const VulkanUnavailable& e) {
-        failure = e.what();
+        failures[features] = e.what();
         throw;
     }
+}
+
+std::vector<std::string> VulkanDevice::missingExtensions(VkPhysicalDevice pd, DeviceFeatures features) {
+    std::vector<std::string> missing;
+    if (!features.rayTracing) return missing;
+    std::uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> available(n);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, available.data());
+    const char* hidden = std::getenv("HYBRIDLAB_VULKAN_HIDE_EXTENSIONS");
+    const std::string hide = hidden ? std::string(",") + hidden + "," : std::string();
+    for (const char* wanted : kRayTracingExtensions) {
+        bool found = false;
+        for (const auto& e : available) found |= std::strcmp(e.extensionName, wanted) == 0;
+        if (hide.find(std::string(",") + wanted + ",") != std::string::npos) found = false;
+        if (!found) missing.emplace_back(wanted);
+    }
+    return missing;
+}
+
+VkDeviceSize VulkanDevice::deviceLocalBytes() const {
+    // A test can play a device with less memory than this one has.
+    if (const char* pretend = std::getenv("HYBRIDLAB_VULKAN_DEVICE_MEMORY_BYTES"); pretend && *pretend) {
+        return static_cast<VkDeviceSize>(std::strtoull(pretend, nullptr, 10));
+    }
+    VkDeviceSize largest = 0;
+    for (std::uint32_t i = 0; i < memory_.memoryHeapCount; ++i) {
+        if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) largest = std::max(largest, memory_.memoryHeaps[i].size);
+    }
+    return largest;
 }
 
 void VulkanDevice::create() {
@@ -173,6 +213,24 @@ void VulkanDevice::create() {
     }
     vkGetPhysicalDeviceProperties(physical_, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+    std::vector<const char*> deviceExtensions;
+    if (features_.rayTracing) {
+        if (auto missing = missingExtensions(physical_, features_); !missing.empty()) {
+            std::string list;
+            for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
+            throw VulkanUnavailable("Vulkan device " + name() + " (driver " + versionText(properties_.driverVersion) +
+                                    ") lacks " + list + ", which ray tracing on the device needs (Mesa 25's lavapipe has it: ./setup.sh installs it)");
+        }
+        rayTracingProperties_.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
+        VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &rayTracingProperties_};
+        vkGetPhysicalDeviceProperties2(physical_, &p2);
+        // Rays are traced from the ray-generation shader only (its explicit stack, whitted.rgen):
+        // a recursion depth of 1 is all the pipeline needs, which every ray-tracing device has.
+        if (rayTracingProperties_.maxRayRecursionDepth < 1) {
+            throw VulkanUnavailable("Vulkan device " + name() + " reports maxRayRecursionDepth 0; ray tracing needs 1");
+        }
+        deviceExtensions = kRayTracingExtensions;
+    }
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -181,6 +239,16 @@ void VulkanDevice::create() {
     qci.pQueuePriorities = &priority;
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    rtf.rayTracingPipeline = VK_TRUE;
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR asf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rtf};
+    asf.accelerationStructure = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &asf};
+    f12.bufferDeviceAddress = VK_TRUE;
+    f12.descriptorIndexing = VK_TRUE;
+    f12.runtimeDescriptorArray = VK_TRUE;
+    f12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
+    if (features_.rayTracing) f13.pNext = &f12;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     features.features.samplerAnisotropy = VK_TRUE;
     features.features.occlusionQueryPrecise = VK_TRUE;
@@ -188,13 +256,30 @@ void VulkanDevice::create() {
     vkGetPhysicalDeviceFeatures(physical_, &supported);
     pipelineStatistics_ = supported.pipelineStatisticsQuery == VK_TRUE;  // the work counts; optional
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
+    features.features.shaderSampledImageArrayDynamicIndexing = features_.rayTracing ? VK_TRUE : VK_FALSE;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    dci.enabledExtensionCount = static_cast<std::uint32_t>(deviceExtensions.size());
+    dci.ppEnabledExtensionNames = deviceExtensions.data();
     if (VkResult r = vkCreateDevice(physical_, &dci, nullptr, &device_); r != VK_SUCCESS) {
         throw VulkanUnavailable(std::string("cannot create a Vulkan device on ") + properties_.deviceName + ": " + vkResultName(r));
     }
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    if (features_.rayTracing) {
+        auto load = [&](auto& fn, const char* name) {
+            fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
+            if (!fn) throw VulkanUnavailable("Vulkan device " + this->name() + " has no entry point " + name);
+        };
+        load(rayTracing_.createAccelerationStructure, "vkCreateAccelerationStructureKHR");
+        load(rayTracing_.destroyAccelerationStructure, "vkDestroyAccelerationStructureKHR");
+        load(rayTracing_.getAccelerationStructureBuildSizes, "vkGetAccelerationStructureBuildSizesKHR");
+        load(rayTracing_.getAccelerationStructureDeviceAddress, "vkGetAccelerationStructureDeviceAddressKHR");
+        load(rayTracing_.cmdBuildAccelerationStructures, "vkCmdBuildAccelerationStructuresKHR");
+        load(rayTracing_.createRayTracingPipelines, "vkCreateRayTracingPipelinesKHR");
+        load(rayTracing_.getRayTracingShaderGroupHandles, "vkGetRayTracingShaderGroupHandlesKHR");
+        load(rayTracing_.cmdTraceRays, "vkCmdTraceRaysKHR");
+    }
 
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -228,8 +313,10 @@ std::uint32_t VulkanDevice::memoryType(std::uint32_t typeBits, VkMemoryPropertyF
                       std::to_string(flags) + ")");
 }
 
-UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what) const {
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress) const {
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, deviceAddress ? &flags : nullptr};
     ai.allocationSize = req.size;
     if (use == MemoryUse::DeviceLocal) {
         ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -16,12 +17,39 @@
 
 namespace hybridlab {
 
+// What a device is asked for beyond the raster core. Ray tracing enables
+// VK_KHR_acceleration_structure, VK_KHR_ray_tracing_pipeline and what they need (buffer device
+// addresses, deferred host operations, descriptor indexing) only on the device that asks: the
+// raster techniques keep running on drivers without them.
+struct DeviceFeatures {
+    bool rayTracing = false;
+    bool operator<(const DeviceFeatures& o) const { return rayTracing < o.rayTracing; }
+};
+
+// The ray-tracing entry points, which the loader does not export: looked up on the device.
+struct RayTracingFunctions {
+    PFN_vkCreateAccelerationStructureKHR createAccelerationStructure = nullptr;
+    PFN_vkDestroyAccelerationStructureKHR destroyAccelerationStructure = nullptr;
+    PFN_vkGetAccelerationStructureBuildSizesKHR getAccelerationStructureBuildSizes = nullptr;
+    PFN_vkGetAccelerationStructureDeviceAddressKHR getAccelerationStructureDeviceAddress = nullptr;
+    PFN_vkCmdBuildAccelerationStructuresKHR cmdBuildAccelerationStructures = nullptr;
+    PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
+    PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
+    PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+};
+
 class VulkanDevice {
 public:
-    // The process-wide device, created at first call. Throws VulkanUnavailable (with the reason)
-    // when there is no Vulkan loader, no 1.3 device, or the device lacks what the raster core needs;
-    // later calls throw the same error again.
-    static std::shared_ptr<VulkanDevice> shared();
+    // The process-wide device with `features`, created at first call. Throws VulkanUnavailable
+    // (with the reason) when there is no Vulkan loader, no 1.3 device, or the device lacks what the
+    // raster core (and the features) need; later calls throw the same error again. A device with
+    // ray tracing is a second VkDevice on the same physical device.
+    static std::shared_ptr<VulkanDevice> shared(DeviceFeatures features = {});
+
+    // The device extensions that `features` need and `physicalDevice` lacks (empty: none). The
+    // environment variable HYBRIDLAB_VULKAN_HIDE_EXTENSIONS (comma-separated names) hides
+    // extensions from this check, so that a test can play a driver without them.
+    static std::vector<std::string> missingExtensions(VkPhysicalDevice physicalDevice, DeviceFeatures features);
 
     ~VulkanDevice();
     VulkanDevice(const VulkanDevice&) = delete;
@@ -37,6 +65,12 @@ public:
     bool pipelineStatistics() const { return pipelineStatistics_; }
     // The driver's name and version text, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)".
     std::string driver() const { return std::string(driver_.driverName) + ", " + driver_.driverInfo; }
+    const DeviceFeatures& features() const { return features_; }
+    // Ray-tracing devices only.
+    const RayTracingFunctions& rayTracing() const { return rayTracing_; }
+    const VkPhysicalDeviceRayTracingPipelinePropertiesKHR& rayTracingProperties() const { return rayTracingProperties_; }
+    // The device's largest memory heap that is device-local, in bytes (what a scene must fit in).
+    VkDeviceSize deviceLocalBytes() const;
     float maxAnisotropy() const { return properties_.limits.maxSamplerAnisotropy; }
     // Nanoseconds per timestamp tick.
     double timestampPeriod() const { return properties_.limits.timestampPeriod; }
@@ -46,7 +80,8 @@ public:
     // Memory for a resource with requirements `req`: device-local, or host-visible and coherent
     // (cached where the device has it: read-back is then fast). `what` names it in errors.
     enum class MemoryUse { DeviceLocal, HostVisible };
-    UniqueDeviceMemory allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what) const;
+    // `deviceAddress`: the memory of a buffer whose device address shaders or builds take.
+    UniqueDeviceMemory allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress = false) const;
 
     // Throws VulkanError naming the format and what it is needed for unless the format supports
     // `features` with optimal tiling.
@@ -58,7 +93,7 @@ public:
     void submitAndWait(VkCommandBuffer commands) const;
 
 private:
-    VulkanDevice() = default;
+    explicit VulkanDevice(DeviceFeatures features) : features_(features) {}
     void create();
 
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -72,6 +107,9 @@ private:
     VkPhysicalDeviceDriverProperties driver_{};
     bool lavapipe_ = false;
     bool pipelineStatistics_ = false;
+    DeviceFeatures features_;
+    RayTracingFunctions rayTracing_;
+    VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracingProperties_{};
     UniqueCommandPool pool_;
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time

@@ -1,7 +1,7 @@
 #pragma once
 // The deformed vertices of a scene's deforming objects, computed once a frame for the two
-// consumers that need them: the rasterizer's vertex upload (GpuScene) and the ray scene's refit
-// (RayScene). The first consumer to ask for an object at a time deforms it (deformMesh); the other
+// consumers that need them: the rasterizer's vertex upload (GpuScene) and the ray scenes' refits
+// (RayScene, DeviceRayScene). The first consumer to ask for an object at a time deforms it (deformMesh); the other
 // takes the result. A consumer asking again, for its next frame, deforms again, even at the same
 // time: a timed repeat of a frame pays the deformation a new frame pays (ray_scene.h, gpu_scene.h).
 #include <cstdint>
@@ -14,7 +14,7 @@ namespace hybridlab {
 
 class DeformedMeshCache {
 public:
-    enum Consumer : std::uint8_t { kRasterizer = 1u, kRayScene = 2u };
+    enum Consumer : std::uint8_t { kRasterizer = 1u, kRayScene = 2u, kDeviceRays = 4u };
 
     explicit DeformedMeshCache(const Scene& scene) : scene_(scene), objects_(scene.objects.size()) {}
 

@@ -1,5 +1,6 @@
 #include "techniques/rt_only/rt_only_technique.h"
 
+#include "techniques/shared/device_rays.h"
 #include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
@@ -7,7 +8,11 @@ namespace hybridlab {
 TechniqueInfo rtOnlyTechniqueInfo() {
     return {"rt_only",
             "Walewski 2019's ray-tracing-only variant: everything ray traced from the camera, with an importance cut-off",
-            WhittedTechnique::parameterSpecs(kRtOnlyImportanceCutoff),
+            [] {
+                std::vector<ParamSpec> specs = WhittedTechnique::parameterSpecs(kRtOnlyImportanceCutoff);
+                specs.push_back(raysParameterSpec());
+                return specs;
+            }(),
             [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
 }
 

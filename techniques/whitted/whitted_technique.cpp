@@ -3,6 +3,8 @@
 #include <atomic>
 
 #include "techniques/layered_em/two_term_tracer.h"
+#include "common/core/input_error.h"
+#include "techniques/shared/device_rays.h"
 #include "techniques/shared/depth_limit_parameter.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
@@ -35,6 +37,7 @@ std::vector<ParamSpec> WhittedTechnique::parameterSpecs(double defaultImportance
 
 TechniqueInfo WhittedTechnique::info() {
     std::vector<ParamSpec> specs = parameterSpecs(0.0);
+    specs.push_back(raysParameterSpec());
     specs.push_back(ParamSpec::choice("lens_model", "full", {"full", "two_term"},
                                       "pixels whose first hit is a lens object: the full ray tree, or the two-term greedy model "
                                       "(Hakura & Snyder 2001 §3: uniformly sampled ray tracing as layered_em approximates it)"));
@@ -63,9 +66,15 @@ WhittedTechnique::WhittedTechnique(const ParameterSet& p) : settings_(tracerSett
     supersample_ = static_cast<int>(p.getInt("supersample"));
     // rt_only shares this class without the parameter.
     twoTermLenses_ = p.values().count("lens_model") && p.getChoice("lens_model") == "two_term";
+    onDevice_ = tracesOnDevice(p);
+    if (onDevice_ && twoTermLenses_) throw InputError("lens_model = \"two_term\" traces on the CPU only; it needs rays = \"embree\"");
 }
 
 void WhittedTechnique::prepare(SceneContext& context) {
+    if (onDevice_) {
+        deviceTracer_ = prepareDeviceRays(context);
+        return;
+    }
     context.rayScene(0.0);
     if (twoTermLenses_) twoTerm_ = std::make_unique<TwoTermTracer>(context.scene());
 }
@@ -73,6 +82,11 @@ void WhittedTechnique::prepare(SceneContext& context) {
 FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& frame) {
     FrameResult result;
     StageClock clock(result);
+    if (deviceTracer_) {
+        updateDeviceRayScene(context, frame.time, clock, result);
+        renderDeviceWhitted(*deviceTracer_, frame, settings_, supersample_, clock, result);
+        return result;
+    }
     const RayScene& rays = updateRayScene(context, frame.time, clock, result);
 
     const WhittedTracer tracer(rays, settings_);

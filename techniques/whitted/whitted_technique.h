@@ -1,7 +1,9 @@
 #pragma once
 // `whitted`: the reference. Recursive Whitted ray tracing from the camera through pixel centres
 // (optionally n x n supersampled for display images), reflection and refraction to depth 10, the
-// full ray tree, all lights, hard shadows. Parallel over image tiles; deterministic.
+// full ray tree, all lights, hard shadows. Parallel over image tiles; deterministic. With
+// rays = "vulkan" the same on the Vulkan device's ray-tracing pipeline (common/device_rays).
+#include "common/device_rays/device_whitted_tracer.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/layered_em/two_term_tracer.h"
 #include "techniques/technique.h"
@@ -32,6 +34,8 @@ private:
     int supersample_ = 1;
     bool twoTermLenses_ = false;  // lens_model = two_term
     std::unique_ptr<TwoTermTracer> twoTerm_;  // its lens systems, built once per scene
+    bool onDevice_ = false;                   // rays = "vulkan"
+    std::unique_ptr<DeviceWhittedTracer> deviceTracer_;
 };
 
 }  // namespace hybridlab

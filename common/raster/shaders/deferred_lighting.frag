@@ -7,6 +7,7 @@
 // rays.
 #extension GL_GOOGLE_include_directive : require
 #include "shading.glsl"
+#include "sky.glsl"
 
 // Pipeline variants (lavapipe runs both sides of every branch, so what a frame does not use is
 // compiled out rather than skipped).
@@ -52,33 +53,10 @@ layout(set = 0, binding = 12) uniform usampler2D gObjectId;
 
 layout(location = 0) out vec4 outColor;
 
-// Twin of Image::sampleBilinearWrap on sky face `face`.
-vec3 sampleFaceBilinearWrap(int face, float u, float v) {
-    ivec2 size = textureSize(skyFaces, 0).xy;
-    float x = u * float(size.x) - 0.5;
-    float y = v * float(size.y) - 0.5;
-    float fx = floor(x), fy = floor(y);
-    float tx = x - fx, ty = y - fy;
-    int x0 = int(fx) % size.x, y0 = int(fy) % size.y;
-    if (x0 < 0) x0 += size.x;
-    if (y0 < 0) y0 += size.y;
-    int x1 = x0 + 1 == size.x ? 0 : x0 + 1, y1 = y0 + 1 == size.y ? 0 : y0 + 1;
-    vec3 top = texelFetch(skyFaces, ivec3(x0, y0, face), 0).rgb * (1.0 - tx) + texelFetch(skyFaces, ivec3(x1, y0, face), 0).rgb * tx;
-    vec3 bottom = texelFetch(skyFaces, ivec3(x0, y1, face), 0).rgb * (1.0 - tx) + texelFetch(skyFaces, ivec3(x1, y1, face), 0).rgb * tx;
-    return top * (1.0 - ty) + bottom * ty;
-}
-
 // Twin of skyRadiance(): the cube map, or the constant colour.
 vec3 skyRadiance(vec3 d) {
     if (!kSkyCubeMap) return frame.skyColor.rgb;
-    int face;
-    vec2 uv;
-    cubeMapCoordinate(d, face, uv);
-    vec2 size = vec2(textureSize(skyFaces, 0).xy);
-    // Clamp to the face instead of wrapping across its edge.
-    float x = clamp(uv.x * size.x, 0.5, size.x - 0.5) / size.x;
-    float y = clamp(uv.y * size.y, 0.5, size.y - 0.5) / size.y;
-    return sampleFaceBilinearWrap(face, x, y);
+    return skyCubeRadiance(skyFaces, d);
 }
 
 // Twin of Camera::rayThroughNdc's direction for the pixel centre (pixelCenterNdc()).

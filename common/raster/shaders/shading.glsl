@@ -96,6 +96,12 @@ float fresnelDielectric(float cosIncident, float n1, float n2) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
+// Twin of occluderTransmittance(): what one shadow-ray crossing of a surface lets through.
+vec3 occluderTransmittance(bool castsShadows, float opacity, vec3 diffuse) {
+    if (!castsShadows) return vec3(1.0);
+    return (1.0 - opacity) * diffuse;
+}
+
 // Twin of compose() with BlendRule::Design (walewski = false) or BlendRule::Walewski2019.
 vec3 compose(float om, float orr, vec3 M, vec3 R, vec3 C, bool walewski) {
     vec3 cm = om * M + (1.0 - om) * (orr * R + (1.0 - orr) * C);

@@ -1,0 +1,202 @@
+#include "common/device_rays/device_ray_pipeline.h"
+
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+using namespace device_rays;
+
+namespace {
+
+VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+// The shader stages: ray generation, radiance closest hit and miss, shadow miss and any hit.
+enum Stage : std::uint32_t { kRaygen, kRadianceHit, kRadianceMiss, kShadowMiss, kShadowAnyHit, kStageCount };
+
+std::vector<VkDescriptorSetLayoutBinding> descriptorBindings(std::uint32_t textureCount) {
+    const VkShaderStageFlags all = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR |
+                                   VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR;
+    const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return {{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1, all, nullptr},
+                                       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
+                                       {2, storage, 1, all, nullptr},
+                                       {3, storage, 1, all, nullptr},
+                                       {4, storage, 1, all, nullptr},
+                                       {5, storage, 1, all, nullptr},
+                                       {6, storage, 1, all, nullptr},
+                                       {7, storage, 1, all, nullptr},
+                                       {8, storage, 1, all, nullptr},
+                                       {9, sampler, 1, all, nullptr},
+                                       {10, sampler, textureCount, all, nullptr},
+                                       {11, storage, 1, all, nullptr}};
+}
+
+// Compiles the pipeline and its binding table. Slow (lavapipe compiles the shaders into one
+// program with LLVM: about 10 s of CPU time), hence compiled once per process and shared.
+std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, const std::string& raygenShader, std::uint32_t textureCount) {
+    auto program = std::make_shared<CompiledRayPipeline>();
+    program->setLayout = DescriptorSet(dev, descriptorBindings(textureCount));
+    program->layout = createPipelineLayout(dev, {program->setLayout.layout()}, 0);
+
+    const std::string shaders[kStageCount] = {raygenShader, "device_radiance.rchit", "device_radiance.rmiss", "device_shadow.rmiss",
+                                        "device_shadow.rahit"};
+    const VkShaderStageFlagBits stages[kStageCount] = {VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR,
+                                                       VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
+                                                       VK_SHADER_STAGE_ANY_HIT_BIT_KHR};
+    std::vector<UniqueShaderModule> modules;
+    std::vector<VkPipelineShaderStageCreateInfo> stageInfos;
+    for (std::uint32_t i = 0; i < kStageCount; ++i) {
+        modules.push_back(createShaderModule(dev, shaders[i]));
+        VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        si.stage = stages[i];
+        si.module = modules.back();
+        si.pName = "main";
+        stageInfos.push_back(si);
+    }
+    auto group = [](VkRayTracingShaderGroupTypeKHR type, std::uint32_t general, std::uint32_t closestHit, std::uint32_t anyHit) {
+        VkRayTracingShaderGroupCreateInfoKHR g{VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
+        g.type = type;
+        g.generalShader = general;
+        g.closestHitShader = closestHit;
+        g.anyHitShader = anyHit;
+        g.intersectionShader = VK_SHADER_UNUSED_KHR;
+        return g;
+    };
+    const std::uint32_t unused = VK_SHADER_UNUSED_KHR;
+    const VkRayTracingShaderGroupTypeKHR general = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR,
+                                         triangles = VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
+    // Binding-table order: raygen | radiance miss, shadow miss | radiance hit, shadow hit.
+    const std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups = {
+        group(general, kRaygen, unused, unused),           group(general, kRadianceMiss, unused, unused),
+        group(general, kShadowMiss, unused, unused),       group(triangles, unused, kRadianceHit, unused),
+        group(triangles, unused, unused, kShadowAnyHit)};
+    VkRayTracingPipelineCreateInfoKHR pci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+    pci.stageCount = static_cast<std::uint32_t>(stageInfos.size());
+    pci.pStages = stageInfos.data();
+    pci.groupCount = static_cast<std::uint32_t>(groups.size());
+    pci.pGroups = groups.data();
+    pci.maxPipelineRayRecursionDepth = 1;  // rays are traced from the ray-generation shader only
+    pci.layout = program->layout;
+    VkPipeline pipeline;
+    checkVk(dev.rayTracing().createRayTracingPipelines(dev.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline),
+            "creating the ray-tracing pipeline");
+    program->pipeline = UniquePipeline(dev.device(), pipeline);
+
+    // The shader binding table: one record per group, each region aligned to the base alignment.
+    const auto& rt = dev.rayTracingProperties();
+    const std::uint32_t handleSize = rt.shaderGroupHandleSize;
+    const VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
+    const VkDeviceSize base = rt.shaderGroupBaseAlignment;
+    std::vector<std::uint8_t> handles(groups.size() * handleSize);
+    checkVk(dev.rayTracing().getRayTracingShaderGroupHandles(dev.device(), program->pipeline, 0, static_cast<std::uint32_t>(groups.size()),
+                                                             handles.size(), handles.data()),
+            "reading shader group handles");
+    const VkDeviceSize raygenOffset = 0, missOffset = alignUp(stride, base), hitOffset = missOffset + alignUp(2 * stride, base);
+    const VkDeviceSize tableSize = hitOffset + 2 * stride;
+    std::vector<std::uint8_t> table(tableSize, 0);
+    std::memcpy(&table[raygenOffset], &handles[0], handleSize);
+    std::memcpy(&table[missOffset], &handles[1 * handleSize], handleSize);
+    std::memcpy(&table[missOffset + stride], &handles[2 * handleSize], handleSize);
+    std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
+    std::memcpy(&table[hitOffset + stride], &handles[4 * handleSize], handleSize);
+    // The table's start must meet the base alignment too: allocate one alignment more and offset.
+    program->bindingTable = GpuBuffer(dev, tableSize + base, VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                              GpuBuffer::Memory::HostVisible);
+    const VkDeviceAddress address = program->bindingTable.deviceAddress(dev);
+    const VkDeviceSize shift = alignUp(address, base) - address;
+    program->bindingTable.write(table.data(), tableSize, shift);
+    program->raygen = {address + shift + raygenOffset, stride, stride};
+    program->miss = {address + shift + missOffset, stride, 2 * stride};
+    program->hit = {address + shift + hitOffset, stride, 2 * stride};
+    return program;
+}
+
+}  // namespace
+
+DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader)
+    : device_(scene.device()), timer_(scene.device(), 1) {
+    const VulkanDevice& dev = device_;
+    const std::uint32_t textureCount = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(scene.scene().textures.size()));
+    {
+        // Identically declared set layouts are compatible: this scene's set binds to the shared pipeline.
+        static std::mutex mutex;
+        static std::map<std::tuple<VkDevice, std::string, std::uint32_t>, std::shared_ptr<const CompiledRayPipeline>> compiled;
+        std::lock_guard lock(mutex);
+        auto& entry = compiled[{dev.device(), raygenShader, textureCount}];
+        if (!entry) entry = compile(dev, raygenShader, textureCount);
+        program_ = entry;
+    }
+    const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    descriptors_ = DescriptorSet(dev, descriptorBindings(textureCount));
+    frame_ = GpuBuffer(dev, sizeof(DeviceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    counters_ = GpuBuffer(dev, kRayCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+
+    VkWriteDescriptorSetAccelerationStructureKHR as{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+    VkAccelerationStructureKHR topLevel = scene.topLevel();
+    as.accelerationStructureCount = 1;
+    as.pAccelerationStructures = &topLevel;
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, &as};
+    w.dstSet = descriptors_.set();
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+    vkUpdateDescriptorSets(dev.device(), 1, &w, 0, nullptr);
+    descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frame_.buffer());
+    descriptors_.writeBuffer(2, storage, scene.materials().buffer());
+    descriptors_.writeBuffer(3, storage, scene.lights().buffer());
+    descriptors_.writeBuffer(4, storage, scene.instances().buffer());
+    descriptors_.writeBuffer(5, storage, scene.vertices().buffer());
+    descriptors_.writeBuffer(6, storage, scene.indices().buffer());
+    descriptors_.writeBuffer(7, storage, counters_.buffer());
+    descriptors_.writeImages(9, sampler, {scene.textures().sky()});
+    std::vector<VkDescriptorImageInfo> textures;
+    for (std::uint32_t i = 0; i < textureCount; ++i) {
+        textures.push_back(scene.textures().texture(scene.scene().textures.empty() ? kNoTexture : static_cast<std::int32_t>(i)));
+    }
+    descriptors_.writeImages(10, sampler, textures);
+    output(sizeof(glm::vec4));
+    setReplayRays(GpuBuffer(dev, sizeof(DeviceRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible));
+}
+
+const GpuBuffer& DeviceRayPipeline::output(VkDeviceSize bytes) {
+    if (!output_.valid() || output_.size() != bytes) {
+        output_ = GpuBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        descriptors_.writeBuffer(8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output_.buffer());
+    }
+    return output_;
+}
+
+void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {
+    replay_ = std::move(rays);
+    descriptors_.writeBuffer(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, replay_.buffer());
+}
+
+std::array<std::uint32_t, 4> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage) {
+    const VulkanDevice& dev = device_;
+    std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
+    dev.submitAndWait([&](VkCommandBuffer cb) {
+        timer_.reset(cb);
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
+        VkDescriptorSet set = descriptors_.set();
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->layout, 0, 1, &set, 0, nullptr);
+        timer_.begin(cb, stage);
+        dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, width, height, 1);
+        timer_.end(cb);
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                             nullptr);
+    });
+    std::array<std::uint32_t, 4> counts;
+    std::memcpy(counts.data(), counters_.mapped(), sizeof(counts));
+    return counts;
+}
+
+
+}  // namespace hybridlab

@@ -1,0 +1,52 @@
+#pragma once
+// A ray-tracing pipeline over a DeviceRayScene: one ray-generation shader with the backend's
+// shared hit and miss programs (radiance closest-hit and miss, shadow any-hit and miss;
+// shaders/device_rays.glsl), its descriptor set, shader binding table, per-launch uniforms, ray
+// counters and GPU timer. The Whitted tracer and the benchmark's ray replay are its two users.
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "common/device_rays/device_ray_scene.h"
+#include "common/raster/gpu_timer.h"
+#include "common/raster/pipelines.h"
+
+namespace hybridlab {
+
+// The compiled pipeline, its layout and shader binding table, shared by every DeviceRayPipeline
+// of one ray-generation shader and texture count.
+struct CompiledRayPipeline {
+    DescriptorSet setLayout;  // owns the set layout the pipeline layout was made with
+    UniquePipelineLayout layout;
+    UniquePipeline pipeline;
+    GpuBuffer bindingTable;
+    VkStridedDeviceAddressRegionKHR raygen{}, miss{}, hit{}, callable{};
+};
+
+class DeviceRayPipeline {
+public:
+    DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader);
+
+    const VulkanDevice& device() const { return device_; }
+
+    // The launch's buffers (rewritten by the caller before launch()): the frame's uniforms, the
+    // radiance output (binding 8, resized to `bytes`), the replayed rays (binding 11).
+    void setFrame(const device_rays::DeviceFrame& frame) { frame_.write(&frame, sizeof(frame)); }
+    const GpuBuffer& output(VkDeviceSize bytes);
+    void setReplayRays(GpuBuffer rays);
+
+    // Zeroes the counters, traces a width x height x 1 launch (GPU-timed as `stage`), waits;
+    // returns the four counters (device_rays.glsl rayCounts).
+    std::array<std::uint32_t, 4> launch(std::uint32_t width, std::uint32_t height, const std::string& stage);
+    std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
+
+private:
+    const VulkanDevice& device_;
+    std::shared_ptr<const CompiledRayPipeline> program_;
+    DescriptorSet descriptors_;
+    GpuBuffer frame_, counters_, output_, replay_;
+    GpuTimer timer_;
+};
+
+}  // namespace hybridlab

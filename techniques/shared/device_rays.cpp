@@ -1,0 +1,51 @@
+#include "techniques/shared/device_rays.h"
+
+#include "common/core/input_error.h"
+#include "common/raster/vulkan_error.h"
+#include "techniques/shared/ray_counters.h"
+
+namespace hybridlab {
+
+ParamSpec raysParameterSpec() {
+    return ParamSpec::choice("rays", "embree", {"embree", "vulkan"},
+                             "where rays are traced: Embree on the CPU, or the Vulkan device's ray-tracing pipeline");
+}
+
+bool tracesOnDevice(const ParameterSet& params) { return params.values().count("rays") && params.getChoice("rays") == "vulkan"; }
+
+std::unique_ptr<DeviceWhittedTracer> prepareDeviceRays(SceneContext& context) {
+    try {
+        return std::make_unique<DeviceWhittedTracer>(context.deviceRayScene(0.0));
+    } catch (const VulkanUnavailable& e) {
+        throw InputError(std::string("rays = \"vulkan\": ") + e.what());
+    }
+}
+
+const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, StageClock& clock, FrameResult& result) {
+    const DeviceRayScene& rays = context.deviceRayScene(time);
+    clock.lap("bvh_update");
+    result.counters["bvh_triangles"] = static_cast<double>(rays.triangleCount());
+    result.counters["bvh_moving_triangles"] = static_cast<double>(rays.rigidMovingTriangles());
+    result.counters["bvh_refit_triangles"] = static_cast<double>(rays.deformingTriangles());
+    return rays;
+}
+
+void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame, const WhittedSettings& settings, int supersample,
+                         StageClock& clock, FrameResult& result) {
+    const int n = supersample;
+    DeviceTraceResult traced = tracer.trace(frame.camera, frame.width * n, frame.height * n, settings);
+    result.image = Image(frame.width, frame.height);
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            glm::vec4 sum(0.0f);
+            for (int sy = 0; sy < n; ++sy)
+                for (int sx = 0; sx < n; ++sx) sum += traced.image.at(x * n + sx, y * n + sy);
+            result.image.at(x, y) = glm::vec4(glm::vec3(sum) / static_cast<float>(n * n), 1.0f);
+        }
+    }
+    clock.lap("trace");
+    recordRayCounters(traced.rays, static_cast<double>(frame.width) * frame.height, result);
+    for (const GpuStageTime& g : traced.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
+}
+
+}  // namespace hybridlab
