@@ -15,6 +15,7 @@ RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, c
     if (selection.ssim) m.ssim = ssimMean(maps.ssim, region);
     if (selection.error()) m.error = errorStats(test, reference, region);
     if (selection.flip) m.flip = flipStats(maps.flip, region);
+    if (selection.flipHdr) m.flipHdr = flipStats(maps.flipHdr, region);
     return m;
 }
 
@@ -37,6 +38,9 @@ MetricReport computeMetrics(const Image& test, const Image& reference, const Met
     const MetricSelection& chosen = options.selection;
     if (chosen.ssim) report.maps.ssim = ssimMap(displayTest, displayReference, options.ssimChannels);
     if (chosen.flip) report.maps.flip = flipMap(displayTest, displayReference, options.pixelsPerDegree);
+    if (chosen.flipHdr) {
+        report.maps.flipHdr = hdrFlipMap(metricRgb(test, ValueSpace::Linear), metricRgb(reference, ValueSpace::Linear), options.pixelsPerDegree);
+    }
     if (chosen.error()) report.maps.absoluteDifference = absoluteDifferenceMap(errorTest, errorReference);
 
     report.whole = regionMetrics(errorTest, errorReference, report.maps, nullptr, chosen);

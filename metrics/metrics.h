@@ -10,6 +10,7 @@
 #include "common/image/image.h"
 #include "metrics/error_stats.h"
 #include "metrics/flip.h"
+#include "metrics/hdr_flip.h"
 #include "metrics/metric_input.h"
 #include "metrics/ssim.h"
 
@@ -20,17 +21,18 @@ namespace hybridlab {
 // appear in the report's files.
 struct MetricSelection {
     bool ssim = true;
-    bool flip = true;
+    bool flip = true;     // LDR-FLIP on the display images
+    bool flipHdr = true;  // HDR-FLIP on the linear images (hdr_flip.h)
     bool rmse = true;
     bool psnr = true;
 
     bool error() const { return rmse || psnr; }  // both come from the difference (errorStats)
-    bool any() const { return ssim || flip || error(); }
+    bool any() const { return ssim || flip || flipHdr || error(); }
 };
 
 struct MetricOptions {
     // RMSE, PSNR and the difference map: display values (default) or the linear HDR values.
-    // SSIM and FLIP always see the display image.
+    // SSIM and FLIP always see the display image, HDR-FLIP the linear one.
     ValueSpace errorSpace = ValueSpace::Display;
     SsimChannels ssimChannels = SsimChannels::Luma;
     double pixelsPerDegree = kDefaultPixelsPerDegree;  // FLIP's viewing condition
@@ -41,7 +43,8 @@ struct RegionMetrics {
     std::size_t pixels = 0;
     double ssim = 0.0;  // MSSIM over the region (ssimMean)
     ErrorStats error;   // RMSE, PSNR
-    FlipStats flip;
+    FlipStats flip;     // LDR-FLIP
+    FlipStats flipHdr;  // HDR-FLIP
 };
 
 // A metric not selected is left at its default (zero), its map empty.
@@ -49,6 +52,7 @@ struct MetricMaps {
     cv::Mat1f absoluteDifference;  // mean |test - reference| over R, G, B, in the error space
     cv::Mat1f ssim;
     cv::Mat1f flip;
+    cv::Mat1f flipHdr;
 };
 
 struct MetricReport {

@@ -28,6 +28,12 @@ nlohmann::json regionJson(const RegionMetrics& m, const MetricSelection& chosen)
                      {"weighted_first_quartile", m.flip.weightedFirstQuartile},
                      {"weighted_third_quartile", m.flip.weightedThirdQuartile}};
     }
+    if (chosen.flipHdr) {
+        j["flip_hdr"] = {{"mean", m.flipHdr.mean},
+                         {"weighted_median", m.flipHdr.weightedMedian},
+                         {"weighted_first_quartile", m.flipHdr.weightedFirstQuartile},
+                         {"weighted_third_quartile", m.flipHdr.weightedThirdQuartile}};
+    }
     return j;
 }
 
@@ -44,6 +50,7 @@ std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report) {
     }
     if (chosen.ssim) maps.push_back({"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim});
     if (chosen.flip) maps.push_back({"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip});
+    if (chosen.flipHdr) maps.push_back({"flip_hdr.png", "HDR-FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flipHdr});
     return maps;
 }
 

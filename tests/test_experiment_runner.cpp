@@ -326,7 +326,7 @@ name = "heuristic_rt"
         SCOPED_TRACE(i);
         // By default: every metric, error maps and debug images.
         const json& all = everything[i];
-        for (const char* m : {"ssim", "flip", "rmse", "psnr_db"}) EXPECT_TRUE(all.at("metrics").at("whole").contains(m)) << m;
+        for (const char* m : {"ssim", "flip", "flip_hdr", "rmse", "psnr_db"}) EXPECT_TRUE(all.at("metrics").at("whole").contains(m)) << m;
         EXPECT_TRUE(fs::exists(dir.path() / "all" / all.at("images").at("maps").get<std::string>() / "flip.png"));
         ASSERT_TRUE(all.at("images").contains("debug"));
         for (const auto& [name, file] : all.at("images").at("debug").items()) EXPECT_TRUE(fs::exists(dir.path() / "all" / file.get<std::string>())) << name;
@@ -427,13 +427,13 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithout
         {"no-techniques", scene, "an experiment needs at least one technique"},
         {"no-scenes", technique, "an experiment needs at least one scene"},
         {"unknown-metric", "[experiment]\nmetrics = [\"ssim\", \"lpips\"]\n" + scene + technique,
-         "experiment.metrics: 'lpips' is not one of: ssim, flip, rmse, psnr, temporal"},
+         "experiment.metrics: 'lpips' is not one of: ssim, flip, flip_hdr, rmse, psnr, temporal"},
         {"no-metrics", "[experiment]\nmetrics = []\n" + scene + technique, "experiment.metrics: an empty list measures nothing"},
         {"metrics-not-names", "[experiment]\nmetrics = \"ssim\"\n" + scene + technique, "experiment.metrics: expected an array of strings"},
         {"unknown-keep", "[experiment]\nkeep = [\"thumbnails\"]\n" + scene + technique,
          "experiment.keep: 'thumbnails' is not one of: error_maps, debug_images"},
         {"maps-without-metric", "[experiment]\nmetrics = [\"temporal\"]\nkeep = [\"error_maps\"]\n" + scene + technique,
-         "experiment.keep: error_maps needs ssim, flip, rmse or psnr in metrics"},
+         "experiment.keep: error_maps needs ssim, flip, flip_hdr, rmse or psnr in metrics"},
     };
     std::vector<test::CliRun> runs;
     for (const auto& c : cases) {

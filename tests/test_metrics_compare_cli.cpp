@@ -89,8 +89,10 @@ void expectReportFilesHoldTheLibrarysNumbers(const Files& f, const fs::path& out
     EXPECT_EQ(j.at("masked").at("pixels"), 32 * 24);
     EXPECT_DOUBLE_EQ(j.at("masked").at("flip").at("mean").get<double>(), expected.masked->flip.mean);
     EXPECT_EQ(j.at("maps").at("flip").at("colormap"), "magma");
+    EXPECT_DOUBLE_EQ(j.at("whole").at("flip_hdr").at("mean").get<double>(), expected.whole.flipHdr.mean);
+    EXPECT_GT(expected.whole.flipHdr.mean, 0.0);
 
-    for (const char* name : {"diff.png", "ssim.png", "flip.png"}) {
+    for (const char* name : {"diff.png", "ssim.png", "flip.png", "flip_hdr.png"}) {
         SCOPED_TRACE(name);
         const Image map = readImage(out / name);
         EXPECT_EQ(map.width(), 64);
@@ -99,7 +101,7 @@ void expectReportFilesHoldTheLibrarysNumbers(const Files& f, const fs::path& out
     std::vector<std::string> written;
     for (const auto& e : fs::directory_iterator(out)) written.push_back(e.path().filename().string());
     std::sort(written.begin(), written.end());
-    EXPECT_EQ(written, (std::vector<std::string>{"diff.png", "flip.png", "metrics.json", "ssim.png"}));  // no temporary left
+    EXPECT_EQ(written, (std::vector<std::string>{"diff.png", "flip.png", "flip_hdr.png", "metrics.json", "ssim.png"}));  // no temporary left
 }
 
 // One test, so that the program's start-up (~0.3 s) is paid by all the runs at once.

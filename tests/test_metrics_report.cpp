@@ -127,7 +127,7 @@ TEST(MetricReport, SelectedMetricsAloneAreComputedWithTheSameValues) {
     const Image test = test::fromDisplay(test::displayPattern(40, 32)), reference = flatDisplay(40, 32, glm::vec3(0.4f));
     const MetricReport all = computeMetrics(test, reference);
     MetricOptions ssimOnly;
-    ssimOnly.selection = {.ssim = true, .flip = false, .rmse = false, .psnr = false};
+    ssimOnly.selection = {.ssim = true, .flip = false, .flipHdr = false, .rmse = false, .psnr = false};
     const MetricReport r = computeMetrics(test, reference, ssimOnly);
     EXPECT_EQ(r.whole.ssim, all.whole.ssim);
     EXPECT_TRUE(r.maps.flip.empty());
@@ -136,11 +136,11 @@ TEST(MetricReport, SelectedMetricsAloneAreComputedWithTheSameValues) {
     EXPECT_STREQ(reportHeatmaps(r)[0].file, "ssim.png");
     const nlohmann::json j = reportJson(r, {"t.exr", "r.exr", std::nullopt});
     EXPECT_TRUE(j.at("whole").contains("ssim"));
-    for (const char* absent : {"flip", "rmse", "psnr_db"}) EXPECT_FALSE(j.at("whole").contains(absent)) << absent;
+    for (const char* absent : {"flip", "flip_hdr", "rmse", "psnr_db"}) EXPECT_FALSE(j.at("whole").contains(absent)) << absent;
     EXPECT_FALSE(j.at("maps").contains("flip"));
 
     MetricOptions flipAndPsnr;
-    flipAndPsnr.selection = {.ssim = false, .flip = true, .rmse = false, .psnr = true};
+    flipAndPsnr.selection = {.ssim = false, .flip = true, .flipHdr = false, .rmse = false, .psnr = true};
     const MetricReport f = computeMetrics(test, reference, flipAndPsnr);
     EXPECT_EQ(f.whole.flip.mean, all.whole.flip.mean);
     EXPECT_EQ(f.whole.error.psnr, all.whole.error.psnr);

@@ -51,6 +51,8 @@ void printReport(const MetricReport& r) {
     row("FLIP weighted median", [](const RegionMetrics& m) { return m.flip.weightedMedian; }, "%14.6f");
     row("FLIP weighted 1st quartile", [](const RegionMetrics& m) { return m.flip.weightedFirstQuartile; }, "%14.6f");
     row("FLIP weighted 3rd quartile", [](const RegionMetrics& m) { return m.flip.weightedThirdQuartile; }, "%14.6f");
+    row("HDR-FLIP mean", [](const RegionMetrics& m) { return m.flipHdr.mean; }, "%14.6f");
+    row("HDR-FLIP weighted median", [](const RegionMetrics& m) { return m.flipHdr.weightedMedian; }, "%14.6f");
 }
 
 double median(std::vector<double> v) {

@@ -68,7 +68,8 @@ std::vector<ParameterList> expandSweep(const TomlTable& t) {
 // config that records its choice (Config: ExperimentConfig, const or not).
 template <class Config>
 auto metricFlags(Config& c) {
-    return std::array{std::pair{"ssim", &c.metrics.ssim}, std::pair{"flip", &c.metrics.flip}, std::pair{"rmse", &c.metrics.rmse},
+    return std::array{std::pair{"ssim", &c.metrics.ssim}, std::pair{"flip", &c.metrics.flip},
+                      std::pair{"flip_hdr", &c.metrics.flipHdr}, std::pair{"rmse", &c.metrics.rmse},
                       std::pair{"psnr", &c.metrics.psnr}, std::pair{"temporal", &c.temporalError}};
 }
 
@@ -95,7 +96,7 @@ void readMetricsAndKeep(const TomlTable& e, ExperimentConfig& c) {
     // Asked for explicitly, error maps without a metric that has one are a mistake; by default
     // they are simply not written.
     if (e.has("keep") && contains(keep, "error_maps") && !c.metrics.any())
-        e.fail("keep", "error_maps needs ssim, flip, rmse or psnr in metrics (each map is one of theirs)");
+        e.fail("keep", "error_maps needs ssim, flip, flip_hdr, rmse or psnr in metrics (each map is one of theirs)");
 }
 
 std::string safeName(const std::string& s) {
