@@ -176,7 +176,6 @@ TEST(DeviceRays, WhittedAgreesWithEmbreeOnTheBuiltInScenes) {
 }
 
 TEST(DeviceRays, WhittedAgreesWithEmbreeOnThePaperScenes) {
-    REQUIRE_ASSETS();
     REQUIRE_RAY_TRACING_DEVICE();
     expectBackendsAgree("sponza-spheres", "whitted", 160, 90);
     expectBackendsAgree("teapot-lens", "whitted", 160, 90);
@@ -208,7 +207,6 @@ void expectBackendsAgreeAfterAnUpdate(const std::string& sceneName, double time)
 }
 
 TEST(DeviceRays, RigidAndDeformingAnimationUpdateTheAccelerationStructures) {
-    REQUIRE_ASSETS();
     REQUIRE_RAY_TRACING_DEVICE();
     expectBackendsAgreeAfterAnUpdate("bunnies-falling-5", 1.5);
     expectBackendsAgreeAfterAnUpdate("teapots-deforming-5", 1.5);
