@@ -207,6 +207,27 @@ TEST(DeviceRays, AShadowThroughAnAbsorbingSlabIsAttenuatedByExpMinusAH) {
     }
 }
 
+// Nested and touching absorbing balls (IOR 1: straight paths): the stack follows the centre ray
+// through all of them, outer alone over 2 x 0.5, outer + inner (overlapping media add) over 1,
+// the touching ball over 1: exp(-tau) on both backends.
+TEST(DeviceRays, NestedAndTouchingMediaAttenuateEachSegmentByItsMedia) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    const glm::vec3 aOuter(0.3f, 0.6f, 0.9f), aInner(1.0f, 0.5f, 0.25f), aTouching(0.2f, 0.2f, 0.2f);
+    Material outer = absorbingGlass(aOuter), inner = absorbingGlass(aInner), touching = absorbingGlass(aTouching);
+    for (Material* m : {&outer, &inner, &touching}) m->ior = 1.0f, m->fresnel = false;
+    SceneBuilder b;
+    b.object("outer", makeSphere(256, 128), b.material(outer), placed({0, 0, 0}, glm::vec3(2.0f)));
+    b.object("inner", makeSphere(256, 128), b.material(inner), placed({0, 0, 0}, glm::vec3(1.0f)));
+    b.object("touching", makeSphere(256, 128), b.material(touching), placed({0, 0, -1.51f}, glm::vec3(1.0f)));
+    b.object("wall", makePlane(), b.material(emissive(glm::vec3(1.0f))), placed({0, 0, -4}, {10, 1, 10}, {90, 0, 0}));
+    b.scene().sky.color = glm::vec3(0.0f);
+    b.scene().ambient = glm::vec3(0.0f);
+    const BothBackends both = traceBoth(b.scene(), {0, 0, 5}, {0, 0, -1});
+    const glm::vec3 expected = glm::exp(-(aOuter * 1.0f + (aOuter + aInner) * 1.0f + aTouching * 1.0f));
+    expectBoth(both, expected, 2e-3f * expected.r, "exp(-tau)");
+    EXPECT_VEC_NEAR(both.device, both.embree, 1e-5f);
+}
+
 // A camera inside a closed absorbing ball: its ray leaves a medium it never entered. It renders,
 // finite, unabsorbed, and the device counts it in medium_errors as the reference does.
 TEST(DeviceRays, LeavingAMediumNeverEnteredIsCountedNotFatal) {
