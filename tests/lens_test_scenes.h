@@ -17,6 +17,16 @@ inline Material glassWithAbsorption(glm::vec3 absorption) {
     return g;
 }
 
+// Clear glass (Fresnel, IOR 1.5) that lets shadow rays through unattenuated at its surfaces
+// (diffuse 1: occluderTransmittance 1), so that only its absorption darkens them.
+inline Material absorbingGlass(glm::vec3 absorption) {
+    Material g = glassWithAbsorption(absorption);
+    g.diffuse = glm::vec3(1.0f);
+    g.ambient = glm::vec3(0.0f);
+    g.specular = glm::vec3(0.0f);
+    return g;
+}
+
 // Exact unpolarised Fresnel reflectance, written out from the s and p amplitudes (Hecht) so that
 // the tests do not lean on the function they check.
 inline double handFresnel(double thetaI, double n1, double n2) {

@@ -16,21 +16,13 @@ namespace hybridlab {
 namespace {
 
 using test::SceneBuilder;
+using test::absorbingGlass;
 using test::emissive;
 using test::matte;
 using test::placed;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Clear glass (Fresnel, IOR 1.5) that lets shadow rays through unattenuated at its surfaces
-// (diffuse 1: occluderTransmittance 1), so that only its absorption darkens them.
-Material absorbingGlass(glm::vec3 absorption) {
-    Material g = test::glassWithAbsorption(absorption);
-    g.diffuse = glm::vec3(1.0f);
-    g.ambient = glm::vec3(0.0f);
-    g.specular = glm::vec3(0.0f);
-    return g;
-}
 
 TEST(MediumStack, EntersLeavesInAnyOrderAndRefusesWhatItCannotTrack) {
     MediumStack s;

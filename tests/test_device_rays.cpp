@@ -1,6 +1,8 @@
 // The Vulkan ray-tracing backend (common/device_rays) against closed-form answers and against the
 // Embree reference: analytic single rays through both backends, backend agreement on whole frames
-// (SSIM and ray counts by kind), and rays = "vulkan" on a device without ray tracing.
+// (SSIM and ray counts by kind), and rays = "vulkan" on a device without ray tracing. Absorption
+// and the depth limit follow the reference's rules (medium_stack.h, WhittedTracer::shadeParts).
+#include <limits>
 #include <cmath>
 #include <cstdio>
 
@@ -14,6 +16,7 @@
 #include "common/raytrace/whitted_tracer.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
+#include "lens_test_scenes.h"
 #include "metrics/metrics.h"
 #include "scene_fixtures.h"
 #include "technique_test_support.h"
@@ -23,6 +26,7 @@ namespace hybridlab {
 namespace {
 
 using test::SceneBuilder;
+using test::absorbingGlass;
 using test::emissive;
 using test::matte;
 using test::placed;
@@ -151,6 +155,129 @@ TEST(DeviceRays, AbsorptionThroughASlabOfKnownThickness) {
     expectBoth(traceBoth(b.scene(), {0.3f, 1, 0.2f}, {0, -1, 0}), expected, 1e-5f, "exp(-a d)");
 }
 
+// An opaque emissive sphere of radius r inside an absorbing glass ball of radius R: the centre ray
+// enters the glass at normal incidence (Fresnel transmittance 0.96) and runs R - r inside it to a
+// surface that is not the ball's back face: 0.96 E exp(-a (R - r)) (the old device rule, absorption
+// only on a segment ending on a back face, gave 0.96 E).
+TEST(DeviceRays, OpaqueSphereInsideAnAbsorbingBallAlongTheCentreRay) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    const float R = 1.0f, r = 0.4f;
+    const glm::vec3 a(0.5f, 1.0f, 2.0f), E(0.8f, 0.6f, 0.4f);
+    SceneBuilder b;
+    b.object("ball", makeSphere(256, 128), b.material(absorbingGlass(a)), placed({0, 0, 0}, glm::vec3(2.0f * R)));
+    b.object("core", makeSphere(128, 64), b.material(emissive(E)), placed({0, 0, 0}, glm::vec3(2.0f * r)));
+    b.scene().sky.color = glm::vec3(0.0f);
+    b.scene().ambient = glm::vec3(0.0f);
+    const BothBackends both = traceBoth(b.scene(), {0, 0, 5}, {0, 0, -1});
+    const glm::vec3 expected = 0.96f * E * glm::exp(-a * (R - r));
+    expectBoth(both, expected, 0.01f * expected.b, "0.96 E exp(-a (R - r))");
+    EXPECT_VEC_NEAR(both.device, both.embree, 1e-5f);
+}
+
+// A shadow ray through an absorbing slab of thickness h (glass whose surfaces let light through
+// untinted): the floor under the light, seen from the side, is lit exp(-a h) times as brightly
+// as without absorption, towards a point light (tau = sum of +-a (D - t_i)) and a directional one
+// (tau = sum of -+a t_i); from a point light it is diffuse I / d^2 exp(-a h) exactly.
+TEST(DeviceRays, AShadowThroughAnAbsorbingSlabIsAttenuatedByExpMinusAH) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    const float h = 0.5f;
+    const glm::vec3 absorption(0.4f, 1.2f, 3.0f);
+    auto shaded = [&](glm::vec3 a, Light::Type type) {
+        SceneBuilder b;
+        b.object("floor", makePlane(), b.material(matte(glm::vec3(0.5f))), placed({0, 0, 0}, {20, 1, 20}));
+        b.object("slab", makeCube(), b.material(absorbingGlass(a)), placed({0, 1.25f, 0}, {1, h, 1}));
+        Light l;
+        l.type = type;
+        l.position = {0, 3, 0};
+        l.direction = {0, -1, 0};
+        l.intensity = 9.0f;
+        b.light(l);
+        b.scene().ambient = glm::vec3(0.0f);
+        b.scene().sky.color = glm::vec3(0.0f);
+        const glm::vec3 from(3.0f, 0.5f, 0.0f);
+        return traceBoth(b.scene(), from, -from);
+    };
+    const glm::vec3 T = glm::exp(-absorption * h);
+    expectBoth(shaded(absorption, Light::Type::Point), 0.5f * T, 1e-4f * 0.5f, "point light");
+    for (Light::Type type : {Light::Type::Point, Light::Type::Directional}) {
+        const BothBackends absorbed = shaded(absorption, type), clear = shaded(glm::vec3(0.0f), type);
+        ASSERT_GT(clear.device.r, 0.0f);
+        EXPECT_VEC_NEAR(absorbed.device / clear.device, T, 1e-4f) << "vulkan, light type " << static_cast<int>(type);
+        EXPECT_VEC_NEAR(absorbed.embree / clear.embree, T, 1e-4f) << "embree, light type " << static_cast<int>(type);
+    }
+}
+
+// Nested and touching absorbing balls (IOR 1: straight paths): the stack follows the centre ray
+// through all of them, outer alone over 2 x 0.5, outer + inner (overlapping media add) over 1,
+// the touching ball over 1: exp(-tau) on both backends.
+TEST(DeviceRays, NestedAndTouchingMediaAttenuateEachSegmentByItsMedia) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    const glm::vec3 aOuter(0.3f, 0.6f, 0.9f), aInner(1.0f, 0.5f, 0.25f), aTouching(0.2f, 0.2f, 0.2f);
+    Material outer = absorbingGlass(aOuter), inner = absorbingGlass(aInner), touching = absorbingGlass(aTouching);
+    for (Material* m : {&outer, &inner, &touching}) m->ior = 1.0f, m->fresnel = false;
+    SceneBuilder b;
+    b.object("outer", makeSphere(256, 128), b.material(outer), placed({0, 0, 0}, glm::vec3(2.0f)));
+    b.object("inner", makeSphere(256, 128), b.material(inner), placed({0, 0, 0}, glm::vec3(1.0f)));
+    b.object("touching", makeSphere(256, 128), b.material(touching), placed({0, 0, -1.51f}, glm::vec3(1.0f)));
+    b.object("wall", makePlane(), b.material(emissive(glm::vec3(1.0f))), placed({0, 0, -4}, {10, 1, 10}, {90, 0, 0}));
+    b.scene().sky.color = glm::vec3(0.0f);
+    b.scene().ambient = glm::vec3(0.0f);
+    const BothBackends both = traceBoth(b.scene(), {0, 0, 5}, {0, 0, -1});
+    const glm::vec3 expected = glm::exp(-(aOuter * 1.0f + (aOuter + aInner) * 1.0f + aTouching * 1.0f));
+    expectBoth(both, expected, 2e-3f * expected.r, "exp(-tau)");
+    EXPECT_VEC_NEAR(both.device, both.embree, 1e-5f);
+}
+
+// A camera inside a closed absorbing ball: its ray leaves a medium it never entered. It renders,
+// finite, unabsorbed, and the device counts it in medium_errors as the reference does.
+TEST(DeviceRays, LeavingAMediumNeverEnteredIsCountedNotFatal) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    SceneBuilder b;
+    b.object("ball", makeSphere(64, 32), b.material(absorbingGlass({1, 2, 3})), placed({0, 0, 0}, glm::vec3(2.0f)));
+    b.scene().sky.color = glm::vec3(0.2f, 0.4f, 0.6f);
+    const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+    RayScene rays(b.scene());
+    RayStats stats;
+    const glm::vec3 reference = WhittedTracer(rays, {}).radiance({glm::vec3(0.0f), dir}, 0, 1.0f, stats);
+    DeformedMeshCache deformed(b.scene());
+    DeviceRayScene deviceScene(VulkanDevice::shared({.rayTracing = true}), b.scene(), deformed);
+    Camera camera;
+    camera.position = glm::vec3(0.0f);
+    camera.orientation = Camera::lookAtOrientation(glm::vec3(0.0f), dir, glm::vec3(0, 1, 0));
+    const DeviceTraceResult traced = DeviceWhittedTracer(deviceScene).trace(camera, 1, 1, {});
+    const glm::vec3 device(traced.image.at(0, 0));
+    EXPECT_TRUE(std::isfinite(device.r) && std::isfinite(device.g) && std::isfinite(device.b));
+    EXPECT_GT(device.b, 0.0f);
+    EXPECT_VEC_NEAR(device, reference, 1e-5f);
+    EXPECT_GE(stats.mediumErrors, 1u);
+    EXPECT_EQ(traced.rays.mediumErrors, stats.mediumErrors);
+}
+
+// depth_limit on the device: an emissive half-mirror (reflectivity 0.5, local colour E) under a
+// blue sky. At max_depth 0 "weighted" returns 0.5 E (the reflected ray counting 0), "local" E;
+// at max_depth 1 both 0.5 sky + 0.5 E.
+TEST(DeviceRays, DepthLimitReturnsTheWeightedOrTheLocalColour) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    const glm::vec3 E(0.6f, 0.4f, 0.2f), sky(0.0f, 0.0f, 1.0f);
+    SceneBuilder b;
+    Material halfMirror = emissive(E);
+    halfMirror.reflectivity = 0.5f;
+    b.object("mirror", makePlane(), b.material(halfMirror), placed({0, 0, 0}, {10, 1, 10}));
+    b.scene().sky.color = sky;
+    b.scene().ambient = glm::vec3(0.0f);
+    WhittedSettings s;
+    ASSERT_EQ(s.depthLimit, DepthLimit::Weighted);
+    s.maxDepth = 0;
+    expectBoth(traceBoth(b.scene(), {0, 1, 0}, {0, -1, 0}, s), 0.5f * E, 1e-6f, "depth 0, weighted");
+    s.depthLimit = DepthLimit::Local;
+    expectBoth(traceBoth(b.scene(), {0, 1, 0}, {0, -1, 0}, s), E, 1e-6f, "depth 0, local");
+    for (DepthLimit limit : {DepthLimit::Weighted, DepthLimit::Local}) {
+        s.depthLimit = limit;
+        s.maxDepth = 1;
+        expectBoth(traceBoth(b.scene(), {0, 1, 0}, {0, -1, 0}, s), 0.5f * sky + 0.5f * E, 1e-6f, "depth 1");
+    }
+}
+
 // Whitted (or rt_only) on both backends at a small size: SSIM and ray counts by kind.
 void expectBackendsAgree(const std::string& sceneName, const std::string& technique, int width, int height) {
     SCOPED_TRACE(sceneName + " " + technique);
@@ -165,6 +292,7 @@ void expectBackendsAgree(const std::string& sceneName, const std::string& techni
         EXPECT_LE(std::abs(d - e), 0.005 * e) << kind << ": vulkan " << d << ", embree " << e;
         std::printf(", %s %.0f / %.0f", kind + 5, d, e);
     }
+    EXPECT_EQ(device.counters.at("medium_errors"), embree.counters.at("medium_errors"));
     std::printf("\n");
 }
 

@@ -176,7 +176,7 @@ void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {
     descriptors_.writeBuffer(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, replay_.buffer());
 }
 
-std::array<std::uint32_t, 4> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage) {
+std::array<std::uint32_t, kRayCounterCount> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage) {
     const VulkanDevice& dev = device_;
     std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
     dev.submitAndWait([&](VkCommandBuffer cb) {
@@ -193,7 +193,7 @@ std::array<std::uint32_t, 4> DeviceRayPipeline::launch(std::uint32_t width, std:
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0,
                              nullptr);
     });
-    std::array<std::uint32_t, 4> counts;
+    std::array<std::uint32_t, kRayCounterCount> counts;
     std::memcpy(counts.data(), counters_.mapped(), sizeof(counts));
     return counts;
 }

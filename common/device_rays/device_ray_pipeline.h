@@ -37,8 +37,8 @@ public:
     void setReplayRays(GpuBuffer rays);
 
     // Zeroes the counters, traces a width x height x 1 launch (GPU-timed as `stage`), waits;
-    // returns the four counters (device_rays.glsl rayCounts).
-    std::array<std::uint32_t, 4> launch(std::uint32_t width, std::uint32_t height, const std::string& stage);
+    // returns the counters (device_rays.glsl rayCounts).
+    std::array<std::uint32_t, device_rays::kRayCounterCount> launch(std::uint32_t width, std::uint32_t height, const std::string& stage);
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
 private:

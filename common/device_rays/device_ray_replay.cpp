@@ -31,7 +31,7 @@ ReplayResult DeviceRayReplay::trace() {
     frame.size = glm::ivec4(static_cast<int>(radianceRays_), static_cast<int>(shadowRays_), 0, 0);
     pipeline_.setFrame(frame);
     const std::uint32_t rays = radianceRays_ + shadowRays_, width = std::min<std::uint32_t>(std::max(rays, 1u), 4096u);
-    const std::array<std::uint32_t, 4> counts = pipeline_.launch(width, (rays + width - 1) / width, "replay");
+    const auto counts = pipeline_.launch(width, (rays + width - 1) / width, "replay");
     ReplayResult r;
     r.hits = counts[0] + counts[1];
     for (const GpuStageTime& s : pipeline_.gpuStages()) r.gpuMilliseconds += s.milliseconds;

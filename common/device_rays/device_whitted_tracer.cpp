@@ -34,6 +34,7 @@ DeviceFrame deviceFrame(const DeviceRayScene& scene, const Camera& camera, int w
     f.settings = glm::vec4(s.importanceCutoff, s.blend == BlendRule::Walewski2019 ? 1.0f : 0.0f, s.shadows ? 1.0f : 0.0f,
                            s.rayCones ? 1.0f : 0.0f);
     f.effects = glm::uvec4(effects.shadows, effects.reflection, effects.refraction, 0u);
+    f.rules = glm::uvec4(s.depthLimit == DepthLimit::Weighted ? 1u : 0u, 0u, 0u, 0u);
     return f;
 }
 
@@ -45,7 +46,7 @@ DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, in
                                              TracedEffects effects) {
     pipeline_.setFrame(deviceFrame(scene_, camera, width, height, settings, effects));
     const GpuBuffer& output = pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
-    const std::array<std::uint32_t, 4> counts = pipeline_.launch(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace");
+    const auto counts = pipeline_.launch(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace");
     DeviceTraceResult result;
     result.image = Image(width, height);
     const auto* pixels = static_cast<const glm::vec4*>(output.mapped());
@@ -55,6 +56,7 @@ DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, in
     result.rays.shadow = counts[1];
     result.rays.reflection = counts[2];
     result.rays.refraction = counts[3];
+    result.rays.mediumErrors = counts[4];
     result.gpuStages = pipeline_.gpuStages();
     return result;
 }

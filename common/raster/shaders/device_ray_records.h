@@ -54,6 +54,7 @@ struct DeviceFrame {
     ivec4 size;           // x width, y height, z light count, w max depth
     vec4 settings;        // x importance cut-off, y Walewski blend (1 or 0), z shadows (1 or 0), w ray cones (1 or 0)
     uvec4 effects;        // traced at the first hit: x shadows, y reflection, z refraction (1 or 0)
+    uvec4 rules;          // x depth_limit: 1 weighted, 0 local (DepthLimit)
 };
 
 // A ray to replay (benchmarks: the rays a frame traced, traced again on their own).
@@ -72,10 +73,10 @@ struct DeviceLight {
 
 #ifdef __cplusplus
 inline constexpr unsigned kHasUvs = 1u, kHasTangents = 2u;
-// Counters: primary, shadow, reflection, refraction (RayStats' order).
-inline constexpr unsigned kRayCounterCount = 4u;
+// Counters: primary, shadow, reflection, refraction (RayStats' order), medium errors.
+inline constexpr unsigned kRayCounterCount = 5u;
 static_assert(sizeof(DeviceMaterial) == 128 && sizeof(DeviceInstance) == 160 && sizeof(DeviceVertex) == 48);
-static_assert(sizeof(DeviceFrame) == 160 && sizeof(DeviceLight) == 64 && sizeof(DeviceRay) == 32);
+static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceLight) == 64 && sizeof(DeviceRay) == 32);
 }  // namespace hybridlab::device_rays
 #else
 const uint kHasUvs = 1u, kHasTangents = 2u;

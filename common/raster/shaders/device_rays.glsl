@@ -15,8 +15,9 @@ layout(std430, set = 0, binding = 3) readonly buffer Lights { DeviceLight lights
 layout(std430, set = 0, binding = 4) readonly buffer Instances { DeviceInstance instances[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Vertices { DeviceVertex vertices[]; };
 layout(std430, set = 0, binding = 6) readonly buffer Indices { uint indices[]; };
-// Rays by kind, counted on the device: primary, shadow, reflection, refraction (RayStats).
-layout(std430, set = 0, binding = 7) buffer Counters { uint rayCounts[4]; };
+// Counted on the device: rays by kind (primary, shadow, reflection, refraction), then medium
+// errors (RayStats' order and mediumErrors).
+layout(std430, set = 0, binding = 7) buffer Counters { uint rayCounts[5]; };
 layout(std430, set = 0, binding = 8) writeonly buffer Output { vec4 radianceOut[]; };
 layout(set = 0, binding = 9) uniform sampler2DArray skyFaces;
 layout(set = 0, binding = 10) uniform sampler2D sceneTextures[];
@@ -33,16 +34,32 @@ struct HitPayload {
 };
 
 // Shadow rays (hit group 1, miss 1): the any-hit shader multiplies the transmittance of every
-// transparent crossing (Walewski 2019 Listing 8b) and remembers the crossings, so that a ray
-// through an edge shared by two triangles is attenuated once (as RayScene's shadowFilter).
+// transparent crossing (Walewski 2019 Listing 8b), sums the optical depth of the absorbing ones
+// (device_medium_stack.glsl) and remembers the crossings, so that a ray through an edge shared by
+// two triangles is attenuated once (as RayScene's shadowFilter).
 const int kMaxCrossings = 16;
 struct ShadowPayload {
     vec3 transmittance;
     uint missed;     // 1: nothing opaque stopped the ray
+    vec3 opticalDepth;
+    float lightDistance;  // D; < 0: a directional light (infinitely far)
     int crossings;
     uint crossingInstance[kMaxCrossings];
     float crossingDistance[kMaxCrossings];
 };
+
+// The geometric normal of a triangle of an instance, in world space, following the winding: the
+// closest-hit path's and the shadow any-hit's (SurfaceHit::geometricNormal).
+vec3 triangleGeometricNormal(uint instance, uint primitive) {
+    DeviceInstance inst = instances[instance];
+    uint first = inst.topology.x + 3u * primitive;
+    uint base = inst.geometry.w;
+    mat4 M = inst.toWorld;
+    vec3 p0 = (M * vec4(vertices[base + indices[first]].positionU.xyz, 1.0)).xyz;
+    vec3 p1 = (M * vec4(vertices[base + indices[first + 1u]].positionU.xyz, 1.0)).xyz;
+    vec3 p2 = (M * vec4(vertices[base + indices[first + 2u]].positionU.xyz, 1.0)).xyz;
+    return normalize(cross(p1 - p0, p2 - p0));
+}
 
 const uint kRadianceRay = 0u;
 const uint kShadowRay = 1u;
