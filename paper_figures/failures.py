@@ -4,10 +4,11 @@ technique's quality and frame time behave frame by frame, and where they break.
 Per scene, path and resolution one figure, a row per technique and a series per setting: frame
 time, SSIM and FLIP per frame with each setting's worst frame marked and its median drawn, and the
 temporal error. A summary table per (scene, technique, setting): the worst-frame SSIM (and its
-frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst FLIP, the
-mean and worst temporal error and the frame-time spike (the largest frame time over the median),
-beside the same setting's median SSIM and frame time along the baseline scene's path
-(sponza-spheres by default) where the result set has that scene. A frame-time spike counts as a
+frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst FLIP (LDR)
+and HDR-FLIP ("-" where a result set predates HDR-FLIP), the mean and worst temporal error and
+the frame-time spike (the largest frame time over the median), beside the same setting's median
+SSIM and frame time along the baseline scene's path (sponza-spheres by default) where the result
+set has that scene. A frame-time spike counts as a
 failure only where it exceeds the slowest frame's own repeat spread (max - min of its repeats).
 Reads only the records of results.json."""
 import collections
@@ -67,6 +68,10 @@ def flip(r):
     return rs.metric(r, "whole", "flip")
 
 
+def flip_hdr(r):
+    return rs.metric(r, "whole", "flip_hdr")
+
+
 def temporal(r):
     return r.get("temporal_error")
 
@@ -89,6 +94,7 @@ def sequence_summary(rows):
         "median_ssim": median_of(rows, ssim),
         "worst_masked_ssim": worst(rows, masked_ssim),
         "worst_flip": worst(rows, flip, higher_is_better=False),
+        "worst_flip_hdr": worst(rows, flip_hdr, higher_is_better=False),
         "temporal_mean": statistics.mean(temporals) if temporals else None,
         "temporal_worst": max(temporals) if temporals else None,
         "median_ms": t_median,
@@ -116,7 +122,7 @@ def along_path_by_technique(seqs, out_dir, name, title, baseline):
     techniques = sorted({k[3] for k in seqs})
     fig, axes = plt.subplots(len(techniques), 4, figsize=(17, 2.9 * len(techniques)), squeeze=False)
     cmap = plt.get_cmap("tab10")
-    panels = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP mean", False),
+    panels = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP (LDR) mean", False),
               (temporal, "temporal error", False))
     for row, technique in zip(axes, techniques):
         variants = sorted((k for k in seqs if k[3] == technique), key=rs.natural_key)
@@ -155,8 +161,8 @@ def worst_cell(w, spec):
 
 
 HEADER = ["scene", "path", "size", "technique", "setting", "frames", "worst-frame SSIM (frame)", "median SSIM",
-          "worst SSIM refl./refr. (frame)", "worst FLIP (frame)", "temporal error mean / worst", "frame ms median",
-          "frame-time spike (max / median)", "spike beyond the repeats' spread"]
+          "worst SSIM refl./refr. (frame)", "worst FLIP (LDR) (frame)", "worst HDR-FLIP (frame)", "temporal error mean / worst",
+          "frame ms median", "frame-time spike (max / median)", "spike beyond the repeats' spread"]
 BASELINE_HEADER = ["baseline median SSIM", "baseline frame ms median", "baseline spike"]
 
 
@@ -165,7 +171,7 @@ def row_cells(key, s, b, with_baseline):
     returned separately with its run so that it can link to the viewer."""
     scene, res, path, technique, variant = key
     cells = [scene, path, res, technique, variant, str(s["frames"]), worst_cell(s["worst_ssim"], "%.4f"), rs.fmt(s["median_ssim"], "%.4f"),
-             worst_cell(s["worst_masked_ssim"], "%.4f"), worst_cell(s["worst_flip"], "%.4f"),
+             worst_cell(s["worst_masked_ssim"], "%.4f"), worst_cell(s["worst_flip"], "%.4f"), worst_cell(s["worst_flip_hdr"], "%.4f"),
              "%s / %s" % (rs.fmt(s["temporal_mean"], "%.5f"), rs.fmt(s["temporal_worst"], "%.5f")), rs.fmt(s["median_ms"], "%.1f"),
              rs.fmt(s["spike"], "%.2f"), "yes" if s["spike_beyond_noise"] else "no (noise)"]
     if with_baseline:

@@ -201,15 +201,17 @@ document.querySelectorAll('table.sortable th').forEach((th, i) => th.addEventLis
 
 
 def runs_table(records, out_dir, result_dir):
-    head = ["run", "image", "scene", "view", "size", "technique", "parameters", "frame ms", "SSIM", "FLIP", "PSNR dB",
-            "SSIM refl./refr.", "FLIP refl./refr.", "temporal", "maps"]
+    head = ["run", "image", "scene", "view", "size", "technique", "parameters", "frame ms", "SSIM", "FLIP (LDR)", "HDR-FLIP", "PSNR dB",
+            "SSIM refl./refr.", "FLIP (LDR) refl./refr.", "HDR-FLIP refl./refr.", "temporal", "maps"]
     rows = []
     for r in records:
         img = rs.result_link(out_dir, result_dir, r["images"]["png"])
         maps = ""
         if r["images"].get("maps"):
+            # The maps the record lists (result sets older than that list had these three).
+            written = r["metrics"].get("maps") or ("diff", "ssim", "flip")
             maps = " ".join('<a href="%s">%s</a>' % (html.escape(rs.result_link(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
-                            for m in ("diff", "ssim", "flip"))
+                            for m in ("diff", "ssim", "flip", "flip_hdr") if m in written)
         cells = [
             '<td data-v="%d"><a href="%s" title="open in the viewer">%d</a></td>' % (r["index"], html.escape(viewer.link(r["id"])), r["index"]),
             '<td><a href="%s"><img src="%s" width="96" loading="lazy" alt="%s"></a> <a href="%s">exr</a> <a href="%s">ref</a></td>'
@@ -223,9 +225,11 @@ def runs_table(records, out_dir, result_dir):
             "<td>%.2f</td>" % r["frame_ms"]["median"],
             "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "ssim"), "%.4f", missing=""),
             "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "flip"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "flip_hdr"), "%.4f"),
             "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "psnr"), "%.2f", missing=""),
             "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "ssim"), "%.4f", missing=""),
             "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "flip"), "%.4f", missing=""),
+            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "flip_hdr"), "%.4f"),
             "<td>%s</td>" % rs.fmt(r.get("temporal_error"), "%.5f", missing=""),
             "<td>%s</td>" % maps,
         ]
@@ -243,17 +247,20 @@ def markdown_summary(records):
         groups[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(groups.items()):
         regions = regions_of(rows) or [REGIONS[0]]
-        metrics = [(region, name) for region, _, _ in regions for name in ("ssim", "flip")]
+        metrics = [(region, name) for region, _, _ in regions for name in ("ssim", "flip", "flip_hdr")]
+        suffixes = {region: suffix for region, suffix, _ in regions}
         lines += ["", "### %s at %s" % (scene, res), "",
                   "| technique | frames | frame ms (median, mean over frames) | %s |" %
-                  " | ".join(name.upper() + suffix for _, suffix, _ in regions for name in ("ssim", "flip")),
+                  " | ".join(rs.METRIC_LABELS[name] + suffixes[region] for region, name in metrics),
                   "|---|---|---|" + "---|" * len(metrics)]
         by = collections.defaultdict(list)
         for r in rows:
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items(), key=lambda item: rs.natural_key(item[0])):
             lines.append("| %s | %d | %.2f | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs), " | ".join(
-                rs.fmt(rs.mean_known(rs.metric(r, region, name) for r in vs), "%.4f", missing="") for region, name in metrics)))
+                # HDR-FLIP shows a dash where the result set predates it.
+                rs.fmt(rs.mean_known(rs.metric(r, region, name) for r in vs), "%.4f", missing="-" if name == "flip_hdr" else "")
+                for region, name in metrics)))
         lines.append("| reference (whitted) | | %.2f | %s |" % (statistics.median(r["reference"]["frame_ms"] for r in rows),
                                                               " | ".join("1" if name == "ssim" else "0" for _, name in metrics)))
     return "\n".join(lines)

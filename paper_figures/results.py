@@ -35,14 +35,20 @@ def resolution(r):
     return "%dx%d" % (r["width"], r["height"])
 
 
+# The names the tables give the metrics: FLIP on the display images and HDR-FLIP on the linear
+# ones (Andersson et al. 2021) are told apart wherever both are shown.
+METRIC_LABELS = {"ssim": "SSIM", "flip": "FLIP (LDR)", "flip_hdr": "HDR-FLIP", "psnr": "PSNR dB"}
+
+
 def metric(r, region, name):
-    """SSIM, RMSE, PSNR (dB) or FLIP mean of a record on 'whole' or 'masked'; None if absent (the
-    region, or the metric: a config's `metrics` may leave it out)."""
+    """SSIM, RMSE, PSNR (dB), FLIP or HDR-FLIP mean of a record on 'whole' or 'masked'; None if
+    absent (the region, or the metric: a config's `metrics` may leave it out, and result sets
+    written before HDR-FLIP have none)."""
     m = r["metrics"].get(region)
     if not m:
         return None
-    if name == "flip":
-        return m["flip"]["mean"] if "flip" in m else None
+    if name in ("flip", "flip_hdr"):
+        return m[name]["mean"] if name in m else None
     if name == "psnr":
         return m.get("psnr_db")
     return m.get(name)

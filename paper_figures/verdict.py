@@ -2,11 +2,11 @@
 
 A setting (a technique with one parameter set) is summarised over the runs of one scene and size
 (every view and frame): its frame time is the median over those runs of each run's median frame
-time, with the best and the worst run beside it; its SSIM and FLIP (on the whole image and on the
-reflective/refractive pixels) are medians over the same runs. From these:
+time, with the best and the worst run beside it; its SSIM, FLIP (LDR) and HDR-FLIP (on the whole
+image and on the reflective/refractive pixels) are medians over the same runs. From these:
 
 - the Pareto-optimal settings: no other setting is at least as fast and at least as good on every
-  score, and strictly better in one;
+  score (SSIM and FLIP; HDR-FLIP is shown beside them), and strictly better in one;
 - per quality threshold (SSIM >= 0.99, 0.97, 0.95, whole image and reflective/refractive pixels)
   the fastest setting reaching it, with its speed-up over the reference and over `rt_only`;
 - one sentence per scene saying it in words.
@@ -25,6 +25,9 @@ import results as rs
 THRESHOLDS = (0.99, 0.97, 0.95)
 REGIONS = (("whole", "whole image"), ("masked", "refl./refr. pixels"))
 SCORES = (("whole", "ssim", True), ("whole", "flip", False), ("masked", "ssim", True), ("masked", "flip", False))
+# Shown beside the scores but not one of them: HDR-FLIP (Andersson et al. 2021) judges the same
+# error as FLIP on the linear images, so the Pareto front stays on the display images' scores.
+SHOWN = SCORES + (("whole", "flip_hdr", False), ("masked", "flip_hdr", False))
 # Walewski 2019's "ray tracing only": the speed-up every hybrid is read against.
 RT_ONLY = "rt_only"
 
@@ -39,7 +42,7 @@ class Setting:
         times = [r["frame_ms"]["median"] for r in records]
         self.ms = statistics.median(times)
         self.best_ms, self.worst_ms = min(times), max(times)
-        self.scores = {(region, name): self._median(region, name) for region, name, _ in SCORES}
+        self.scores = {(region, name): self._median(region, name) for region, name, _ in SHOWN}
         self.not_applicable = None  # the reason, where the setting changes nothing on the scene
 
     def _median(self, region, name):
@@ -175,17 +178,16 @@ def verdicts(records, result_dir):
 
 # Tables as (header, rows of cells); `link` is the setting's name as HTML or Markdown.
 def pareto_table(v):
-    header = ["setting", "frame ms (median)", "best-worst ms", "x ref.", "x rt_only", "SSIM", "FLIP"]
-    if any(rg == "masked" for rg, _ in v.regions):
-        header += ["SSIM refl./refr.", "FLIP refl./refr."]
+    regions = ["whole"] + (["masked"] if any(rg == "masked" for rg, _ in v.regions) else [])
+    suffix = {"whole": "", "masked": " refl./refr."}
+    scores = [(region, name) for region in regions for name in ("ssim", "flip", "flip_hdr")]
+    header = ["setting", "frame ms (median)", "best-worst ms", "x ref.", "x rt_only"] + [
+        rs.METRIC_LABELS[name] + suffix[region] for region, name in scores]
     rows = []
     for s in v.pareto:
         ref, rt = v.speedups(s)
-        cells = [s, "%.2f" % s.ms, "%.2f-%.2f" % (s.best_ms, s.worst_ms), "%.2f" % ref, rs.fmt(rt, "%.2f"),
-                 rs.fmt(s.score("whole", "ssim"), "%.4f"), rs.fmt(s.score("whole", "flip"), "%.4f")]
-        if len(header) > 7:
-            cells += [rs.fmt(s.score("masked", "ssim"), "%.4f"), rs.fmt(s.score("masked", "flip"), "%.4f")]
-        rows.append(cells)
+        rows.append([s, "%.2f" % s.ms, "%.2f-%.2f" % (s.best_ms, s.worst_ms), "%.2f" % ref, rs.fmt(rt, "%.2f")]
+                    + [rs.fmt(s.score(region, name), "%.4f") for region, name in scores])
     return header, rows
 
 
@@ -233,7 +235,8 @@ def write(verdict_list, viewer_link):
     """The verdict section as (HTML, Markdown lines)."""
     page, md = ['<h2 id="verdict">Verdict</h2>'], ["", "## Verdict"]
     intro = ("Per scene and size, each setting's median over its runs (every view and frame): the Pareto-optimal settings "
-             "(none faster and at least as good on every score), and the fastest setting reaching each SSIM threshold, with "
+             "(none faster and at least as good on SSIM and FLIP (LDR); HDR-FLIP is shown beside them), and the fastest "
+             "setting reaching each SSIM threshold, with "
              "its speed-up over the reference (whitted) and over rt_only.")
     page.append("<p>%s</p>" % html.escape(intro))
     md += ["", intro]

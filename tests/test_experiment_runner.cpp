@@ -171,27 +171,51 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path (+ its "where methods fail" figure)
     EXPECT_GE(test::expectFiguresHaveContent(report), 2u * (2 * 2 + 1));
     EXPECT_TRUE(fs::exists(report / "report.md"));
-    // The summary gives each setting's SSIM and FLIP on the reflective and refractive pixels beside
-    // the whole image's (one frame a setting on cornell-mirror-glass: the means are the run's own).
+    // The summary and the verdict's Pareto table give each setting's SSIM, FLIP (LDR) and HDR-FLIP
+    // on the reflective and refractive pixels beside the whole image's (one frame a setting on
+    // cornell-mirror-glass: the means and medians are the run's own).
     const std::string markdown = test::readTextFile(report / "report.md");
-    EXPECT_NE(markdown.find("| SSIM | FLIP | SSIM refl./refr. | FLIP refl./refr. |"), std::string::npos) << markdown;
-    std::size_t summarised = 0;
+    const std::string scoreHeader =
+        "| SSIM | FLIP (LDR) | HDR-FLIP | SSIM refl./refr. | FLIP (LDR) refl./refr. | HDR-FLIP refl./refr. |";
+    EXPECT_NE(markdown.find("| x rt_only " + scoreHeader), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("| frame ms (median, mean over frames) " + scoreHeader), std::string::npos) << markdown;
+    EXPECT_CONTAINS(page, "<th>FLIP (LDR)</th><th>HDR-FLIP</th>");
+    const auto lineFrom = [&](std::size_t at) { return markdown.substr(at, markdown.find('\n', at) - at); };
+    std::size_t summarised = 0, paretoRows = 0;
     for (const auto& row : rows) {
         if (row.at("scene") != "cornell-mirror-glass") continue;
-        const std::string start = "| " + test::reportVariant(row) + " | 1 | ";
-        const std::size_t at = markdown.find(start);
-        ASSERT_NE(at, std::string::npos) << start << "\n" << markdown;
-        const std::string line = markdown.substr(at, markdown.find('\n', at) - at);
         std::string cells;
         for (const char* region : {"whole", "masked"}) {
             const json& m = row.at("metrics").at(region);
             cells += " | " + test::formatNumber("%.4f", m.at("ssim").get<double>()) + " | " +
-                     test::formatNumber("%.4f", m.at("flip").at("mean").get<double>());
+                     test::formatNumber("%.4f", m.at("flip").at("mean").get<double>()) + " | " +
+                     test::formatNumber("%.4f", m.at("flip_hdr").at("mean").get<double>());
         }
+        const std::string start = "| " + test::reportVariant(row) + " | 1 | ";
+        const std::size_t at = markdown.find(start);
+        ASSERT_NE(at, std::string::npos) << start << "\n" << markdown;
+        const std::string line = lineFrom(at);
         EXPECT_EQ(line.substr(line.size() - cells.size() - 2), cells + " |") << line;
         ++summarised;
+        // A Pareto row starts with the setting's link (the threshold table's rows with the quality).
+        const std::size_t pareto = markdown.find("\n| [" + test::reportVariant(row) + "](viewer.html#run=" + row.at("id").get<std::string>() + ") | ");
+        if (pareto != std::string::npos) {
+            const std::string paretoLine = lineFrom(pareto + 1);
+            EXPECT_EQ(paretoLine.substr(paretoLine.size() - cells.size() - 2), cells + " |") << paretoLine;
+            ++paretoRows;
+        }
+        // Every run's row of index.html (its last table): FLIP (LDR) then HDR-FLIP, and the HDR-FLIP
+        // map's link.
+        const std::size_t tr = page.rfind("viewer.html#run=" + row.at("id").get<std::string>() + "\"");
+        ASSERT_NE(tr, std::string::npos) << row.at("id");
+        const std::string html = page.substr(tr, page.find("</tr>", tr) - tr);
+        const json& whole = row.at("metrics").at("whole");
+        EXPECT_CONTAINS(html, "<td>" + test::formatNumber("%.4f", whole.at("flip").at("mean").get<double>()) + "</td><td>" +
+                                  test::formatNumber("%.4f", whole.at("flip_hdr").at("mean").get<double>()) + "</td>");
+        EXPECT_CONTAINS(html, "/flip_hdr.png\">flip_hdr</a>");
     }
     EXPECT_EQ(summarised, 5u);
+    EXPECT_GE(paretoRows, 1u);
     // Every run opens in the viewer from the table (the viewer itself: tests/browser).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
     EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
@@ -359,6 +383,14 @@ name = "heuristic_rt"
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_GT(test::expectReportLinksResolve(report), 3u * 3);
     EXPECT_GE(test::expectFiguresHaveContent(report), 2u * 4);  // speed-accuracy, stages, path, where methods fail
+    // Its summary row: SSIM, an empty FLIP (LDR) cell and a dash for HDR-FLIP (as in a result set
+    // written before HDR-FLIP), on the whole image and on the reflective pixels.
+    const std::string markdown = test::readTextFile(report / "report.md");
+    const std::size_t at = markdown.find("| heuristic_rt | 3 | ");
+    ASSERT_NE(at, std::string::npos) << markdown;
+    const std::string line = markdown.substr(at, markdown.find('\n', at) - at);
+    EXPECT_EQ(line.substr(line.size() - 9), " |  | - |") << line;
+    EXPECT_CONTAINS(line.substr(0, line.size() - 9), " |  | - | ");
 }
 
 TEST(ExperimentConfigs, EveryShippedConfigIsValid) {

@@ -1,7 +1,7 @@
 // Error maps on one scale. The runner colours each run's absolute-difference map over that run's
 // own range, so colours cannot be compared across panes; here a map is recoloured over the largest
 // range of its metric among the runs of the scene and size (chosen once per scene and metric), the
-// scale its legend then shows. SSIM and FLIP maps already share their fixed range [0, 1].
+// scale its legend then shows. SSIM, FLIP and HDR-FLIP maps already share their fixed range [0, 1].
 
 import { mapValue } from './pixels.js';
 

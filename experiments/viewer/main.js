@@ -121,9 +121,14 @@ function infoHtml(c) {
   const m = c.metrics;
   if (m) {
     const f = (v, d) => (v === null || v === undefined ? '-' : v.toFixed(d));
-    lines.push(`<div class="metrics">SSIM ${f(m.ssim, 4)} &middot; FLIP ${f(m.flip, 4)} &middot; PSNR ${f(m.psnr, 2)} dB</div>`);
+    // HDR-FLIP is absent (a dash) in result sets written before the runner scored it.
+    lines.push(
+      `<div class="metrics">SSIM ${f(m.ssim, 4)} &middot; FLIP (LDR) ${f(m.flip, 4)} &middot; HDR-FLIP ${f(m.flip_hdr, 4)} &middot; PSNR ${f(m.psnr, 2)} dB</div>`,
+    );
     if (m.masked_ssim !== null && m.masked_ssim !== undefined) {
-      lines.push(`<div class="metrics masked">refl./refr.: SSIM ${f(m.masked_ssim, 4)} &middot; FLIP ${f(m.masked_flip, 4)}</div>`);
+      lines.push(
+        `<div class="metrics masked">refl./refr.: SSIM ${f(m.masked_ssim, 4)} &middot; FLIP (LDR) ${f(m.masked_flip, 4)} &middot; HDR-FLIP ${f(m.masked_flip_hdr, 4)}</div>`,
+      );
     }
     if (m.temporal !== null && m.temporal !== undefined) lines.push(`<div class="metrics">temporal ${f(m.temporal, 5)}</div>`);
   }

@@ -6,7 +6,8 @@ import { REFERENCE } from './result_set.js';
 export const ERROR_MAPS = [
   { id: 'diff', name: 'absolute difference' },
   { id: 'ssim', name: 'SSIM map' },
-  { id: 'flip', name: 'FLIP map' },
+  { id: 'flip', name: 'FLIP (LDR) map' },
+  { id: 'flip_hdr', name: 'HDR-FLIP map' },
 ];
 
 // Every layer of a run, in the order E cycles through the error maps: the image, the error maps

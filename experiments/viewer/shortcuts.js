@@ -4,7 +4,7 @@ export const SHORTCUTS = [
   { keys: ['?'], help: 'show or hide this help', action: 'help' },
   { keys: ['1', '2', '3', '4', '5', '6', '7', '8', '9'], label: '1 ... 9', help: 'the active pane shows technique n (1: the reference, then the techniques in the pane menu)', action: 'pick' },
   { keys: ['f', 'F'], label: 'F', help: 'flip between panes 1 and 2 (enters flip mode)', action: 'flip' },
-  { keys: ['e', 'E'], label: 'E', help: 'cycle image, absolute difference, SSIM map, FLIP map in every technique pane', action: 'errors' },
+  { keys: ['e', 'E'], label: 'E', help: 'cycle image, absolute difference, SSIM map, FLIP (LDR) map, HDR-FLIP map in every technique pane', action: 'errors' },
   { keys: ['ArrowLeft'], label: '\u2190', help: 'previous frame', action: 'previous' },
   { keys: ['ArrowRight'], label: '\u2192', help: 'next frame', action: 'next' },
   { keys: [' '], label: 'space', help: 'play or pause along the camera path', action: 'play' },

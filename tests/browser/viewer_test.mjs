@@ -2,9 +2,10 @@
 // three frames of the orbit path, two techniques), `hybridlab report` writes viewer.html, and
 // headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks:
 // every pane's image loads, a wheel event zooms all panes alike, flip changes the image and back,
-// the FLIP map layer shows the map's file, the frame slider moves every pane to the new frame, the
-// inspector shows the same pixel in every pane, exposure changes the pixels drawn (and the inspector
-// shows linear values), two panes' difference maps share one scale in their legends, every variant
+// the FLIP (LDR) and HDR-FLIP map layers show their maps' files and each pane reads out both
+// FLIPs of its run, the frame slider moves every pane to the new frame, the inspector shows the
+// same pixel in every pane, exposure changes the pixels drawn (and the inspector shows linear
+// values), two panes' difference maps share one scale in their legends, every variant
 // can be picked from the searchable list, and the report's verdict names the known answer (rt_only
 // at 0.01 is the fastest, indeed the only, setting reaching SSIM 0.99); no console error on the way.
 //
@@ -142,6 +143,18 @@ try {
     for (const i of imgs) assert.equal(i.width, 64, i.file);
   });
 
+  await check("each technique pane reads out its run's FLIP (LDR) and HDR-FLIP, named apart", async () => {
+    for (const [i, v] of variants.entries()) {
+      const m = runAt(0, v).metrics;
+      assert.equal(typeof m.flip_hdr, 'number', v);
+      assert.equal(typeof m.masked_flip_hdr, 'number', v);
+      const text = await page.textContent(`#panes .overlay[data-pane="${i + 1}"] .metrics`);
+      assert.ok(text.includes(`FLIP (LDR) ${m.flip.toFixed(4)} · HDR-FLIP ${m.flip_hdr.toFixed(4)}`), text);
+      const masked = await page.textContent(`#panes .overlay[data-pane="${i + 1}"] .metrics.masked`);
+      assert.ok(masked.includes(`FLIP (LDR) ${m.masked_flip.toFixed(4)} · HDR-FLIP ${m.masked_flip_hdr.toFixed(4)}`), masked);
+    }
+  });
+
   await check('the inspector shows the same pixel in every pane', async () => {
     const box = await viewport(0).boundingBox();
     await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5);
@@ -226,9 +239,27 @@ try {
     await page.waitForFunction(() => /flip \d/.test(document.querySelector('#panes .overlay[data-pane="1"] .inspector').textContent));
   });
 
+  await check("selecting the HDR-FLIP map shows its own file beside FLIP's, with its legend", async () => {
+    await page.selectOption('#panes .overlay[data-pane="1"] select.layer', 'flip_hdr');
+    await panesLoaded();
+    const img = (await shown())[1];
+    const run = runAt(0, variants[0]);
+    assert.equal(img.file, run.maps.flip_hdr.file);
+    assert.match(img.file, /maps\/.*\/flip_hdr\.png$/);
+    assert.notEqual(img.file, run.maps.flip.file);
+    assert.ok(fs.existsSync(path.join(reportDir, img.file)));
+    assert.equal(img.width, 64);
+    assert.equal(await page.locator('#panes .overlay[data-pane="1"] .legend').count(), 1);
+    const names = await page.$$eval('#panes .overlay[data-pane="1"] select.layer option', (os) => os.map((o) => o.textContent));
+    assert.ok(names.includes('FLIP (LDR) map') && names.includes('HDR-FLIP map'), names.join(', '));
+    const box = await viewport(1).boundingBox();
+    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.waitForFunction(() => /flip_hdr \d/.test(document.querySelector('#panes .overlay[data-pane="1"] .inspector').textContent));
+  });
+
   await check('the debug images are listed and shown', async () => {
     const options = await page.$$eval('#panes .overlay[data-pane="1"] select.layer option', (os) => os.map((o) => o.value));
-    assert.deepEqual(options, ['image', 'diff', 'ssim', 'flip', 'debug:mask']);
+    assert.deepEqual(options, ['image', 'diff', 'ssim', 'flip', 'flip_hdr', 'debug:mask']);
     await page.selectOption('#panes .overlay[data-pane="1"] select.layer', 'debug:mask');
     await panesLoaded();
     assert.equal((await shown())[1].file, runAt(0, variants[0]).debug.mask);
@@ -271,7 +302,9 @@ try {
     assert.ok(!(await page.isVisible('#help')));
     await page.keyboard.press('e');
     await page.keyboard.press('e');
+    await page.keyboard.press('e');
     await panesLoaded();
+    assert.deepEqual((await shown()).map((i) => i.file).slice(1), variants.map((v) => runAt(40, v).maps.flip_hdr.file));
   });
 
   await check('exposure changes the pixels drawn; the inspector shows linear values beside display ones', async () => {
@@ -289,7 +322,7 @@ try {
       });
     const drawnAt = (ev) => page.waitForFunction((e) => [...document.querySelectorAll('#panes img.image')].every((i) => i.dataset.drawn === `ev ${e} srgb` && i.complete), ev);
     await page.locator('body').click({ position: { x: 5, y: 790 } });
-    await page.keyboard.press('e'); // from the FLIP maps back to the images
+    await page.keyboard.press('e'); // from the HDR-FLIP maps back to the images
     await page.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.dataset.layer === 'image'));
     for (let i = 0; i < 4; i += 1) await page.keyboard.press('-');
     await drawnAt(-2);
@@ -326,10 +359,12 @@ try {
     await panesLoaded();
     assert.deepEqual(await highs(), runs.map((r) => r.maps.diff.range[1].toPrecision(3)));
     await page.keyboard.press('m');
+    await page.keyboard.press('e'); // from the difference maps through SSIM, FLIP (LDR) and HDR-FLIP back to the images
     await page.keyboard.press('e');
     await page.keyboard.press('e');
     await page.keyboard.press('e');
     await panesLoaded();
+    assert.deepEqual((await shown()).map((i) => i.file).slice(1), runs.map((r) => r.image));
   });
 
   await check('every variant can be selected from the searchable list', async () => {
