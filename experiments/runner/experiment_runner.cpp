@@ -142,10 +142,10 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
 }
 
 void writeReferenceCopy(const ResultsStore& store, const CachedReference& ref, bool withMask) {
-    const fs::path exr = store.referencesDir() / (ref.key + ".exr");
-    if (!fs::exists(exr)) {
-        writeImageAtomically(exr, ref.image);
-        writeImageAtomically(store.referencesDir() / (ref.key + ".png"), ref.image);
+    // Each file on its own: a runner killed between the EXR and the PNG leaves the EXR alone.
+    for (const char* ext : {".exr", ".png"}) {
+        const fs::path copy = store.referencesDir() / (ref.key + ext);
+        if (!fs::exists(copy)) writeImageAtomically(copy, ref.image);
     }
     const fs::path mask = store.referencesDir() / (ref.key + ".mask.png");
     if (withMask && !fs::exists(mask)) writeImageAtomically(mask, ref.mask);
