@@ -3,6 +3,8 @@
 // each run's and reference's linear RGB as a classic script (viewer/linear/N.js, half floats, so
 // that it loads from the file system) that calls window.hybridlabLinear; loaded when first needed.
 
+import { scriptLoader } from './script_data.js';
+
 export const DISPLAY_TRANSFORMS = [
   { id: 'srgb', name: 'sRGB, clipped (as the PNGs)' },
   { id: 'aces', name: 'ACES filmic (Narkowicz 2015)' },
@@ -10,9 +12,6 @@ export const DISPLAY_TRANSFORMS = [
   { id: 'linear', name: 'linear, clipped (no curve)' },
 ];
 export const DEFAULT_TRANSFORM = 'srgb';
-
-const loaded = new Map(); // file -> Promise<{ width, height, rgb: Float32Array } | null>
-const waiting = new Map(); // file -> resolve
 
 function halfToFloat(h) {
   const s = h & 0x8000 ? -1 : 1;
@@ -23,34 +22,15 @@ function halfToFloat(h) {
   return s * (1 + m / 1024) * 2 ** (e - 15);
 }
 
-window.hybridlabLinear = (file, width, height, base64) => {
-  const resolve = waiting.get(file);
-  if (!resolve) return;
-  waiting.delete(file);
+// The linear RGB of the image shown as `file` (a PNG path of the manifest); null without a script.
+// Its script calls window.hybridlabLinear(file, width, height, base64 of half floats).
+export const linearData = scriptLoader('hybridlabLinear', (width, height, base64) => {
   const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
   const halves = new Uint16Array(bytes.buffer);
   const rgb = new Float32Array(halves.length);
   for (let i = 0; i < halves.length; i += 1) rgb[i] = halfToFloat(halves[i]);
-  resolve({ width, height, rgb });
-};
-
-// The linear RGB of the image shown as `file` (a PNG path of the manifest); null without a script.
-export function linearData(file, scriptPath) {
-  if (!scriptPath) return Promise.resolve(null);
-  if (!loaded.has(file)) {
-    loaded.set(
-      file,
-      new Promise((resolve) => {
-        waiting.set(file, resolve);
-        const script = document.createElement('script');
-        script.src = scriptPath;
-        script.onerror = () => resolve(null);
-        document.head.appendChild(script);
-      }),
-    );
-  }
-  return loaded.get(file);
-}
+  return { width, height, rgb };
+});
 
 export function linearAt(data, x, y) {
   if (!data || x < 0 || y < 0 || x >= data.width || y >= data.height) return null;

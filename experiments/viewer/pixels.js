@@ -3,16 +3,7 @@
 // also as a small classic script holding it as a data: URL, which a canvas may read; the script
 // calls window.hybridlabPixels(file, dataUrl). Loaded on first hover, kept afterwards.
 
-const loaded = new Map(); // file -> Promise<ImageData | null>
-const waiting = new Map(); // file -> resolve(dataUrl)
-
-window.hybridlabPixels = (file, dataUrl) => {
-  const resolve = waiting.get(file);
-  if (resolve) {
-    waiting.delete(file);
-    resolve(dataUrl);
-  }
-};
+import { scriptLoader } from './script_data.js';
 
 function decode(dataUrl) {
   return new Promise((resolve) => {
@@ -31,22 +22,7 @@ function decode(dataUrl) {
 }
 
 // The decoded pixels of `file` (a path in the manifest), or null when there is no pixel script.
-export function pixelData(file, scriptPath) {
-  if (!scriptPath) return Promise.resolve(null);
-  if (!loaded.has(file)) {
-    loaded.set(
-      file,
-      new Promise((resolve) => {
-        waiting.set(file, resolve);
-        const script = document.createElement('script');
-        script.src = scriptPath;
-        script.onerror = () => resolve(null);
-        document.head.appendChild(script);
-      }).then((dataUrl) => (dataUrl ? decode(dataUrl) : null)),
-    );
-  }
-  return loaded.get(file);
-}
+export const pixelData = scriptLoader('hybridlabPixels', decode);
 
 export function rgbaAt(data, x, y) {
   if (!data || x < 0 || y < 0 || x >= data.width || y >= data.height) return null;
