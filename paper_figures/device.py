@@ -4,8 +4,8 @@ runs (their parameter `rays`; Embree where a run does not name one). A raster th
 software Vulkan device (vulkan_device_type "cpu", e.g. Mesa's lavapipe) is flagged: its frame times
 are not a GPU's."""
 import html
-import json
-import os
+
+import results as rs
 
 FIELDS = (("processor", ("cpu_model", "cpu_cores"), "%s (%s cores)"),
           ("Vulkan device", ("vulkan_device", "vulkan_device_type"), "%s (%s)"),
@@ -16,23 +16,18 @@ FIELDS = (("processor", ("cpu_model", "cpu_cores"), "%s (%s cores)"),
           ("program", ("program_version",), "%s"))
 
 
-def device_record(result_dir):
-    """experiment.json's `device` object, or None where the result set has none."""
-    path = os.path.join(result_dir, "experiment.json")
-    if not os.path.exists(path):
-        return None
-    with open(path) as f:
-        return json.load(f).get("device")
-
-
 def ray_backends(records):
     return sorted({str(r.get("parameters", {}).get("rays", "embree")) for r in records})
 
 
 def lines(result_dir, records):
     """(label, text) pairs and a warning (or None)."""
-    device = device_record(result_dir)
+    devices = rs.devices(result_dir, records)
     rows = [("ray backend", ", ".join(ray_backends(records)))]
+    if len(devices) > 1:
+        return [("devices", rs.device_line(result_dir, records))] + rows, (
+            "The runs were measured on %d different devices: their times do not compare across them." % len(devices))
+    device = devices[0]
     if not device:
         return [("device", "device not recorded")] + rows, None
     for label, keys, spec in FIELDS:
