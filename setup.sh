@@ -80,8 +80,11 @@ if ! dpkg --compare-versions "${mesa_version:-0}" ge 25; then
   SUDO=()
   if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
   if [ ! -f "$BACKPORTS_SOURCES" ]; then
-    mirror=$(grep -hoE 'https?://[^ ]+/debian/?' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list \
-               2>/dev/null | grep -v security | head -1)
+    # The first Debian archive the machine names (a deb822 URIs: line or a one-line deb entry; not
+    # the security archive, and not the addresses comments may hold).
+    mirror=$(cat /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null |
+               awk '/^(URIs:|deb )/ { for (i = 2; i <= NF; i++) if ($i ~ /^https?:/) print $i }' |
+               grep -v security | head -1 || true)
     printf 'Types: deb\nURIs: %s\nSuites: bookworm-backports\nComponents: main\nSigned-By: %s\n' \
       "${mirror:-http://deb.debian.org/debian}" /usr/share/keyrings/debian-archive-keyring.gpg |
       "${SUDO[@]}" tee "$BACKPORTS_SOURCES" >/dev/null
