@@ -65,6 +65,10 @@ struct TechniqueInfo {
     std::string description;  // one line
     std::vector<ParamSpec> parameters;
     std::function<std::unique_ptr<Technique>(const ParameterSet&)> create;
+    // Time a pixel of a frame takes at the default parameters, relative to the Whitted reference's
+    // (1): what `hybridlab run --shard` balances shards by (shard_partition.h). A class, not a
+    // measurement of any one scene.
+    double relativeCost = 1.0;
 };
 
 // The registry (registry.cpp), in display order.

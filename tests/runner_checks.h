@@ -26,4 +26,15 @@ inline std::vector<nlohmann::json> readResults(const std::filesystem::path& out)
     return nlohmann::json::parse(in).get<std::vector<nlohmann::json>>();
 }
 
+// A record without what legitimately differs between two runs of the same experiment: timings
+// and whether the reference came from the cache.
+inline nlohmann::json comparableRecord(nlohmann::json r) {
+    r.erase("frame_ms");
+    r.erase("stages");
+    r.erase("run_seconds");
+    r["reference"].erase("cache_hit");
+    r["reference"].erase("frame_ms");
+    return r;
+}
+
 }  // namespace hybridlab::test

@@ -80,6 +80,18 @@ void writeInputs(const fs::path& d) {
     writeTextFile(d / "wrap-frame.toml",
                   configText("scene = \"whitted-classic\"\nresolutions = [[32, 32]]\n[[scenes.views]]\npath = \"orbit\"\nframes = [0, 4294967296]\n"));
     fs::create_directories(d / "a-folder");
+    writeTextFile(d / "ok.toml", configText("scene = \"whitted-classic\"\nresolutions = [[32, 32]]\n"));
+    // Shard folders as `run --shard i/2` starts them (no runs recorded yet): two of experiment 'a',
+    // one of another config.
+    const auto shard = [&](const std::string& folder, const std::string& name, char hash, int index) {
+        fs::create_directories(d / folder);
+        writeTextFile(d / folder / "experiment.json",
+                      "{\"name\": \"" + name + "\", \"config_hash\": \"" + std::string(64, hash) + "\", \"runs_total\": 2, \"shard\": " +
+                          "{\"index\": " + std::to_string(index) + ", \"count\": 2, \"partition\": \"estimated-cost\", \"runs\": 1}}\n");
+    };
+    shard("shard-a0", "a", 'a', 0);
+    shard("shard-a1", "a", 'a', 1);
+    shard("shard-b1", "b", 'b', 1);
 }
 
 struct BadInputCase {
@@ -127,6 +139,22 @@ const std::vector<BadInputCase> kCases = {
      "%d/wrap-resolution.toml:3:15: scenes[0].resolutions: expected an integer in [11, 16384], got 4294967360"},
     {{"run", "%d/wrap-frame.toml", "--out", "%o"}, 2,
      "%d/wrap-frame.toml:6:10: scenes[0].views[0].frames: expected 0 <= first <= last <= 60 (path 'orbit' has 61 frames), got [0, 4294967296]"},
+    // Shards: i/n with 0 <= i < n, nothing else; merging shards of two configs, a missing or an
+    // unfinished shard.
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard", "3/3"}, 2, "--shard 3/3: expected i/n, whole numbers with 0 <= i < n <= 100000"},
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard", "0/0"}, 2, "--shard 0/0: expected i/n, whole numbers with 0 <= i < n <= 100000"},
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard", "a/b"}, 2, "--shard a/b: expected i/n"},
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard", "1/2/3"}, 2, "--shard 1/2/3: expected i/n"},
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard=-1/2"}, 2, "--shard -1/2: expected i/n"},
+    {{"run", "%d/ok.toml", "--out", "%o", "--shard", "4294967297/4294967298"}, 2, "--shard 4294967297/4294967298: expected i/n"},
+    {{"run", "%d/ok.toml", "--dry-run", "--shard", "2/1"}, 2, "--shard 2/1: expected i/n"},
+    {{"merge", "--out", "%o", "%d/shard-a0", "%d/shard-b1"}, 2,
+     "merge: %d/shard-b1 is shard 1/2 of experiment 'b' (config hash bbbbbbbbbbbb, runs split by estimated-cost), not of %d/shard-a0's "
+     "experiment 'a'"},
+    {{"merge", "--out", "%o", "%d/shard-a1"}, 2, "merge: shard 0/2 of experiment 'a' is missing"},
+    {{"merge", "--out", "%o", "%d/shard-a0", "%d/shard-a0"}, 2, "merge: %d/shard-a0 and %d/shard-a0 are both shard 0/2"},
+    {{"merge", "--out", "%o", "%d/shard-a0", "%d/shard-a1"}, 2, "merge: %d/shard-a0 (shard 0/2) holds 0 of its 1 runs"},
+    {{"merge", "--out", "%o", "%d/shard-a0", "%d/a-folder"}, 2, "%d/a-folder: not an experiment folder (no experiment.json)"},
     // Arguments: one line, with the pointer to --help on it.
     {{"scene-info", "whitted-classic", "--frobnicate"}, 2, "The following argument was not expected: --frobnicate (hybridlab --help for usage)"},
     {{"frobnicate"}, 2, "unknown command 'frobnicate' (commands: "},

@@ -72,6 +72,7 @@ params = { max_depth = [0, 1] }
     test::writeTextFile(shards[1] / "experiment.json", other.dump(1));
     test::CliResult same = test::runHybridlab({"merge", "--out", (dir.path() / "same").string(), shards[0].string(), shards[1].string()});
     EXPECT_EQ(same.exitStatus, 0) << same.err;
+    EXPECT_NE(same.out.find("shard  runs  estimated cost (share)  time s (share)  folder\n"), std::string::npos) << same.out;
     other["device"]["vulkan_device"] = "Imaginary GPU 9000";
     other["device"]["vulkan_device_type"] = "discrete_gpu";
     test::writeTextFile(shards[1] / "experiment.json", other.dump(1));
@@ -90,8 +91,9 @@ params = { max_depth = [0, 1] }
     const auto rows = test::readResults(mixed);
     ASSERT_EQ(rows.size(), 2u);
     for (const json& row : rows) {
-        // Run i was shard i's.
-        EXPECT_EQ(row.at("device").at("vulkan_device"), row.at("index").get<int>() == 1 ? "Imaginary GPU 9000" : here) << row.at("id");
+        // Each run keeps the device of the shard that recorded it.
+        const bool shard1 = fs::exists(shards[1] / "runs" / (row.at("id").get<std::string>() + ".json"));
+        EXPECT_EQ(row.at("device").at("vulkan_device"), shard1 ? "Imaginary GPU 9000" : here) << row.at("id");
     }
     EXPECT_EQ(readJsonFile(mixed / "experiment.json").at("devices").size(), 2u);
 }

@@ -15,6 +15,7 @@
 #include "cli_runner.h"
 #include "report_checks.h"
 #include "runner_checks.h"
+#include "experiments/runner/shard_partition.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/results_store.h"
@@ -68,20 +69,11 @@ fs::path writeConfig(const TempDir& dir, const std::string& text, const std::str
     return p;
 }
 
-// A record without what legitimately differs between two runs of the same experiment: timings
-// and whether the reference came from the cache.
-json comparable(json r) {
-    r.erase("frame_ms");
-    r.erase("stages");
-    r["reference"].erase("cache_hit");
-    r["reference"].erase("frame_ms");
-    return r;
-}
 
 void expectSameResults(const fs::path& a, const fs::path& b) {
     auto ra = test::readResults(a), rb = test::readResults(b);
     ASSERT_EQ(ra.size(), rb.size());
-    for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_EQ(comparable(ra[i]), comparable(rb[i])) << ra[i].at("id");
+    for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_EQ(test::comparableRecord(ra[i]), test::comparableRecord(rb[i])) << ra[i].at("id");
 }
 
 TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
@@ -153,9 +145,23 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
         EXPECT_TRUE(runExperiment(config, s).complete);
         shards.push_back(s.outDir);
     }
-    mergeShards(shards, dir.path() / "merged");
+    const std::vector<MergedShard> merged = mergeShards(shards, dir.path() / "merged");
     expectSameResults(dir.path() / "a", dir.path() / "merged");
+    // Each shard's estimated cost as its experiment.json recorded it, and the time its runs took.
+    const ShardPartition partition = partitionRuns(config, planRuns(config), 3);
+    ASSERT_EQ(merged.size(), 3u);
+    std::size_t mergedRuns = 0;
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(merged[i].index, i);
+        EXPECT_EQ(merged[i].dir, shards[i]);
+        EXPECT_EQ(merged[i].runs, partition.runsOf(planRuns(config), i).size());
+        EXPECT_DOUBLE_EQ(merged[i].estimatedCost, partition.estimatedCost[i]);
+        EXPECT_GT(merged[i].seconds, 0.0);
+        mergedRuns += merged[i].runs;
+    }
+    EXPECT_EQ(mergedRuns, 20u);
     EXPECT_THROW(mergeShards({shards[0], shards[1]}, dir.path() / "merged2"), InputError);  // shard 2 missing
+    EXPECT_FALSE(fs::exists(dir.path() / "merged2"));
 
     // An output folder is never overwritten without --resume.
     EXPECT_THROW(runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache)), InputError);

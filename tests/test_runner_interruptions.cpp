@@ -92,19 +92,11 @@ void expectWholeFiles(const fs::path& out) {
     }
 }
 
-json comparable(json r) {
-    r.erase("frame_ms");
-    r.erase("stages");
-    r["reference"].erase("cache_hit");
-    r["reference"].erase("frame_ms");
-    return r;
-}
-
 // Same records apart from times, and every image byte for byte.
 void expectSameResultSet(const fs::path& expected, const fs::path& actual) {
     auto a = test::readResults(expected), b = test::readResults(actual);
     ASSERT_EQ(a.size(), b.size());
-    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(comparable(a[i]), comparable(b[i])) << a[i].at("id");
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(test::comparableRecord(a[i]), test::comparableRecord(b[i])) << a[i].at("id");
     std::size_t images = 0;
     for (const auto& e : fs::recursive_directory_iterator(expected)) {
         const std::string ext = e.path().extension().string();

@@ -22,13 +22,26 @@ struct RunOptions {
     bool dryRun = false;
 };
 
+// "i/n": two decimal numbers and one slash, nothing else (sscanf would take "1/2/3" and " 1/2").
 std::pair<int, int> parseShard(const std::string& text) {
-    int i = 0, n = 0;
-    char slash = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d", &i, &slash, &n) != 3 || slash != '/' || n < 1 || i < 0 || i >= n) {
-        throw InputError("--shard " + text + ": expected i/n with 0 <= i < n, e.g. 0/3");
+    constexpr long kMaxShards = 100000;
+    const auto number = [&](std::size_t from, std::size_t to) {
+        if (to <= from || to - from > 6) return -1L;
+        long v = 0;
+        for (std::size_t k = from; k < to; ++k) {
+            if (text[k] < '0' || text[k] > '9') return -1L;
+            v = v * 10 + (text[k] - '0');
+        }
+        return v;
+    };
+    const std::size_t slash = text.find('/');
+    const long i = slash == std::string::npos ? -1 : number(0, slash);
+    const long n = slash == std::string::npos ? -1 : number(slash + 1, text.size());
+    if (i < 0 || n < 1 || n > kMaxShards || i >= n) {
+        throw InputError("--shard " + text + ": expected i/n, whole numbers with 0 <= i < n <= " + std::to_string(kMaxShards) +
+                         " (shards count from 0: 0/3, 1/3 and 2/3 make three)");
     }
-    return {i, n};
+    return {static_cast<int>(i), static_cast<int>(n)};
 }
 
 // --dry-run: the config checked and its runs listed, with how many references are cached; nothing
@@ -37,7 +50,7 @@ void listRuns(const ExperimentConfig& config, const RunnerOptions& r) {
     const ExperimentPlan plan = planExperiment(config, r);
     std::printf("experiment %s (%s, config hash %s): %zu runs", config.name.c_str(), config.file.string().c_str(),
                 config.hash.substr(0, 12).c_str(), plan.runs.size());
-    if (r.shardCount > 1) std::printf(", %zu in shard %d/%d", plan.mine.size(), r.shardIndex, r.shardCount);
+    if (r.shardCount > 1) std::printf(", %zu in shard %d/%d (estimated cost %.3g)", plan.mine.size(), r.shardIndex, r.shardCount, plan.estimatedCost);
     std::printf("; references: %zu, %zu of them cached in %s\n", plan.references, plan.referencesCached, r.cacheDir.string().c_str());
     std::size_t sceneWidth = 5, viewWidth = 4, techniqueWidth = 9;
     for (const auto& p : plan.mine) {
@@ -79,6 +92,27 @@ void run(const RunOptions& o) {
     else std::printf("stopped with runs left; `hybridlab run %s --out %s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str());
 }
 
+// Each shard's estimated cost beside the time its runs took, both also as shares of the whole: how
+// well the partition balanced them.
+void printMergedShards(const std::vector<MergedShard>& shards) {
+    double cost = 0.0, seconds = 0.0;
+    bool estimated = true;
+    for (const auto& s : shards) {
+        cost += s.estimatedCost;
+        seconds += s.seconds;
+        estimated &= s.estimatedCost >= 0.0;
+    }
+    std::printf("shard  runs  estimated cost (share)  time s (share)  folder\n");
+    for (const auto& s : shards) {
+        char est[64] = "-";
+        if (estimated) std::snprintf(est, sizeof est, "%.4g (%.0f%%)", s.estimatedCost, cost > 0 ? 100.0 * s.estimatedCost / cost : 0.0);
+        char time[64];
+        std::snprintf(time, sizeof time, "%.2f (%.0f%%)", s.seconds, seconds > 0 ? 100.0 * s.seconds / seconds : 0.0);
+        const std::string name = std::to_string(s.index) + "/" + std::to_string(s.count);
+        std::printf("%-5s  %4zu  %-22s  %-14s  %s\n", name.c_str(), s.runs, est, time, s.dir.string().c_str());
+    }
+}
+
 }  // namespace
 
 void addRunCommand(CLI::App& app) {
@@ -87,7 +121,7 @@ void addRunCommand(CLI::App& app) {
     cmd->add_option("config", o->config, "Experiment config (TOML, see experiments/README.md)")->required();
     cmd->add_option("--out", o->out, "Output folder (default: results/<experiment name>)");
     cmd->add_flag("--resume", o->resume, "Continue an interrupted run in --out, skipping recorded runs");
-    cmd->add_option("--shard", o->shard, "Run only the i-th of n parts of the run list (runs whose index mod n is i)")->capture_default_str();
+    cmd->add_option("--shard", o->shard, "Run only the i-th of n parts of the run list (0 <= i < n), balanced by estimated cost")->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
     cmd->add_flag("--quiet", o->quiet, "No progress output");
@@ -105,7 +139,7 @@ void addRunCommand(CLI::App& app) {
     merge->add_flag("--allow-mixed-devices", *mixed, "Merge shards measured on different devices; each run keeps its device");
     merge->callback([out, shards, mixed] {
         std::vector<std::filesystem::path> dirs(shards->begin(), shards->end());
-        mergeShards(dirs, *out, *mixed);
+        printMergedShards(mergeShards(dirs, *out, *mixed));
         std::printf("merged %zu shards into %s\n", dirs.size(), out->c_str());
     });
 }

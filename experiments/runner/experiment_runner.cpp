@@ -1,6 +1,7 @@
 #include "experiments/runner/experiment_runner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <iterator>
@@ -21,6 +22,7 @@
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
+#include "experiments/runner/shard_partition.h"
 #include "metrics/metrics.h"
 #include "metrics/report_files.h"
 #include "techniques/technique.h"
@@ -61,11 +63,20 @@ Image reflectiveRefractiveMask(const RayScene& rays, const Camera& camera, int w
     return mask;
 }
 
-json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, int shardIndex, int shardCount) {
+// How `--shard i/n` splits the runs (shard_partition.h); shard folders of another partition do
+// not resume or merge with these. Folders that predate the field split by index modulo n (one
+// shard holds every run however they split).
+constexpr const char* kPartition = "estimated-cost";
+std::string partitionOf(const json& meta) {
+    const json& shard = meta.at("shard");
+    return shard.value("count", 1) <= 1 ? kPartition : shard.value("partition", "index-modulo");
+}
+
+json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, const RunnerOptions& o, std::size_t runsInShard, double estimatedCost) {
     return {{"name", config.name},
             {"config_hash", config.hash},
             {"runs_total", runsTotal},
-            {"shard", {{"index", shardIndex}, {"count", shardCount}}},
+            {"shard", {{"index", o.shardIndex}, {"count", o.shardCount}, {"partition", kPartition}, {"runs", runsInShard}, {"estimated_cost", estimatedCost}}},
             {"metrics", metricNames(config)},
             {"program", programVersionHash()},
             {"device", deviceRecord()}};
@@ -113,16 +124,16 @@ std::string configChangedMessage(const ExperimentConfig& config, const fs::path&
 // Refuses to touch a folder that is not this experiment's (or empty/new), or one another runner
 // is writing; returns the lock that keeps others out while this runner writes.
 std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o, std::size_t runsTotal,
-                                                   RunnerSummary& summary) {
+                                                   std::size_t runsInShard, double estimatedCost, RunnerSummary& summary) {
     const fs::path meta = o.outDir / "experiment.json";
     if (fs::exists(o.outDir)) {
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
-            if (m.at("shard").at("index") != o.shardIndex || m.at("shard").at("count") != o.shardCount) {
+            if (m.at("shard").at("index") != o.shardIndex || m.at("shard").at("count") != o.shardCount || partitionOf(m) != kPartition) {
                 throw InputError(o.outDir.string() + ": holds shard " + m.at("shard").at("index").dump() + "/" + m.at("shard").at("count").dump() +
-                                 " of this experiment, not " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) +
-                                 "; choose another --out");
+                                 " of this experiment (runs split by " + partitionOf(m) + "), not " + std::to_string(o.shardIndex) + "/" +
+                                 std::to_string(o.shardCount) + " (split by " + kPartition + "); choose another --out");
             }
             if (!o.resume) {
                 throw InputError(o.outDir.string() + ": already holds results of this experiment; pass --resume to continue it, or choose another --out");
@@ -135,7 +146,7 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
     auto lock = std::make_unique<DirectoryLock>(o.outDir);
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
     if (o.resume) summary.staleTemporariesRemoved = removeStaleTemporaries(o.outDir);
-    writeFileAtomically(meta, experimentJson(config, runsTotal, o.shardIndex, o.shardCount).dump(1) + "\n");
+    writeFileAtomically(meta, experimentJson(config, runsTotal, o, runsInShard, estimatedCost).dump(1) + "\n");
     std::ifstream in(config.file, std::ios::binary);
     writeFileAtomically(o.outDir / "config.toml", std::string(std::istreambuf_iterator<char>(in), {}));
     return lock;
@@ -181,18 +192,21 @@ struct ActiveScene {
     }
 };
 
-}  // namespace
-
-RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
+void checkShard(const RunnerOptions& o) {
     if (o.shardCount < 1 || o.shardIndex < 0 || o.shardIndex >= o.shardCount) {
         throw InputError("--shard " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) + ": expected i/n with 0 <= i < n");
     }
+}
+
+}  // namespace
+
+RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
+    checkShard(o);
     const std::vector<RunSpec> all = planRuns(config);
-    std::vector<const RunSpec*> mine;
-    for (const auto& r : all)
-        if (static_cast<int>(r.index % o.shardCount) == o.shardIndex) mine.push_back(&r);
+    const ShardPartition partition = partitionRuns(config, all, o.shardCount);
+    const std::vector<const RunSpec*> mine = partition.runsOf(all, o.shardIndex);
     RunnerSummary summary;
-    const auto lock = prepareOutputFolder(config, o, all.size(), summary);
+    const auto lock = prepareOutputFolder(config, o, all.size(), mine.size(), partition.estimatedCost.at(o.shardIndex), summary);
 
     const ResultsStore store(o.outDir);
     const ReferenceCache cache(o.cacheDir);
@@ -207,6 +221,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             continue;
         }
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
+        const auto runStart = std::chrono::steady_clock::now();
         const SceneSpec& sceneSpec = config.scenes[run->scene];
         const TechniqueSpec& techSpec = config.techniques[run->technique];
         progress.start(done, run->id);
@@ -275,6 +290,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         record["parameters_text"] = run->parametersText;
         record["sequence"] = run->sequenceKey;
         record["frame_ms"] = toJson(spread(frameTimes));
+        // The run's time so far (scene load, reference, warm-up, repeats, scoring, error maps): what
+        // `merge` sums per shard beside the shard's estimated cost.
+        record["run_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
         record["stages"] = json::object();
         for (const auto& [name, times] : stageTimes) record["stages"][name] = toJson(spread(times));
         record["counters"] = result.counters;
@@ -309,17 +327,17 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
 }
 
 ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
-    if (o.shardCount < 1 || o.shardIndex < 0 || o.shardIndex >= o.shardCount) {
-        throw InputError("--shard " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) + ": expected i/n with 0 <= i < n");
-    }
+    checkShard(o);
     ExperimentPlan plan;
     plan.runs = planRuns(config);
+    const ShardPartition partition = partitionRuns(config, plan.runs, o.shardCount);
+    plan.estimatedCost = partition.estimatedCost.at(o.shardIndex);
     const ReferenceCache cache(o.cacheDir);
     std::set<std::string> keys;
     std::unique_ptr<Scene> scene;
     std::size_t loaded = static_cast<std::size_t>(-1);
-    for (const auto& run : plan.runs) {
-        if (static_cast<int>(run.index % o.shardCount) != o.shardIndex) continue;
+    for (const RunSpec* mine : partition.runsOf(plan.runs, o.shardIndex)) {
+        const RunSpec& run = *mine;
         if (run.scene != loaded) {
             // With textures: the reference key hashes every file the scene was built from.
             scene = std::make_unique<Scene>(loadSceneFile(config.scenes[run.scene].file));
@@ -337,36 +355,103 @@ ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOption
     return plan;
 }
 
-void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir, bool allowMixedDevices) {
+namespace {
+
+// A shard folder's experiment.json, or InputError naming the folder.
+json readShardMeta(const fs::path& dir) {
+    const fs::path file = dir / "experiment.json";
+    if (!fs::is_regular_file(file)) throw InputError(dir.string() + ": not an experiment folder (no experiment.json)");
+    std::ifstream in(file);
+    json m = json::parse(in, nullptr, false);
+    const auto has = [](const json& j, const char* key, bool (json::*is)() const noexcept) { return j.is_object() && j.contains(key) && (j.at(key).*is)(); };
+    if (m.is_discarded() || !has(m, "config_hash", &json::is_string) || !has(m, "runs_total", &json::is_number_unsigned) ||
+        !has(m, "shard", &json::is_object) || !has(m.at("shard"), "index", &json::is_number_integer) ||
+        !has(m.at("shard"), "count", &json::is_number_integer)) {
+        throw InputError(file.string() + ": not an experiment record (expected JSON with config_hash, runs_total and shard index and count)");
+    }
+    return m;
+}
+
+std::string shardName(const json& meta) {
+    return std::to_string(meta.at("shard").at("index").get<long long>()) + "/" + std::to_string(meta.at("shard").at("count").get<long long>());
+}
+
+// The ids of the records in a folder's runs/ (without reading them).
+std::vector<std::string> recordedIds(const fs::path& dir) {
+    std::vector<std::string> ids;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(ResultsStore(dir).runsDir(), ec)) {
+        const std::string name = e.path().filename().string();
+        if (e.path().extension() == ".json" && name.front() != '.') ids.push_back(e.path().stem().string());
+    }
+    return ids;
+}
+
+}  // namespace
+
+std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir, bool allowMixedDevices) {
     if (shardDirs.empty()) throw InputError("merge: no shard folders given");
-    json first;
-    std::vector<bool> seen;
-    std::vector<json> deviceByShard;
-    for (const auto& d : shardDirs) {
-        const fs::path meta = d / "experiment.json";
-        if (!fs::exists(meta)) throw InputError(d.string() + ": not an experiment folder (no experiment.json)");
-        json m = readJson(meta);
-        if (first.is_null()) {
-            first = m;
-            seen.assign(m.at("shard").at("count").get<std::size_t>(), false);
+    // Everything checked before anything is written: the same experiment, split the same way, every
+    // shard once, on one device (unless allowed), every run recorded.
+    std::vector<json> metas;
+    for (const auto& d : shardDirs) metas.push_back(readShardMeta(d));
+    const json& first = metas.front();
+    const fs::path& firstDir = shardDirs.front();
+    const long long count = first.at("shard").at("count").get<long long>();
+    if (count < 1 || count > 1000000) throw InputError((firstDir / "experiment.json").string() + ": shard count " + std::to_string(count) + " out of range");
+    std::vector<int> given(static_cast<std::size_t>(count), -1);  // shard index -> position in shardDirs
+    for (std::size_t k = 0; k < metas.size(); ++k) {
+        const json& m = metas[k];
+        const fs::path& d = shardDirs[k];
+        if (m.at("config_hash") != first.at("config_hash") || m.at("shard").at("count") != first.at("shard").at("count") ||
+            partitionOf(m) != partitionOf(first)) {
+            throw InputError("merge: " + d.string() + " is shard " + shardName(m) + " of experiment '" + m.value("name", "?") + "' (config hash " +
+                             m.at("config_hash").get<std::string>().substr(0, 12) + ", runs split by " + partitionOf(m) + "), not of " +
+                             firstDir.string() + "'s experiment '" + first.value("name", "?") + "' (shard " + shardName(first) + ", config hash " +
+                             first.at("config_hash").get<std::string>().substr(0, 12) + ", runs split by " + partitionOf(first) + ")");
         }
-        if (m.at("config_hash") != first.at("config_hash") || m.at("shard").at("count") != first.at("shard").at("count")) {
-            throw InputError(d.string() + ": a shard of another experiment than " + shardDirs.front().string());
-        }
-        const auto i = m.at("shard").at("index").get<std::size_t>();
-        if (seen.at(i)) throw InputError(d.string() + ": shard " + std::to_string(i) + " given twice");
-        seen[i] = true;
-        deviceByShard.resize(seen.size());
-        deviceByShard[i] = m.value("device", json());
-        if (!allowMixedDevices && !sameDevice(deviceByShard[i], first.value("device", json()))) {
-            throw InputError("merge: " + d.string() + " was measured on another device than " + shardDirs.front().string() + ":\n  " +
-                             shardDirs.front().string() + ": " + deviceSummary(first.value("device", json())) + "\n  " + d.string() + ": " +
-                             deviceSummary(deviceByShard[i]) + "\ntimes from two devices do not compare; pass --allow-mixed-devices to merge them "
+        const long long i = m.at("shard").at("index").get<long long>();
+        if (i < 0 || i >= count) throw InputError("merge: " + d.string() + ": shard index " + std::to_string(i) + " outside 0.." + std::to_string(count - 1));
+        if (given[i] >= 0) throw InputError("merge: " + d.string() + " and " + shardDirs[given[i]].string() + " are both shard " + shardName(m));
+        given[i] = static_cast<int>(k);
+        if (!allowMixedDevices && !sameDevice(m.value("device", json()), first.value("device", json()))) {
+            throw InputError("merge: " + d.string() + " was measured on another device than " + firstDir.string() + ":\n  " +
+                             firstDir.string() + ": " + deviceSummary(first.value("device", json())) + "\n  " + d.string() + ": " +
+                             deviceSummary(m.value("device", json())) + "\ntimes from two devices do not compare; pass --allow-mixed-devices to merge them "
                              "anyway (each run then keeps its device)");
         }
     }
-    for (std::size_t i = 0; i < seen.size(); ++i)
-        if (!seen[i]) throw InputError("merge: shard " + std::to_string(i) + "/" + std::to_string(seen.size()) + " is missing");
+    for (long long i = 0; i < count; ++i) {
+        if (given[i] < 0) {
+            throw InputError("merge: shard " + std::to_string(i) + "/" + std::to_string(count) + " of experiment '" + first.value("name", "?") +
+                             "' is missing (run it with `hybridlab run CONFIG --shard " + std::to_string(i) + "/" + std::to_string(count) +
+                             "`, then give its folder too)");
+        }
+    }
+    std::vector<MergedShard> shards(metas.size());
+    std::map<std::string, std::size_t> shardOfId;
+    for (std::size_t k = 0; k < metas.size(); ++k) {
+        MergedShard& s = shards[k];
+        s.dir = shardDirs[k];
+        s.index = metas[k].at("shard").at("index").get<int>();
+        s.count = static_cast<int>(count);
+        s.estimatedCost = metas[k].at("shard").value("estimated_cost", -1.0);
+        const std::vector<std::string> ids = recordedIds(s.dir);
+        s.runs = ids.size();
+        for (const auto& id : ids) shardOfId.emplace(id, k);
+        // A shard that says how many runs it has names itself when it is unfinished.
+        const long long planned = metas[k].at("shard").value("runs", -1LL);
+        if (planned >= 0 && static_cast<long long>(ids.size()) < planned) {
+            throw InputError("merge: " + s.dir.string() + " (shard " + shardName(metas[k]) + ") holds " + std::to_string(ids.size()) + " of its " +
+                             std::to_string(planned) + " runs (finish it with `hybridlab run CONFIG --resume --shard " + shardName(metas[k]) +
+                             " --out " + s.dir.string() + "` first)");
+        }
+    }
+    const std::size_t runsTotal = first.at("runs_total").get<std::size_t>();
+    if (shardOfId.size() != runsTotal) {
+        throw InputError("merge: the shards hold " + std::to_string(shardOfId.size()) + " of " + std::to_string(runsTotal) +
+                         " runs (finish them with `hybridlab run --resume --shard i/n` first)");
+    }
     if (fs::exists(outDir) && (!fs::is_directory(outDir) || !fs::is_empty(outDir))) {
         throw InputError(outDir.string() + ": exists and is not empty; choose another --out");
     }
@@ -379,24 +464,25 @@ void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir,
                 fs::copy(d / sub, outDir / sub, fs::copy_options::recursive | fs::copy_options::skip_existing);
         }
     }
-    fs::copy_file(shardDirs.front() / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
+    fs::copy_file(firstDir / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
     json meta = first;
-    meta["shard"] = {{"index", 0}, {"count", 1}};
+    meta["shard"] = {{"index", 0}, {"count", 1}, {"partition", kPartition}};
     std::vector<json> records = out.loadRecords();
-    if (records.size() != first.at("runs_total").get<std::size_t>()) {
-        throw InputError("merge: the shards hold " + std::to_string(records.size()) + " of " + std::to_string(first.at("runs_total").get<std::size_t>()) +
-                         " runs (finish them with `hybridlab run --resume --shard i/n` first)");
+    for (const json& r : records) {
+        MergedShard& s = shards.at(shardOfId.at(r.at("id").get<std::string>()));
+        s.seconds += r.value("run_seconds", 0.0);
     }
     // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
     bool mixed = false;
-    for (const json& d : deviceByShard) mixed |= !sameDevice(d, deviceByShard.front());
+    for (const json& m : metas) mixed |= !sameDevice(m.value("device", json()), first.value("device", json()));
     if (mixed) {
         json devices = json::array();
-        for (const json& d : deviceByShard)
-            if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, d); })) devices.push_back(d);
+        for (const json& m : metas)
+            if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, m.value("device", json())); }))
+                devices.push_back(m.value("device", json()));
         meta["devices"] = devices;
         for (json& r : records) {
-            r["device"] = deviceByShard.at(r.at("index").get<std::size_t>() % deviceByShard.size());
+            r["device"] = metas.at(shardOfId.at(r.at("id").get<std::string>())).value("device", json());
             out.writeRecord(r);
         }
     }
@@ -405,6 +491,8 @@ void mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir,
     if (std::find(metrics.begin(), metrics.end(), "temporal") != metrics.end()) addTemporalErrors(records, outDir);
     out.writeResults(records);
     writeFileAtomically(outDir / "experiment.json", meta.dump(1) + "\n");
+    std::sort(shards.begin(), shards.end(), [](const MergedShard& a, const MergedShard& b) { return a.index < b.index; });
+    return shards;
 }
 
 }  // namespace hybridlab

@@ -12,7 +12,7 @@ struct RunnerOptions {
     std::filesystem::path outDir;
     std::filesystem::path cacheDir;  // the reference cache
     bool resume = false;
-    int shardIndex = 0;  // runs whose index % shardCount == shardIndex
+    int shardIndex = 0;  // this shard's runs, of shardCount balanced by estimated cost (shard_partition.h)
     int shardCount = 1;
     long maxRuns = -1;   // stop after this many renders (as if killed; for tests), -1: all
     bool quiet = false;
@@ -44,14 +44,23 @@ struct ExperimentPlan {
     std::vector<PlannedRun> mine;   // the shard's
     std::size_t references = 0;     // distinct references the shard's runs need
     std::size_t referencesCached = 0;
+    double estimatedCost = 0.0;     // the shard's (shard_partition.h)
 };
 ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& options);
 
 // `hybridlab merge`: joins shard folders of one experiment into `outDir`, as one unsharded run
-// would have written it. Throws InputError when they are not shards of the same experiment or
-// runs are missing, or (unless `allowMixedDevices`) when they were measured on different devices
+// would have written it. Throws InputError, writing nothing, when they are not shards of the same
+// experiment (config, shard count, partition), a shard is missing or given twice, runs are
+// missing, or (unless `allowMixedDevices`) they were measured on different devices
 // (device_record.h); with it, each record keeps its shard's device as "device".
-void mergeShards(const std::vector<std::filesystem::path>& shardDirs, const std::filesystem::path& outDir,
-                 bool allowMixedDevices = false);
+struct MergedShard {
+    std::filesystem::path dir;
+    int index = 0, count = 1;
+    std::size_t runs = 0;
+    double estimatedCost = -1.0;  // as the shard recorded it (-1: a folder from before estimates)
+    double seconds = 0.0;         // its records' run_seconds summed: the time its runs took
+};
+std::vector<MergedShard> mergeShards(const std::vector<std::filesystem::path>& shardDirs, const std::filesystem::path& outDir,
+                                     bool allowMixedDevices = false);
 
 }  // namespace hybridlab

@@ -49,7 +49,8 @@ TechniqueInfo LayeredEmTechnique::info() {
                 ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
                 ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
             },
-            [](const ParameterSet& p) { return std::make_unique<LayeredEmTechnique>(p); }};
+            [](const ParameterSet& p) { return std::make_unique<LayeredEmTechnique>(p); },
+            /*relativeCost=*/0.3};  // a frame: vertex rays and one raster pass (the bake is per scene and cached)
     for (ParamSpec& s : shadowMapParameterSpecs()) info.parameters.push_back(std::move(s));
     return info;
 }

@@ -88,7 +88,8 @@ TechniqueInfo SsrFallbackTechnique::info() {
     return {"ssr_fallback",
             "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
             "texels SSR fails on, seam blur",
-            std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); }};
+            std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); },
+            /*relativeCost=*/0.35};  // 0.20-0.42 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
 }
 
 SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)), gbuffer_(p) {

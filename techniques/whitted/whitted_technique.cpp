@@ -43,7 +43,8 @@ TechniqueInfo WhittedTechnique::info() {
                                       "(Hakura & Snyder 2001 §3: uniformly sampled ray tracing as layered_em approximates it)"));
     return {"whitted",
             "Reference: full recursive Whitted ray tracing (Embree), hard shadows, reflection and refraction to depth 10",
-            std::move(specs), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); }};
+            std::move(specs), [](const ParameterSet& p) { return std::make_unique<WhittedTechnique>(p); },
+            /*relativeCost=*/1.0};  // the unit
 }
 
 WhittedSettings WhittedTechnique::recursionSettings(const ParameterSet& p) {
