@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -17,6 +18,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
 #include "common/image/image_io.h"
 #include "tests/cli_runner.h"
@@ -205,6 +207,22 @@ TEST(RunnerInterruptions, SecondRunnerIsRefusedAndADeadOnesLockAndTemporariesAre
     EXPECT_EQ(resumed.exitStatus, 0) << resumed.err;
     EXPECT_NE(resumed.out.find("removed 2 partial file(s) (.tmp-*) left by interrupted runs"), std::string::npos) << resumed.out;
     EXPECT_EQ(leftovers(out), std::vector<fs::path>{});
+}
+
+// Two cluster nodes filling one shared reference cache may run writers of the same PID: the one
+// that finds the temporary name taken writes under another, and neither file is touched by the
+// other's writes.
+TEST(RunnerInterruptions, TemporaryNameHeldByAnotherMachinesProcessIsLeftAlone) {
+    TempDir dir;
+    const fs::path target = dir / "key.json", image = dir / "key.txt";
+    for (const fs::path& p : {target, image}) test::writeTextFile(temporaryPathFor(p), "the other node's half-written file");
+    writeFileAtomically(target, "mine\n");
+    writeAtomically(image, [](const fs::path& tmp) { test::writeTextFile(tmp, "encoded\n"); });
+    EXPECT_EQ(test::readTextFile(target), "mine\n");
+    EXPECT_EQ(test::readTextFile(image), "encoded\n");
+    for (const fs::path& p : {target, image}) EXPECT_EQ(test::readTextFile(temporaryPathFor(p)), "the other node's half-written file");
+    // Nothing else left: the two taken names and the two targets.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 4);
 }
 
 }  // namespace

@@ -77,6 +77,22 @@ pid_t temporaryOwner(const std::string& name) {
     return static_cast<pid_t>(pid);
 }
 
+// Creates the temporary file for `path` exclusively and returns its descriptor, or -1 with errno.
+// Exclusively: a process of the same PID on another machine may be writing the same file into a
+// shared folder (two cluster nodes filling one reference cache), so a name that exists is left to
+// its owner and ".tmp-PID-N-NAME" tried instead.
+int createTemporary(const fs::path& path, fs::path& tmp) {
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        tmp = attempt == 0 ? temporaryPathFor(path)
+                           : path.parent_path() / (std::string(kTemporaryPrefix) + std::to_string(::getpid()) + "-" + std::to_string(attempt) +
+                                                   "-" + path.filename().string());
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd >= 0 || errno != EEXIST) return fd;
+    }
+    errno = EEXIST;
+    return -1;
+}
+
 }  // namespace
 
 fs::path temporaryPathFor(const fs::path& path) {
@@ -85,8 +101,8 @@ fs::path temporaryPathFor(const fs::path& path) {
 
 void writeFileAtomically(const fs::path& path, std::string_view bytes) {
     checkTarget(path);
-    const fs::path tmp = temporaryPathFor(path);
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    fs::path tmp;
+    const int fd = createTemporary(path, tmp);
     if (fd < 0) throw IoError::fromErrno(path, "write", errno);
     const bool written = writeAll(fd, bytes);
     int error = written ? 0 : errno;
@@ -101,7 +117,10 @@ void writeFileAtomically(const fs::path& path, std::string_view bytes) {
 
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     checkTarget(path);
-    const fs::path tmp = temporaryPathFor(path);
+    fs::path tmp;
+    const int fd = createTemporary(path, tmp);  // the name reserved; the writer writes over it
+    if (fd < 0) throw IoError::fromErrno(path, "write", errno);
+    ::close(fd);
     try {
         write(tmp);
     } catch (...) {

@@ -1,8 +1,9 @@
 #pragma once
 // Every file the program writes goes through here: written to a temporary name beside the target
-// (".tmp-PID-NAME", unique to this process), every step checked (open, each write, close), then
-// renamed over the target. So a file under its final name is either absent, the old one, or
-// complete; a process killed mid-write leaves only a ".tmp-PID-*" behind, which
+// (".tmp-PID-NAME", unique to this process; created exclusively, so a process of the same PID on
+// another machine sharing the folder gets ".tmp-PID-N-NAME"), every step checked (open, each
+// write, close), then renamed over the target. So a file under its final name is either absent,
+// the old one, or complete; a process killed mid-write leaves only a ".tmp-PID-*" behind, which
 // removeStaleTemporaries() collects. Failures throw IoError naming the target and the OS reason.
 #include <cstddef>
 #include <filesystem>
@@ -23,7 +24,7 @@ void writeAtomically(const std::filesystem::path& path, const std::function<void
 // fs::create_directories, failing with IoError naming `dir` and the reason.
 void createDirectories(const std::filesystem::path& dir);
 
-// The temporary name writeFileAtomically uses for `path` in this process.
+// The temporary name writeFileAtomically uses for `path` in this process (unless it exists).
 std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
 
 // Removes the ".tmp-PID-*" files under `dir` (recursively) whose process PID no longer runs on
