@@ -47,6 +47,9 @@ PACKAGES=(
   chromium nodejs
   # layered-EM inference (sparse least squares by conjugate gradient)
   libeigen3-dev
+  # the Slurm end-to-end test only (tests/slurm_end_to_end.sh starts its own munged, slurmctld and
+  # slurmd in a temporary folder); the hybridlab program needs neither
+  slurm-wlm munge
 )
 
 missing=()
