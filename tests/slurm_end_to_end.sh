@@ -3,7 +3,9 @@
 # generated key) and slurmctld + slurmd (a generated slurm.conf, ports of their own) in a
 # temporary folder, submits a small experiment as a job array of 3 shards and its dependent merge
 # job, waits for them, and checks that the merged result set equals an unsharded run of the same
-# config: the same records apart from times, every image byte for byte. Everything it started is
+# config: the same records apart from times, every image byte for byte. Then it requeues a task
+# whose shard lost two records and holds another node's lock, and checks that the task resumes
+# its shard and the shards still merge into the same set. Everything it started is
 # stopped, and the folder removed, however it ends. Where the daemons cannot start (Debian's
 # slurm-wlm and munge missing, no permission), it prints why and exits 77: ctest's skip.
 #
@@ -177,8 +179,9 @@ echo "--- merge job's output ($work/results/logs/merge.out)"
 cat "$work/results/logs/merge.out"
 grep -q 'estimated cost' "$work/results/logs/merge.out" || fail "merge did not print the shards' estimated costs and times"
 
-# The merged set against the unsharded one: records apart from times, images byte for byte.
-/usr/bin/python3 - "$work/unsharded" "$work/results/merged" <<'EOF' || fail "the merged result set differs from the unsharded run"
+# A result set against the unsharded one: records apart from times, images byte for byte.
+expect_same_as_unsharded() {
+  /usr/bin/python3 - "$work/unsharded" "$1" <<'EOF' || fail "$1 differs from the unsharded run"
 import filecmp, json, pathlib, sys
 a, b = (pathlib.Path(p) for p in sys.argv[1:])
 
@@ -202,4 +205,26 @@ different = [str(f) for f in images if not filecmp.cmp(a / f, b / f, shallow=Fal
 assert not different, f"images differ: {different[:5]}"
 print(f"merged = unsharded: {len(ra)} records equal apart from times, {len(images)} images byte-identical")
 EOF
+}
+expect_same_as_unsharded "$work/results/merged"
+
+# A requeued task (a node failure, a preemption) resumes its shard: shard 1 as a task killed on
+# another node would leave it, its last two records lost and its lock left behind.
+ls "$work/results/shards/1/runs/"*.json | tail -n 2 | xargs rm -f
+echo "12345 another-node" >"$work/results/shards/1/.lock"
+scontrol requeue "${array}_1" >/dev/null || fail "scontrol requeue ${array}_1 failed"
+# Slurm holds a requeued job back a while (its begin time); release it now.
+scontrol update JobId="${array}_1" StartTime=now >/dev/null || fail "cannot release the requeued task"
+jobs_submitted=$array
+for _ in $(seq 120); do
+  [ -z "$(squeue -h -j "${array}_1" 2>/dev/null)" ] && break
+  sleep 0.5
+done
+[ -z "$(squeue -h -j "${array}_1" 2>/dev/null)" ] && jobs_submitted="" || fail "the requeued task did not finish in 60 s"
+echo "--- requeued task's output ($work/results/logs/shard-1.out)"
+cat "$work/results/logs/shard-1.out"
+grep -q "removing the lock of the earlier attempt: 12345 another-node" "$work/results/logs/shard-1.out" &&
+  grep -q "4 runs, 2 rendered, 2 already done" "$work/results/logs/shard-1.out" || fail "the requeued task did not resume its shard"
+"$hybridlab" merge --out "$work/results/merged-after-requeue" "$work"/results/shards/{0,1,2} >/dev/null || fail "merge after the requeue failed"
+expect_same_as_unsharded "$work/results/merged-after-requeue"
 echo "SlurmEndToEnd passed in $(($(date +%s) - start)) s"
