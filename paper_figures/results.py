@@ -1,6 +1,6 @@
-"""Reading a hybridlab result set (results.json) for the figure and report scripts.
+"""Reading a hybridlab result set (results.json, else runs/) for the figure and report scripts.
 
-Every script in paper_figures/ reads only results.json / results.csv, never the renderer."""
+Every script in paper_figures/ reads only the records, never the renderer."""
 import argparse
 import json
 import os
@@ -8,9 +8,30 @@ import re
 import sys
 
 
+def is_result_set(result_dir):
+    """Whether `result_dir` holds a result set: results.json, or the records of a set whose runner
+    has not written it (still running, or killed)."""
+    return os.path.isfile(os.path.join(result_dir, "results.json")) or os.path.isdir(os.path.join(result_dir, "runs"))
+
+
 def load(result_dir):
-    with open(os.path.join(result_dir, "results.json")) as f:
-        return json.load(f)
+    """The records of a result set, ordered by run index: results.json, or where the runner has not
+    written it (still running, or killed), the records in runs/ themselves, which lack only what
+    needs the whole set (temporal errors); `hybridlab report` or `hybridlab run --resume` writes
+    results.json."""
+    path = os.path.join(result_dir, "results.json")
+    if os.path.isfile(path):
+        with open(path) as f:
+            return json.load(f)
+    runs = os.path.join(result_dir, "runs")
+    records = []
+    # Temporary files of an interrupted write start with a dot: not records.
+    for name in os.listdir(runs):
+        if name.endswith(".json") and not name.startswith("."):
+            with open(os.path.join(runs, name)) as f:
+                records.append(json.load(f))
+    sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (result_dir, len(records), runs))
+    return sorted(records, key=lambda r: r["index"])
 
 
 def variant(r):
@@ -114,8 +135,8 @@ def table_script(doc, name, extra_arguments=()):
     for args, kwargs in extra_arguments:
         ap.add_argument(*args, **kwargs)
     a = ap.parse_args()
-    if not os.path.isfile(os.path.join(a.result_dir, "results.json")):
-        sys.exit("%s: %s is not a result set (no results.json)" % (name, a.result_dir))
+    if not is_result_set(a.result_dir):
+        sys.exit("%s: %s is not a result set (no results.json, no runs/)" % (name, a.result_dir))
     rows = load(a.result_dir)
     if not rows:
         sys.exit("%s: %s has no runs" % (name, a.result_dir))

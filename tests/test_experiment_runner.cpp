@@ -16,6 +16,7 @@
 #include "report_checks.h"
 #include "runner_checks.h"
 #include "experiments/runner/shard_partition.h"
+#include "shell_command.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/results_store.h"
@@ -264,7 +265,24 @@ TEST(ExperimentRunner, KilledMidRunLeavesWholeFilesAndResumesToTheSameResults) {
         std::ifstream in(e.path());
         EXPECT_NO_THROW(json::parse(in)) << e.path();
     }
-    EXPECT_GE(test::readResults(killed).size() + 1, before);  // at most the run in progress is missing
+    // results.json is written when the runner stops (results_store.h), so a killed one left none:
+    // never a stale one. The readers take the records: the table scripts from runs/ directly,
+    // `report` by writing results.json and results.csv first, as the runner would have.
+    EXPECT_FALSE(fs::exists(killed / "results.json"));
+    EXPECT_FALSE(fs::exists(killed / "results.csv"));
+    const std::string load = "/usr/bin/python3 -c 'import sys; sys.path.insert(0, \"" + (test::sourceDir() / "paper_figures").string() +
+                             "\"); import results; print(\" \".join(str(r[\"index\"]) for r in results.load(sys.argv[1])))' '" +
+                             killed.string() + "' 2>/dev/null";
+    std::string indices;
+    for (std::size_t i = 0; i < before; ++i) indices += (i ? " " : "") + std::to_string(i);
+    EXPECT_EQ(test::commandOutput(load).out, indices + "\n");  // the runs are recorded in index order
+    const test::CliResult report = test::runHybridlab({"report", killed.string(), "--out", (dir.path() / "killed-report").string()});
+    ASSERT_EQ(report.exitStatus, 0) << report.err;
+    EXPECT_CONTAINS(report.out, killed.string() + ": its runner stopped before writing results.json and results.csv; wrote them from its " +
+                                    std::to_string(before) + " records\n");
+    EXPECT_EQ(test::readResults(killed).size(), before);
+    const std::string csv = test::readTextFile(killed / "results.csv");
+    EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), before + 1);  // header + a row a record
 
     // Resumed, and an uninterrupted run to compare with, through the same program (the program's
     // hash is part of the reference cache key).

@@ -1,13 +1,18 @@
 #include "common/scene/scene_catalog.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "common/core/input_error.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
 
-fs::path scenesDirectory() { return fs::path(HYBRIDLAB_SCENES_DIR); }
+fs::path scenesDirectory() {
+    // A bundle (`hybridlab bundle`) carries its own scenes, away from the checkout it was built in.
+    if (const char* v = std::getenv(kScenesEnvVar); v && *v) return fs::path(v);
+    return fs::path(HYBRIDLAB_SCENES_DIR);
+}
 
 std::vector<fs::path> listSceneFiles() {
     std::vector<fs::path> out;

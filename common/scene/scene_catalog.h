@@ -6,6 +6,9 @@
 
 namespace hybridlab {
 
+inline constexpr const char* kScenesEnvVar = "HYBRIDLAB_SCENES";
+
+// The repository's scenes/, or HYBRIDLAB_SCENES when set.
 std::filesystem::path scenesDirectory();
 
 // Every scenes/*.toml, sorted by name.

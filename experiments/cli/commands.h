@@ -16,5 +16,6 @@ void addReportCommand(CLI::App& app);
 void addExportPovCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addBakeEmCommand(CLI::App& app);
+void addBundleCommand(CLI::App& app);
 
 }  // namespace hybridlab::cli

@@ -1,5 +1,6 @@
 // `hybridlab report DIR [--out DIR]`: the report of a result set, drawn by paper_figures/report.py
-// (matplotlib), which reads only results.json.
+// (matplotlib), which reads only results.json; written here first for a set whose runner was
+// killed before it wrote it.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 
 #include "common/core/input_error.h"
 #include "experiments/cli/commands.h"
+#include "experiments/runner/results_store.h"
 
 namespace hybridlab::cli {
 
@@ -47,6 +49,9 @@ void addReportCommand(CLI::App& app) {
     cmd->add_option("--out", *out, "Report folder (default: RESULTS/report)");
     cmd->add_option("--baseline", *baseline, "Scene whose camera path is the baseline of \"where methods fail\" (default: sponza-spheres)");
     cmd->callback([dir, out, baseline] {
+        if (const auto written = writeMissingResults(*dir))
+            std::printf("%s: its runner stopped before writing results.json and results.csv; wrote them from its %zu records\n",
+                        dir->c_str(), *written);
         if (!fs::exists(fs::path(*dir) / "results.json")) throw InputError(*dir + ": no results.json (not a result folder of `hybridlab run`)");
         const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
         const fs::path script = fs::path(HYBRIDLAB_SOURCE_DIR) / "paper_figures" / "report.py";

@@ -142,8 +142,11 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
             throw InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out");
         }
     }
-    ResultsStore(o.outDir).createLayout();
+    const ResultsStore store(o.outDir);
+    store.createLayout();
     auto lock = std::make_unique<DirectoryLock>(o.outDir);
+    // Records are about to be added: results.json/csv are written again when the runner stops.
+    store.removeResults();
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
     if (o.resume) summary.staleTemporariesRemoved = removeStaleTemporaries(o.outDir);
     writeFileAtomically(meta, experimentJson(config, runsTotal, o, runsInShard, estimatedCost).dump(1) + "\n");
@@ -308,21 +311,16 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
                 record["images"]["debug"][name] = p;
             }
         }
-        store.writeRecord(record);
-        store.writeResults(store.loadRecords());
+        store.recordRun(record);
         ++summary.runsRendered;
         ++done;
     }
     progress.finish();
 
-    std::vector<json> records = store.loadRecords();
     summary.complete = true;
     for (const RunSpec* run : mine) summary.complete &= store.hasRecord(run->id);
-    // Temporal errors need neighbouring frames, which another shard may hold: `merge` adds them.
-    if (summary.complete && o.shardCount == 1 && config.temporalError) {
-        addTemporalErrors(records, o.outDir);
-        store.writeResults(records);
-    }
+    // Once, now that the records are final (results_store.h).
+    store.writeResults(store.finalRecords(readJson(o.outDir / "experiment.json")));
     return summary;
 }
 
@@ -486,10 +484,7 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
             out.writeRecord(r);
         }
     }
-    // Without "temporal" in the config's metrics (older result sets list none: they all had it).
-    const json metrics = first.value("metrics", json::array({"temporal"}));
-    if (std::find(metrics.begin(), metrics.end(), "temporal") != metrics.end()) addTemporalErrors(records, outDir);
-    out.writeResults(records);
+    out.writeResults(out.finalRecords(meta));
     writeFileAtomically(outDir / "experiment.json", meta.dump(1) + "\n");
     std::sort(shards.begin(), shards.end(), [](const MergedShard& a, const MergedShard& b) { return a.index < b.index; });
     return shards;

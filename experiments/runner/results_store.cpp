@@ -9,6 +9,8 @@
 #include <glm/common.hpp>
 
 #include "common/core/atomic_file.h"
+#include "common/core/directory_lock.h"
+#include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "metrics/temporal.h"
 
@@ -27,6 +29,8 @@ bool ResultsStore::hasRecord(const std::string& id) const { return fs::exists(ru
 void ResultsStore::writeRecord(const json& record) const {
     writeFileAtomically(runsDir() / (record.at("id").get<std::string>() + ".json"), record.dump(1) + "\n");
 }
+
+void ResultsStore::recordRun(const json& record) const { writeRecord(record); }
 
 std::vector<json> ResultsStore::loadRecords() const {
     std::vector<json> records;
@@ -92,9 +96,42 @@ std::string resultsCsv(const std::vector<json>& records) {
     return out.str();
 }
 
+// results.json is written after results.csv and removed before it: while it exists, both are whole.
+bool ResultsStore::hasResults() const { return fs::exists(dir_ / "results.json"); }
+
+void ResultsStore::removeResults() const {
+    for (const char* name : {"results.json", "results.csv"}) {
+        std::error_code ec;
+        fs::remove(dir_ / name, ec);
+        if (ec) throw IoError::fromErrno(dir_ / name, "remove", ec.value());
+    }
+}
+
+std::vector<json> ResultsStore::finalRecords(const json& experiment) const {
+    std::vector<json> records = loadRecords();
+    // Result sets older than the config's metric list all had the temporal error.
+    const json metrics = experiment.value("metrics", json::array({"temporal"}));
+    const bool temporal = std::find(metrics.begin(), metrics.end(), "temporal") != metrics.end();
+    if (temporal && experiment.at("shard").at("count") == 1 && records.size() == experiment.at("runs_total").get<std::size_t>())
+        addTemporalErrors(records, dir_);
+    return records;
+}
+
 void ResultsStore::writeResults(const std::vector<json>& records) const {
-    writeFileAtomically(dir_ / "results.json", json(records).dump(1) + "\n");
     writeFileAtomically(dir_ / "results.csv", resultsCsv(records));
+    writeFileAtomically(dir_ / "results.json", json(records).dump(1) + "\n");
+}
+
+std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
+    const ResultsStore store(dir);
+    const fs::path meta = dir / "experiment.json";
+    if (store.hasResults() || !fs::exists(meta)) return std::nullopt;
+    const DirectoryLock lock(dir);
+    if (store.hasResults()) return std::nullopt;  // a runner finished in between
+    std::ifstream in(meta);
+    const std::vector<json> records = store.finalRecords(json::parse(in));
+    store.writeResults(records);
+    return records.size();
 }
 
 void addTemporalErrors(std::vector<json>& records, const fs::path& dir) {

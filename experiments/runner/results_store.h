@@ -3,9 +3,14 @@
 //   experiment.json   what ran: config name and hash, shard, run count, program version
 //   runs/<id>.json    one record per finished run, each written atomically: the source of truth
 //   images/<id>.exr|png, maps/<id>/, references/<key>.exr|png
-//   results.json, results.csv   derived from the records, rewritten atomically after every run
-// Killing the runner loses at most the run in progress; --resume skips runs that have a record.
+//   results.json, results.csv   every record, derived from runs/
+// Recording a run writes its record file alone, so N runs cost O(N) writes; results.json and
+// results.csv are written once, when the records are final: at the end of `run` (complete or not),
+// by `merge`, and by `report` for a set whose runner was killed. `run` removes them before it adds
+// a record, so that a results.json that exists lists every record in runs/. Killing the runner
+// loses at most the run in progress; --resume skips runs that have a record.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,15 +31,33 @@ public:
     void createLayout() const;
     bool hasRecord(const std::string& id) const;
     void writeRecord(const nlohmann::json& record) const;
+    // What the runner does when a run finishes: its record written, nothing else (O(1) a run).
+    void recordRun(const nlohmann::json& record) const;
     // Every record, ordered by run index.
     std::vector<nlohmann::json> loadRecords() const;
+
+    // Whether results.json exists (then results.csv does too, and both list every record).
+    bool hasResults() const;
+    // Removes results.json and results.csv: called before records are added.
+    void removeResults() const;
     // results.json (an array of records) and results.csv (one row per record, nested fields
     // flattened to dotted column names).
     void writeResults(const std::vector<nlohmann::json>& records) const;
+    // The records as results.json holds them, for the set described by `experiment` (its
+    // experiment.json): every record, with temporal errors when the set is complete and unsharded
+    // and its metrics hold "temporal" (they need each frame's predecessor, which another shard may
+    // hold).
+    std::vector<nlohmann::json> finalRecords(const nlohmann::json& experiment) const;
 
 private:
     std::filesystem::path dir_;
 };
+
+// For a reader of the set in `dir` (`report`): when its runner was killed before writing
+// results.json and results.csv, writes them from the records as the runner would have, holding
+// the folder's lock (InputError naming the runner while one writes the folder). Returns the number
+// of records written, or nothing when `dir` has results.json or is not an experiment folder.
+std::optional<std::size_t> writeMissingResults(const std::filesystem::path& dir);
 
 // Adds "temporal_error" to every record on a camera path whose previous frame (in the same
 // sequence: scene, path, resolution, technique label and parameters) is also recorded:

@@ -1,0 +1,133 @@
+// `hybridlab bundle`: the bundle runs from a folder outside the checkout with LD_LIBRARY_PATH
+// pointed at it alone, the dynamic linker resolves every library in it but the base ones, it
+// renders the same image as the program in the build folder, and it carries the models of the
+// config's scenes.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/image/image_io.h"
+#include "experiments/runner/portable_bundle.h"
+#include "tests/cli_runner.h"
+#include "tests/shell_command.h"
+#include "tests/test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// A shell command run in `cwd` with the library path set to `libraries` alone, and no scene or
+// asset folder from the environment.
+std::string inFolder(const fs::path& cwd, const fs::path& libraries, const std::string& command) {
+    return "cd " + quoted(cwd) + " && env -u HYBRIDLAB_ASSETS -u HYBRIDLAB_SCENES LD_LIBRARY_PATH=" + quoted(libraries) + " " + command + " 2>&1";
+}
+
+TEST(PortableBundle, RunsFromAnotherFolderOnItsOwnLibrariesAndScenes) {
+    test::TempDir dir;
+    const fs::path bundle = dir / "bundle", config = dir / "bundled.toml";
+    // teapot-lens reads a model (scenes/assets/teapot); the bundle must carry it, and no other.
+    test::writeTextFile(config, R"(
+[experiment]
+name = "bundled"
+warmup_frames = 0
+repeats = 1
+[[scenes]]
+scene = "teapot-lens"
+resolutions = [[32, 18]]
+[[techniques]]
+name = "whitted"
+)");
+    const test::CliResult made = test::runHybridlab({"bundle", "--out", bundle.string(), "--config", config.string()});
+    ASSERT_EQ(made.exitStatus, 0) << made.err;
+    EXPECT_CONTAINS(made.out, "bundle in " + bundle.string() + ": ");
+    for (const char* file : {"hybridlab", "bin/hybridlab", "README.txt", "lib/libembree3.so.3", "lib/libvulkan.so.1",
+                             "scenes/whitted-classic.toml", "scenes/teapot-lens.toml", "configs/bundled.toml"})
+        EXPECT_TRUE(fs::is_regular_file(bundle / file)) << file;
+    EXPECT_TRUE(fs::is_directory(bundle / "scenes" / "assets" / "teapot"));
+    EXPECT_FALSE(fs::exists(bundle / "scenes" / "assets" / "sponza")) << "only the config's scenes' models";
+    EXPECT_FALSE(fs::exists(bundle / "lib" / "libc.so.6"));
+
+    // The dynamic linker's view: every library in lib/ but the documented base ones.
+    const test::CommandOutput ldd = test::commandOutput(inFolder(dir.path(), bundle / "lib", "ldd " + quoted(bundle / "bin" / "hybridlab")));
+    ASSERT_EQ(ldd.exitStatus, 0) << ldd.out;
+    std::istringstream lines(ldd.out);
+    std::size_t inside = 0;
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t arrow = line.find(" => ");
+        if (arrow == std::string::npos) continue;
+        const std::string soname = line.substr(line.find_first_not_of(" \t"), arrow - line.find_first_not_of(" \t"));
+        const std::string file = line.substr(arrow + 4, line.rfind(" (") - arrow - 4);
+        if (fs::path(file).parent_path() == bundle / "lib") ++inside;
+        else EXPECT_TRUE(isBaseLibrary(soname)) << line;
+    }
+    EXPECT_GT(inside, 10u) << ldd.out;  // Embree, OpenImageIO, TBB, ... and what they load
+
+    // A render from another folder: the image the program in the build folder renders.
+    const fs::path elsewhere = dir / "elsewhere";
+    fs::create_directories(elsewhere);
+    const std::string render = " render --scene whitted-classic --width 32 --height 18 --out ";
+    const test::CommandOutput bundled = test::commandOutput(inFolder(elsewhere, bundle / "lib", quoted(bundle / "hybridlab") + render + "frame.exr"));
+    ASSERT_EQ(bundled.exitStatus, 0) << bundled.out;
+    const test::CliResult direct = test::runHybridlab({"render", "--scene", "whitted-classic", "--width", "32", "--height", "18", "--out",
+                                                       (dir / "direct.exr").string()});
+    ASSERT_EQ(direct.exitStatus, 0) << direct.err;
+    const Image image = readImage(elsewhere / "frame.exr"), expected = readImage(dir / "direct.exr");
+    ASSERT_EQ(image.width(), 32);
+    ASSERT_EQ(image.height(), 18);
+    double sum = 0.0;
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(image.at(x, y)[c]));
+                sum += image.at(x, y)[c];
+            }
+            ASSERT_EQ(image.at(x, y), expected.at(x, y)) << x << "," << y;
+        }
+    }
+    EXPECT_GT(sum, 0.0);
+    EXPECT_TRUE(fs::exists(elsewhere / "frame.png"));
+
+    // The config, from the bundle: its scene loads with the bundle's model (a dry run loads the
+    // scenes and writes nothing).
+    const test::CommandOutput plan = test::commandOutput(
+        inFolder(elsewhere, bundle / "lib", quoted(bundle / "hybridlab") + " run " + quoted(bundle / "configs" / "bundled.toml") + " --dry-run --cache cache"));
+    ASSERT_EQ(plan.exitStatus, 0) << plan.out;
+    EXPECT_CONTAINS(plan.out, "experiment bundled (" + (bundle / "configs" / "bundled.toml").string() + ", ");
+}
+
+TEST(PortableBundle, BadInputIsRefusedAndLeavesNothing) {
+    test::TempDir dir;
+    const fs::path full = dir / "full";
+    fs::create_directories(full);
+    test::writeTextFile(full / "keep.txt", "mine");
+    const auto refused = test::runHybridlab({"bundle", "--out", full.string()});
+    EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+    EXPECT_CONTAINS(refused.err, full.string() + ": exists and is not an empty folder; choose another --out");
+    EXPECT_EQ(test::readTextFile(full / "keep.txt"), "mine");
+
+    const auto missing = test::runHybridlab({"bundle", "--out", (dir / "b").string(), "--config", (dir / "missing.toml").string()});
+    EXPECT_EQ(missing.exitStatus, 2) << missing.err;
+    EXPECT_CONTAINS(missing.err, (dir / "missing.toml").string());
+
+    // A folder that cannot be made: under a regular file.
+    const auto unwritable = test::runHybridlab({"bundle", "--out", (full / "keep.txt" / "bundle").string()});
+    EXPECT_EQ(unwritable.exitStatus, 3) << unwritable.err;
+    EXPECT_CONTAINS(unwritable.err, (full / "keep.txt").string());
+
+    // Nothing of any of them: only the folder the test made.
+    std::vector<std::string> left;
+    for (const auto& e : fs::recursive_directory_iterator(dir.path())) left.push_back(fs::relative(e.path(), dir.path()).string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"full", "full/keep.txt"}));
+}
+
+}  // namespace
+}  // namespace hybridlab

@@ -1,0 +1,113 @@
+// The results store: a finished run writes its record alone; results.json and results.csv are
+// written when the records are final, by the runner or by a reader of a killed runner's set. What a
+// run costs to record as the set grows is timed by a benchmark, not a test (the timings are the
+// machine's): run it with
+//   build/hybridlab_tests --gtest_also_run_disabled_tests --gtest_filter='ResultsStoreBenchmark.*'
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/core/directory_lock.h"
+#include "common/core/input_error.h"
+#include "experiments/runner/experiment_runner.h"
+#include "experiments/runner/results_store.h"
+#include "runner_checks.h"
+#include "test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::TempDir;
+
+// One real run's record, the template of the synthetic ones.
+json oneRealRecord(const TempDir& dir) {
+    const fs::path config = dir / "one.toml";
+    test::writeTextFile(config, R"(
+[experiment]
+name = "one"
+warmup_frames = 0
+repeats = 1
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[48, 27]]
+[[techniques]]
+name = "whitted"
+)");
+    EXPECT_TRUE(runExperiment(loadExperimentConfig(config), test::quietRunnerOptions(dir / "one", dir / "cache")).complete);
+    return ResultsStore(dir / "one").loadRecords().at(0);
+}
+
+double medianOf(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+TEST(ResultsStore, RecordingARunWritesItsRecordAloneAndAReaderWritesTheResultsOfAKilledSet) {
+    TempDir dir;
+    const json model = oneRealRecord(dir);
+    const ResultsStore store(dir / "one");
+    ASSERT_TRUE(store.hasResults());  // written when the runner stopped
+    EXPECT_EQ(writeMissingResults(store.dir()), std::nullopt);
+    // A runner that adds a record removes results.json first and writes it when it stops; killed
+    // in between, it leaves the records alone.
+    store.removeResults();
+    EXPECT_FALSE(fs::exists(store.dir() / "results.json"));
+    EXPECT_FALSE(fs::exists(store.dir() / "results.csv"));
+    json second = model;
+    second["index"] = 1;
+    second["id"] = "second";
+    store.recordRun(second);
+    EXPECT_FALSE(store.hasResults());
+    {
+        // While a runner holds the folder, a reader writes nothing there.
+        const DirectoryLock runner(store.dir());
+        EXPECT_THROW(writeMissingResults(store.dir()), InputError);
+        EXPECT_FALSE(store.hasResults());
+    }
+    EXPECT_EQ(writeMissingResults(store.dir()), std::optional<std::size_t>(2));
+    const auto rows = test::readResults(store.dir());
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].at("id"), model.at("id"));
+    EXPECT_EQ(rows[1].at("id"), "second");
+    const std::string csv = test::readTextFile(store.dir() / "results.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+    EXPECT_FALSE(fs::exists(store.dir() / DirectoryLock::kFileName));
+    EXPECT_EQ(writeMissingResults(dir / "nothing-here"), std::nullopt);
+}
+
+TEST(ResultsStoreBenchmark, DISABLED_RecordingTheThousandthRunCostsAsMuchAsTheTenth) {
+    TempDir dir;
+    const json model = oneRealRecord(dir);
+    const ResultsStore store(dir / "set");
+    store.createLayout();
+    constexpr int kRuns = 1000;
+    std::vector<double> ms;
+    for (int i = 0; i < kRuns; ++i) {
+        json record = model;
+        record["index"] = i;
+        record["id"] = model.at("id").get<std::string>() + "-" + std::to_string(i);
+        const auto start = std::chrono::steady_clock::now();
+        store.recordRun(record);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    // Medians over 11 neighbouring runs: the 5th to the 15th, and the 990th to the 1,000th.
+    const double tenth = medianOf({ms.begin() + 4, ms.begin() + 15});
+    const double thousandth = medianOf({ms.end() - 11, ms.end()});
+    // And once, when the runner stops: results.json and results.csv of every record.
+    const auto start = std::chrono::steady_clock::now();
+    store.writeResults(store.loadRecords());
+    const double results = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("record of %zu bytes; recording the 10th run: %.3f ms, the 1000th: %.3f ms (median of 11 around each), ratio %.2f; "
+                "results.json and results.csv of the 1000 records, once: %.1f ms\n",
+                model.dump(1).size(), tenth, thousandth, thousandth / tenth, results);
+    EXPECT_EQ(test::readResults(store.dir()).size(), static_cast<std::size_t>(kRuns));
+}
+
+}  // namespace
+}  // namespace hybridlab
