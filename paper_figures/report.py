@@ -134,18 +134,21 @@ def work_accuracy(records, out_dir, key, title):
 
 
 def stage_breakdown(records, out_dir, key, title):
-    """Stacked median stage times per technique variant, averaged over the frames."""
+    """Stacked median stage times per technique variant, averaged over the frames: one bar segment
+    and legend entry per kind of work (the stage vocabulary, techniques/stage_names.h), in a
+    frame's order and in the same colour on every chart."""
     by_variant = collections.defaultdict(list)
     for r in records:
         by_variant[rs.variant(r)].append(r)
-    stages = sorted({s for r in records for s in rs.stages(r)})
+    kinds = rs.kind_order({k for r in records for k in rs.stage_kinds(r)})
     variants = sorted(by_variant, key=rs.natural_key)
     fig, ax = plt.subplots(figsize=(max(6, 0.7 * len(variants) + 2), 4.5))
     bottom = [0.0] * len(variants)
     cmap = plt.get_cmap("tab20")
-    for i, s in enumerate(stages):
-        vals = [statistics.mean(rs.stages(r).get(s, 0.0) for r in by_variant[v]) for v in variants]
-        ax.bar(range(len(variants)), vals, bottom=bottom, label=s, color=cmap(i % 20))
+    for k in kinds:
+        vals = [statistics.mean(rs.stage_kinds(r).get(k, 0.0) for r in by_variant[v]) for v in variants]
+        colour = cmap((rs.STAGE_KINDS.index(k) if k in rs.STAGE_KINDS else len(rs.STAGE_KINDS) + kinds.index(k)) % 20)
+        ax.bar(range(len(variants)), vals, bottom=bottom, label=k, color=colour)
         bottom = [b + v for b, v in zip(bottom, vals)]
     ax.set_xticks(range(len(variants)))
     ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=7)

@@ -10,6 +10,7 @@
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -145,8 +146,8 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     FrameResult result;
     StageClock clock(result);
 
-    // raster: the G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays
-    // (stage gbuffer_rays, after the BVH update it needs).
+    // The G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays (stage
+    // gbuffer.rays, after the BVH update it needs).
     RasterRequest request = frame.rasterRequest();
     request.readback = kGBufferSurfaceTargets;
     request.lighting = true;
@@ -155,7 +156,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
     RayStats primaryStats;
     const GBuffer& g = gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
-    clock.lap("raster");
+    lapRasterFrame(clock, raster_);
 
     // heuristic: the selection, then the heuristic mask.
     const Selection selection = selectObjects(
