@@ -54,7 +54,7 @@ def log_ticks(axis):
 
 
 def speed_accuracy(v, out_dir, key, title):
-    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key)
+    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key, [r for s in v.settings.values() for r in s.records])
 
 
 def speed_accuracy_figure(v, title):
@@ -130,7 +130,7 @@ def work_accuracy(records, out_dir, key, title):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1), frameon=False)
     fig.suptitle(title)
-    return save(fig, out_dir, "work-accuracy-" + key)
+    return save(fig, out_dir, "work-accuracy-" + key, records)
 
 
 def stage_breakdown(records, out_dir, key, title):
@@ -158,7 +158,7 @@ def stage_breakdown(records, out_dir, key, title):
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title(title)
     ax.grid(axis="y", alpha=0.3)
-    return save(fig, out_dir, "stages-" + key)
+    return save(fig, out_dir, "stages-" + key, records)
 
 
 def along_path(records, out_dir, key, title):
@@ -188,7 +188,7 @@ def along_path(records, out_dir, key, title):
         axes[i][0].set_visible(False)  # frame time is one per run, not per region
     axes[0][0].legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncol=2, frameon=False)
     fig.suptitle(title)
-    return save(fig, out_dir, "path-" + key)
+    return save(fig, out_dir, "path-" + key, records)
 
 
 TABLE_SCRIPT = """<script>
