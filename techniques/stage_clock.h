@@ -3,17 +3,17 @@
 // stage_names.h) or a bake's. Laps cover the whole time from the clock's start, so the stages add
 // up to the wall clock.
 #include <algorithm>
-#include <chrono>
 #include <string>
 #include <vector>
 
 #include "techniques/technique.h"
+#include "common/core/wall_clock.h"
 
 namespace hybridlab {
 
 class StageClock {
 public:
-    explicit StageClock(std::vector<StageTime>& stages) : stages_(stages), start_(std::chrono::steady_clock::now()) {}
+    explicit StageClock(std::vector<StageTime>& stages) : stages_(stages), start_(WallClock::now()) {}
     explicit StageClock(FrameResult& result) : StageClock(result.stages) {}
 
     // Ends the current stage under `name` and starts the next. A name timed before gets the time
@@ -23,8 +23,8 @@ public:
     // Ends the current stage split into the parts timed inside it (each added as lap adds it) and
     // the rest of its time under `rest` (0 when the parts cover it).
     void lap(const std::vector<StageTime>& parts, const std::string& rest) {
-        const auto now = std::chrono::steady_clock::now();
-        double remaining = std::chrono::duration<double, std::milli>(now - start_).count();
+        const auto now = WallClock::now();
+        double remaining = millisecondsBetween(start_, now);
         for (const StageTime& p : parts) {
             add(p.name, p.milliseconds);
             remaining -= p.milliseconds;
@@ -41,7 +41,7 @@ private:
     }
 
     std::vector<StageTime>& stages_;
-    std::chrono::steady_clock::time_point start_;
+    WallClock::time_point start_;
 };
 
 }  // namespace hybridlab
