@@ -153,9 +153,10 @@ def stage_breakdown(records, out_dir, key, title):
     ax.set_xticks(range(len(variants)))
     ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=7)
     ax.set_ylabel("stage time (ms, median, mean over frames)")
-    # Whole bars, from zero, with the legend beside them rather than over them.
+    # Whole bars, from zero, with the legend beside them rather than over them, top to bottom as stacked.
     ax.set_ylim(0.0, 1.05 * max(bottom + [1e-3]))
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(handles[::-1], labels[::-1], fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title(title)
     ax.grid(axis="y", alpha=0.3)
     return save(fig, out_dir, "stages-" + key, records)
