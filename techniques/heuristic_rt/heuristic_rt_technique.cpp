@@ -11,6 +11,7 @@
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/raster_stages.h"
+#include "techniques/shared/raster_warm_up.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -84,10 +85,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
     localBounds_.clear();
     for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
     // Lavapipe compiles shaders at the first draw.
-    RasterRequest warmUp;
-    warmUp.camera = context.scene().camera;
-    warmUp.width = 64;
-    warmUp.height = 36;
+    RasterRequest warmUp = RasterWarmUp::preparing(scene).rasterRequest();
     warmUp.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
     context.rasterizer().render(warmUp, raster_);
 }
