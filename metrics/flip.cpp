@@ -152,14 +152,12 @@ float decodeSrgb(float c) {
 // Display sRGB -> linear RGB -> XYZ -> YCxCz, as three float planes.
 Planes ycxczPlanes(const cv::Mat3f& srgb) {
     Planes planes{cv::Mat1f(srgb.size()), cv::Mat1f(srgb.size()), cv::Mat1f(srgb.size())};
-    cv::parallel_for_(cv::Range(0, srgb.rows), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            const cv::Vec3f* in = srgb[y];
-            float* out[3] = {planes[0].ptr<float>(y), planes[1].ptr<float>(y), planes[2].ptr<float>(y)};
-            for (int x = 0; x < srgb.cols; ++x) {
-                const cv::Vec3d o = ycxczFromLinearRgb({decodeSrgb(in[x][0]), decodeSrgb(in[x][1]), decodeSrgb(in[x][2])});
-                for (int c = 0; c < 3; ++c) out[c][x] = static_cast<float>(o[c]);
-            }
+    forEachRowInParallel(srgb.rows, [&](int y) {
+        const cv::Vec3f* in = srgb[y];
+        float* out[3] = {planes[0].ptr<float>(y), planes[1].ptr<float>(y), planes[2].ptr<float>(y)};
+        for (int x = 0; x < srgb.cols; ++x) {
+            const cv::Vec3d o = ycxczFromLinearRgb({decodeSrgb(in[x][0]), decodeSrgb(in[x][1]), decodeSrgb(in[x][2])});
+            for (int c = 0; c < 3; ++c) out[c][x] = static_cast<float>(o[c]);
         }
     });
     return planes;
@@ -212,11 +210,9 @@ cv::Mat1f colorError(const Planes& test, const Planes& reference, double ppd) {
         for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(rgb[c], 0.0, 1.0);
         return huntAdjustedLab(rgb);
     };
-    cv::parallel_for_(cv::Range(0, error.rows), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            for (int x = 0; x < error.cols; ++x) {
-                error(y, x) = static_cast<float>(redistributedColorError(hyab(perceptual(t, y, x), perceptual(r, y, x))));
-            }
+    forEachRowInParallel(error.rows, [&](int y) {
+        for (int x = 0; x < error.cols; ++x) {
+            error(y, x) = static_cast<float>(redistributedColorError(hyab(perceptual(t, y, x), perceptual(r, y, x))));
         }
     });
     return error;
@@ -293,13 +289,11 @@ cv::Mat1f featureDifference(const cv::Mat& testY, const cv::Mat& referenceY, dou
     referenceY.convertTo(r, CV_64F, 1.0 / 116.0, 16.0 / 116.0);
     const FeatureResponses ft = detectFeatures(t, detectors), fr = detectFeatures(r, detectors);
     cv::Mat1f difference(t.size());
-    cv::parallel_for_(cv::Range(0, difference.rows), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            for (int x = 0; x < difference.cols; ++x) {
-                const double d = std::max(std::abs(fr.edges(y, x) - ft.edges(y, x)), std::abs(fr.points(y, x) - ft.points(y, x)));
-                static_assert(kQf == 0.5, "d^qf is a square root");
-                difference(y, x) = static_cast<float>(std::sqrt(d / std::numbers::sqrt2));
-            }
+    forEachRowInParallel(difference.rows, [&](int y) {
+        for (int x = 0; x < difference.cols; ++x) {
+            const double d = std::max(std::abs(fr.edges(y, x) - ft.edges(y, x)), std::abs(fr.points(y, x) - ft.points(y, x)));
+            static_assert(kQf == 0.5, "d^qf is a square root");
+            difference(y, x) = static_cast<float>(std::sqrt(d / std::numbers::sqrt2));
         }
     });
     return difference;
@@ -315,10 +309,8 @@ cv::Mat1f flipMap(const cv::Mat3f& test, const cv::Mat3f& reference, double pixe
     const cv::Mat1f feature = featureDifference(t[0], r[0], pixelsPerDegree);
     // FLIP = colour error ^ (1 - feature difference): features push the colour error towards 1.
     cv::Mat1f flip(test.size());
-    cv::parallel_for_(cv::Range(0, flip.rows), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            for (int x = 0; x < flip.cols; ++x) flip(y, x) = std::pow(color(y, x), 1.0f - feature(y, x));
-        }
+    forEachRowInParallel(flip.rows, [&](int y) {
+        for (int x = 0; x < flip.cols; ++x) flip(y, x) = std::pow(color(y, x), 1.0f - feature(y, x));
     });
     return flip;
 }

@@ -4,6 +4,7 @@
 
 #include "common/core/input_error.h"
 #include "common/image/color.h"
+#include "metrics/parallel_tasks.h"
 
 namespace hybridlab {
 
@@ -12,13 +13,11 @@ const char* valueSpaceName(ValueSpace space) { return space == ValueSpace::Displ
 cv::Mat3f metricRgb(const Image& linear, ValueSpace space) {
     cv::Mat3f rgb(linear.height(), linear.width());
     // In parallel: the sRGB encoding's powf makes this as slow as SSIM otherwise.
-    cv::parallel_for_(cv::Range(0, linear.height()), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            cv::Vec3f* row = rgb[y];
-            for (int x = 0; x < linear.width(); ++x) {
-                const glm::vec4 c = space == ValueSpace::Display ? linearToDisplay(linear.at(x, y)) : linear.at(x, y);
-                row[x] = cv::Vec3f(c.r, c.g, c.b);
-            }
+    forEachRowInParallel(linear.height(), [&](int y) {
+        cv::Vec3f* row = rgb[y];
+        for (int x = 0; x < linear.width(); ++x) {
+            const glm::vec4 c = space == ValueSpace::Display ? linearToDisplay(linear.at(x, y)) : linear.at(x, y);
+            row[x] = cv::Vec3f(c.r, c.g, c.b);
         }
     });
     return rgb;

@@ -1,16 +1,26 @@
 #pragma once
-// Independent pieces of work (filter passes of different planes) spread over OpenCV's threads:
-// one filter pass alone runs on one thread.
+// The metrics' parallel loops, on the program's one thread pool (TBB, as the renderers' loops):
+// independent pieces of work (filter passes of different planes: one filter pass alone runs on
+// one thread) and the rows of an image. Each task and row writes only its own output, so the
+// results do not depend on how the work is split.
+#include <cstddef>
 #include <functional>
 #include <vector>
 
-#include <opencv2/core.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace hybridlab {
 
 inline void runInParallel(const std::vector<std::function<void()>>& tasks) {
-    cv::parallel_for_(cv::Range(0, static_cast<int>(tasks.size())), [&](const cv::Range& range) {
-        for (int i = range.start; i < range.end; ++i) tasks[i]();
+    tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) { tasks[i](); });
+}
+
+// Calls perRow(y) for every y in [0, rows).
+template <class PerRow>
+void forEachRowInParallel(int rows, PerRow&& perRow) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
+        for (int y = range.begin(); y < range.end(); ++y) perRow(y);
     });
 }
 

@@ -45,16 +45,14 @@ cv::Mat1f ssimMap(const cv::Mat1d& test, const cv::Mat1d& reference) {
                    [&] { yy = localMean(reference.mul(reference)); },
                    [&] { xy = localMean(test.mul(reference)); }});
     cv::Mat1f map(test.rows, test.cols);
-    cv::parallel_for_(cv::Range(0, map.rows), [&](const cv::Range& rows) {
-        for (int y = rows.start; y < rows.end; ++y) {
-            for (int x = 0; x < map.cols; ++x) {
-                const double mx = muX(y, x), my = muY(y, x);
-                // Population moments under the window: E[X^2] - E[X]^2 (eqs. 14-16, weights sum to 1).
-                const double varX = xx(y, x) - mx * mx, varY = yy(y, x) - my * my, cov = xy(y, x) - mx * my;
-                // Eq. 13.
-                map(y, x) = static_cast<float>(((2.0 * mx * my + kC1) * (2.0 * cov + kC2)) /
-                                               ((mx * mx + my * my + kC1) * (varX + varY + kC2)));
-            }
+    forEachRowInParallel(map.rows, [&](int y) {
+        for (int x = 0; x < map.cols; ++x) {
+            const double mx = muX(y, x), my = muY(y, x);
+            // Population moments under the window: E[X^2] - E[X]^2 (eqs. 14-16, weights sum to 1).
+            const double varX = xx(y, x) - mx * mx, varY = yy(y, x) - my * my, cov = xy(y, x) - mx * my;
+            // Eq. 13.
+            map(y, x) = static_cast<float>(((2.0 * mx * my + kC1) * (2.0 * cov + kC2)) /
+                                           ((mx * mx + my * my + kC1) * (varX + varY + kC2)));
         }
     });
     return map;

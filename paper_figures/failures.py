@@ -153,7 +153,7 @@ def along_path_by_technique(seqs, out_dir, name, title, baseline):
     fig.suptitle(title + "\nred: each setting's worst frame (frame time: only a spike beyond its repeats' spread); dotted: its median along "
                  "the path" + ("; dashed (SSIM): its median on the baseline scene" if baseline else ""), fontsize=10)
     fig.tight_layout()
-    return save(fig, out_dir, name)
+    return save(fig, out_dir, name, [r for rows in seqs.values() for r in rows])
 
 
 def worst_cell(w, spec):

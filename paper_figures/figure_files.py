@@ -8,11 +8,36 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import results as rs  # noqa: E402
 import viewer  # noqa: E402
 
 
-def save(fig, out_dir, name):
-    """figures/NAME.svg and .pdf; returns the SVG's path."""
+def device_note(records):
+    """Where a chart's runs were measured on more than one device (a result set merged or resumed
+    with --allow-mixed-devices, whose runs each keep their `device`): a footnote numbering the
+    devices and naming the settings measured on each; None on one device."""
+    devices, settings = [], []
+    for r in records:
+        d = r.get("device")
+        if d not in devices:
+            devices.append(d)
+            settings.append([])
+        v = rs.variant(r)
+        if v not in settings[devices.index(d)]:
+            settings[devices.index(d)].append(v)
+    if len(devices) < 2:
+        return None
+    return "\n".join(["MIXED devices: times do not compare across them"] +
+                     ["(%d) %s: %s" % (i + 1, rs.device_summary(d), ", ".join(sorted(vs, key=rs.natural_key)))
+                      for i, (d, vs) in enumerate(zip(devices, settings))])
+
+
+def save(fig, out_dir, name, records=()):
+    """figures/NAME.svg and .pdf, with device_note(records) under the chart where the runs drawn
+    were measured on several devices; returns the SVG's path."""
+    note = device_note(records)
+    if note:
+        fig.text(0.01, -0.02, note, fontsize=7, va="top", ha="left", color="#a40", wrap=True)
     paths = []
     for ext in ("svg", "pdf"):
         p = os.path.join(out_dir, "figures", name + "." + ext)

@@ -7,14 +7,13 @@ ssr_fallback runs).
 One line per scene, size, view and hybrid setting: its frame time (median over the repeats), the
 speed-up rt_only / setting measured in the same run, SSIM and FLIP against the reference, the rays
 per pixel (primary rays included where the G-buffer is ray cast) and the G-buffer's cost: the
-rasterizer's stage (G-buffer pass, lighting and read-back, or lighting and the upload) and the
-primary rays' stage."""
+rasterizer's stages (results.raster_ms: the G-buffer pass, lighting and read-back, or lighting and
+the upload) and the primary rays' stage (gbuffer.rays)."""
 import sys
 
 import results
 
 HYBRIDS = ("heuristic_rt", "ssr_fallback")
-RASTER_STAGE = {"heuristic_rt": "rast", "ssr_fallback": "raster"}
 
 
 def key(r):
@@ -28,7 +27,7 @@ def frame(r):
 def table(rows):
     rt_only = {key(r): r for r in rows if r["technique"] == "rt_only"}
     out = ["**G-buffer from the rasterizer and from primary rays** (ms, medians over the repeats; speed-up = rt_only / setting)", "",
-           "| scene | size | view | technique | setting | ms | speed-up | SSIM | FLIP | rays / pixel | raster stage | gbuffer_rays |",
+           "| scene | size | view | technique | setting | ms | speed-up | SSIM | FLIP | rays / pixel | rasterizer | gbuffer.rays |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k, base in sorted(rt_only.items()):
         pixels = base["width"] * base["height"]
@@ -41,8 +40,8 @@ def table(rows):
             out.append("| %s | %s | %s | %s | %s | %.1f | %.2f | %s | %s | %.2f | %.1f | %s |" % (
                 k[0], k[1], k[2], r["label"], r["parameters_text"] or "defaults", frame(r), frame(base) / frame(r),
                 results.fmt(results.metric(r, "whole", "ssim"), "%.4f"), results.fmt(results.metric(r, "whole", "flip"), "%.4f"),
-                r["counters"]["rays_total"] / pixels, results.stage(r, RASTER_STAGE[r["technique"]], 0.0),
-                results.fmt(results.stage(r, "gbuffer_rays"), "%.1f")))
+                r["counters"]["rays_total"] / pixels, results.raster_ms(r, 0.0),
+                results.fmt(results.stage(r, "gbuffer.rays"), "%.1f")))
     out.append("")
     return out
 

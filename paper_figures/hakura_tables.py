@@ -23,8 +23,9 @@ import statistics
 import results
 
 REFERENCE = "two-term-rt"
-STAGES = [("vertex_ray_tracing", "ray tracing at vertices"), ("texture_coordinates", "texture coordinates"),
-          ("tessellation", "tessellation"), ("other", "other (incl. rendering)")]
+# The paper's stages; "other" is every other stage of the frame (rendering included).
+STAGES = [("trace.lens_vertices", "ray tracing at vertices"), ("lens.texture_coordinates", "texture coordinates"),
+          ("lens.tessellation", "tessellation")]
 # Figure 8's (multi-layer, single-layer) pairs: the default bake, the bake at the display's resolution,
 # and that bake without matching neighbouring viewpoint samples (hakura2001_popping.toml).
 SINGLE_LAYER_PAIRS = [("lem-tau3", "lem-single"), ("lem-display", "lem-display-single"),
@@ -59,6 +60,8 @@ def results_table(rows, size):
 
     for key, name in STAGES:
         line(name, lambda r, k=key: results.stage(r, k) if r is not ref else None, "%.1f")
+    line("other (incl. rendering)", lambda r: sum(ms for s, ms in results.stages(r).items() if s not in dict(STAGES)) if r is not ref else None,
+         "%.1f")
     line("trace (ray tracing every pixel)", lambda r: results.stage(r, "trace") if r is ref else None, "%.1f")
     line("**total**", lambda r: r["frame_ms"]["median"], "%.1f")
     line("rays (lens pixels for ray tracing)",

@@ -54,7 +54,7 @@ def log_ticks(axis):
 
 
 def speed_accuracy(v, out_dir, key, title):
-    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key)
+    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key, [r for s in v.settings.values() for r in s.records])
 
 
 def speed_accuracy_figure(v, title):
@@ -130,32 +130,36 @@ def work_accuracy(records, out_dir, key, title):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1), frameon=False)
     fig.suptitle(title)
-    return save(fig, out_dir, "work-accuracy-" + key)
+    return save(fig, out_dir, "work-accuracy-" + key, records)
 
 
 def stage_breakdown(records, out_dir, key, title):
-    """Stacked median stage times per technique variant, averaged over the frames."""
+    """Stacked median stage times per technique variant, averaged over the frames: one bar segment
+    and legend entry per kind of work (the stage vocabulary, techniques/stage_names.h), in a
+    frame's order and in the same colour on every chart."""
     by_variant = collections.defaultdict(list)
     for r in records:
         by_variant[rs.variant(r)].append(r)
-    stages = sorted({s for r in records for s in rs.stages(r)})
+    kinds = rs.kind_order({k for r in records for k in rs.stage_kinds(r)})
     variants = sorted(by_variant, key=rs.natural_key)
     fig, ax = plt.subplots(figsize=(max(6, 0.7 * len(variants) + 2), 4.5))
     bottom = [0.0] * len(variants)
     cmap = plt.get_cmap("tab20")
-    for i, s in enumerate(stages):
-        vals = [statistics.mean(rs.stages(r).get(s, 0.0) for r in by_variant[v]) for v in variants]
-        ax.bar(range(len(variants)), vals, bottom=bottom, label=s, color=cmap(i % 20))
+    for k in kinds:
+        vals = [statistics.mean(rs.stage_kinds(r).get(k, 0.0) for r in by_variant[v]) for v in variants]
+        colour = cmap((rs.STAGE_KINDS.index(k) if k in rs.STAGE_KINDS else len(rs.STAGE_KINDS) + kinds.index(k)) % 20)
+        ax.bar(range(len(variants)), vals, bottom=bottom, label=k, color=colour)
         bottom = [b + v for b, v in zip(bottom, vals)]
     ax.set_xticks(range(len(variants)))
     ax.set_xticklabels(variants, rotation=35, ha="right", fontsize=7)
     ax.set_ylabel("stage time (ms, median, mean over frames)")
-    # Whole bars, from zero, with the legend beside them rather than over them.
+    # Whole bars, from zero, with the legend beside them rather than over them, top to bottom as stacked.
     ax.set_ylim(0.0, 1.05 * max(bottom + [1e-3]))
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(handles[::-1], labels[::-1], fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title(title)
     ax.grid(axis="y", alpha=0.3)
-    return save(fig, out_dir, "stages-" + key)
+    return save(fig, out_dir, "stages-" + key, records)
 
 
 def along_path(records, out_dir, key, title):
@@ -185,7 +189,7 @@ def along_path(records, out_dir, key, title):
         axes[i][0].set_visible(False)  # frame time is one per run, not per region
     axes[0][0].legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncol=2, frameon=False)
     fig.suptitle(title)
-    return save(fig, out_dir, "path-" + key)
+    return save(fig, out_dir, "path-" + key, records)
 
 
 TABLE_SCRIPT = """<script>

@@ -80,27 +80,76 @@ def fmt(value, spec="%.3f", missing="-"):
     return missing if value is None else spec % value
 
 
-# One name per kind of work across techniques; result sets written before the techniques used
-# these names carry the old ones, read here under the new.
-STAGE_NAMES = {"rast": "raster", "heur": "heuristic", "rayt": "trace", "ray_trace": "trace"}
+def _stage_vocabulary():
+    """The stage vocabulary, in a frame's order: (name, meaning) pairs from techniques/stage_names.h,
+    the one place it is defined."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "techniques", "stage_names.h")
+    with open(header) as f:
+        text = f.read()
+    table = text[text.index("kStageNames[] = {"):]
+    names = re.findall(r'^\s*\{"([a-z_]+)", "((?:[^"\\]|\\.)*)"\},$', table[:table.index("};")], re.M)
+    if not names:
+        raise RuntimeError("no stage names in %s" % header)
+    return names
+
+
+STAGE_VOCABULARY = _stage_vocabulary()
+STAGE_KINDS = [name for name, _ in STAGE_VOCABULARY]
+
+# Result sets written before the vocabulary name some stages otherwise: read under the names they
+# have now. Two were several kinds of work in one and stay as they are (charted as such): `raster`
+# (heuristic_rt's and ssr_fallback's rasterizer frame: shadow maps, G-buffer, lighting, read-back)
+# and `other` (layered_em's rasterizer frame with the lens pass, and the lens composited).
+OLD_STAGE_NAMES = {"rast": "raster", "heur": "heuristic", "rayt": "trace", "ray_trace": "trace",
+                   "gbuffer_rays": "gbuffer.rays", "gbuffer_upload": "gbuffer.upload", "visible_pixels": "heuristic.visible_pixels",
+                   "seam_blur": "blend.seam_blur", "composite": "blend", "vertex_ray_tracing": "trace.lens_vertices",
+                   "texture_coordinates": "lens.texture_coordinates", "tessellation": "lens.tessellation"}
+# The stages of the rasterizer's frame (techniques/shared/raster_stages.h) but a technique's own
+# passes (ssr, lens.draw): the "raster" time of the papers' tables.
+RASTERIZER_STAGES = ("shadow_maps", "gbuffer", "gbuffer.upload", "heuristic.visible_pixels", "lighting", "readback", "overhead", "raster")
 
 
 def stage_name(name):
-    return STAGE_NAMES.get(name, name)
+    return OLD_STAGE_NAMES.get(name, name)
+
+
+def stage_kind(name):
+    """The kind of work a stage is charted under: its name before the first dot."""
+    return stage_name(name).split(".")[0]
 
 
 def stages(r):
-    """A record's median stage times (ms) by their names in the one vocabulary."""
+    """A record's median stage times (ms) by their names in the vocabulary."""
     out = {}
     for name, s in r["stages"].items():
         out[stage_name(name)] = out.get(stage_name(name), 0.0) + s["median"]
     return out
 
 
+def stage_kinds(r):
+    """A record's median stage times (ms) summed by kind of work (stage_kind)."""
+    out = {}
+    for name, ms in stages(r).items():
+        out[stage_kind(name)] = out.get(stage_kind(name), 0.0) + ms
+    return out
+
+
+def kind_order(kinds):
+    """Kinds of work in a frame's order (the vocabulary's), names outside it (old result sets') last."""
+    return sorted(kinds, key=lambda k: (STAGE_KINDS.index(k) if k in STAGE_KINDS else len(STAGE_KINDS), k))
+
+
 def stage(r, name, missing=None):
-    """The median time (ms) of a record's stage `name` (either vocabulary); `missing` if the
-    technique has no such stage."""
+    """The median time (ms) of a record's stage `name` (either vocabulary; exactly that stage, not
+    its details); `missing` if the technique has no such stage."""
     return stages(r).get(stage_name(name), missing)
+
+
+def raster_ms(r, missing=None):
+    """The median time (ms) of a record's rasterizer frame: the sum of its RASTERIZER_STAGES;
+    `missing` without any (no rasterizer)."""
+    own = [ms for name, ms in stages(r).items() if name in RASTERIZER_STAGES]
+    return sum(own) if own else missing
 
 
 def result_link(out_dir, result_dir, path):

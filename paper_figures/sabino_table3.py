@@ -5,7 +5,7 @@
 
 Table 3 ("Performance comparison between our hybrid render and a pure ray tracer implementation",
 ms) per scene: vertices, triangles, DR (the hybrid's deferred-rendering time: its rasterization
-stage), RT (the ray-tracing-only frame), Hybrid (the hybrid's frame) and the gain RT / Hybrid. Here
+stages, results.raster_ms), RT (the ray-tracing-only frame), Hybrid (the hybrid's frame) and the gain RT / Hybrid. Here
 the hybrid is the entry labelled `hybrid` (heuristic_rt), the ray tracer the one labelled `rt`
 (rt_only); times are the medians over a run's repeats, and each one's SSIM against the reference
 is given beside them (the paper reports none). A scene with several frames (a camera path) gets
@@ -16,7 +16,6 @@ import sys
 import results
 
 HYBRID, RAY_TRACER = "hybrid", "rt"
-RASTER_STAGE = "raster"
 
 
 def scene_rows(rows, scene, label):
@@ -35,10 +34,10 @@ def table3(rows):
         hybrid, rt = scene_rows(rows, scene, HYBRID), scene_rows(rows, scene, RAY_TRACER)
         if not hybrid or not rt:
             sys.exit("sabino_table3: %s needs runs labelled '%s' and '%s'" % (scene, HYBRID, RAY_TRACER))
-        if results.stage(hybrid[0], RASTER_STAGE) is None:
-            sys.exit("sabino_table3: the '%s' runs have no '%s' stage (is it heuristic_rt?)" % (HYBRID, RASTER_STAGE))
+        if results.raster_ms(hybrid[0]) is None:
+            sys.exit("sabino_table3: the '%s' runs have no rasterizer stages (is it heuristic_rt?)" % HYBRID)
         stats = hybrid[0]["scene_stats"]
-        dr = mean(hybrid, lambda r: results.stage(r, RASTER_STAGE))
+        dr = mean(hybrid, results.raster_ms)
         t_rt = mean(rt, lambda r: r["frame_ms"]["median"])
         t_hybrid = mean(hybrid, lambda r: r["frame_ms"]["median"])
         out.append("| %s | %d | %d | %.1f | %.1f | %.1f | %.2f | %.4f / %.4f |" % (

@@ -6,7 +6,8 @@
 Speed: one line per scene and `ssr_fallback` variant (label `ssr_fallback`): the `whitted` run's
 frame time, the variant's, their ratio (whitted / ssr_fallback: the speed-up), SSIM against the
 reference, the SSR hit rate and the fallback rays, with the variant's stage times (medians over the
-repeats). Bound: one line per run labelled `glass-trees` (SSR on, no fallback, SSR hits not
+repeats; raster is the rasterizer's stages, results.raster_ms, and blend its seam blur and
+composite). Bound: one line per run labelled `glass-trees` (SSR on, no fallback, SSR hits not
 recursed: what remains in the `trace` stage is the refractive texels' ray trees, which the
 method always traces): its raster, SSR and ray-trace stages, the trees' share of whitted's frame,
 and the largest speed-up the method could reach if everything else cost nothing,
@@ -34,7 +35,7 @@ def beside_whitted(rows, whitted, label):
 def speed_table(rows, whitted):
     out = ["**Speed against accuracy** (ms, medians over the repeats; ratio = whitted / ssr_fallback)", "",
            "| scene | size | setting | whitted ms | ssr_fallback ms | ratio | SSIM | SSR hit rate | fallback rays | "
-           "raster | ssr | trace | seam_blur | composite |",
+           "raster | ssr | trace | blend.seam_blur | blend |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r, w in beside_whitted(rows, whitted, "ssr_fallback"):
         c = r["counters"]
@@ -42,7 +43,7 @@ def speed_table(rows, whitted):
         out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r), w / frame(r),
             "%.4f" % ssim if ssim is not None else "-", c.get("ssr_hit_rate", 0.0), int(c.get("fallback_rays", 0)),
-            *(results.stage(r, s, 0.0) for s in ("raster", "ssr", "trace", "seam_blur", "composite"))))
+            results.raster_ms(r, 0.0), *(results.stage(r, s, 0.0) for s in ("ssr", "trace", "blend.seam_blur", "blend"))))
     out.append("")
     return out
 
@@ -54,7 +55,7 @@ def bound_table(rows, whitted):
            "whitted / raster |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     for r, w in beside_whitted(rows, whitted, "glass-trees"):
-        raster, ssr, trees = results.stage(r, "raster", 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "trace", 0.0)
+        raster, ssr, trees = results.raster_ms(r, 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "trace", 0.0)
         out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,
             w / (raster + ssr + trees), w / raster))

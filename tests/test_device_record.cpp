@@ -1,5 +1,6 @@
-// The device record: every key in every result set's experiment.json, `hybridlab --version`, and
-// `hybridlab merge` refusing shards from two devices unless --allow-mixed-devices.
+// The device record: every key in every result set's experiment.json, `hybridlab --version`,
+// `hybridlab merge` and `run --resume` refusing to mix devices unless --allow-mixed-devices, and
+// the report's charts of a mixed set naming the devices.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -96,6 +97,81 @@ params = { max_depth = [0, 1] }
         EXPECT_EQ(row.at("device").at("vulkan_device"), shard1 ? "Imaginary GPU 9000" : here) << row.at("id");
     }
     EXPECT_EQ(readJsonFile(mixed / "experiment.json").at("devices").size(), 2u);
+
+    // The report labels every chart of the mixed set with both devices, each with its runs' setting.
+    const fs::path report = dir.path() / "report";
+    r = test::runHybridlab({"report", mixed.string(), "--out", report.string()});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    std::size_t charts = 0;
+    for (const auto& f : fs::directory_iterator(report / "figures")) {
+        if (f.path().extension() != ".svg") continue;
+        SCOPED_TRACE(f.path().filename().string());
+        ++charts;
+        const std::string svg = test::readTextFile(f.path());
+        EXPECT_NE(svg.find("MIXED devices"), std::string::npos);
+        EXPECT_NE(svg.find("(1) " + here), std::string::npos);
+        EXPECT_NE(svg.find("(2) Imaginary GPU 9000"), std::string::npos);
+        EXPECT_NE(svg.find("whitted [max_depth=1]"), std::string::npos);
+    }
+    EXPECT_GE(charts, 3u);  // speed-accuracy, stages, rays per pixel
+}
+
+// The same machine's rule for `run --resume`: a result set whose experiment.json records another
+// device is refused (exit 2, both devices named, nothing written) unless --allow-mixed-devices;
+// then the runs recorded before keep that device and the new ones record this machine's.
+TEST(DeviceRecord, ResumeRefusesAResultSetFromAnotherDeviceUnlessAllowed) {
+    test::TempDir dir;
+    const fs::path config = dir.path() / "two.toml";
+    test::writeTextFile(config, R"(
+[experiment]
+name = "two"
+warmup_frames = 0
+repeats = 1
+metrics = ["ssim"]
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[32, 18]]
+[[techniques]]
+name = "whitted"
+params = { max_depth = [0, 1] }
+)");
+    RunnerOptions o = test::quietRunnerOptions(dir.path() / "set", dir.path() / "cache");
+    o.maxRuns = 1;
+    ASSERT_FALSE(runExperiment(loadExperimentConfig(config), o).complete);
+    json meta = readJsonFile(o.outDir / "experiment.json");
+    const std::string here = meta["device"]["vulkan_device"];
+    meta["device"]["vulkan_device"] = "Imaginary GPU 9000";
+    const std::string before = meta.dump(1);
+    test::writeTextFile(o.outDir / "experiment.json", before);
+
+    const std::vector<std::string> resume = {"run", config.string(), "--out", o.outDir.string(), "--cache", o.cacheDir.string(), "--resume", "--quiet"};
+    test::CliResult r = test::runHybridlab(resume);
+    EXPECT_EQ(r.exitStatus, 2) << r.err;
+    EXPECT_NE(r.err.find("Imaginary GPU 9000"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("here: " + here), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--allow-mixed-devices"), std::string::npos) << r.err;
+    EXPECT_EQ(test::readTextFile(o.outDir / "experiment.json"), before);
+    EXPECT_EQ(test::readResults(o.outDir).size(), 1u);
+
+    std::vector<std::string> allowed = resume;
+    allowed.push_back("--allow-mixed-devices");
+    r = test::runHybridlab(allowed);
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    const auto rows = test::readResults(o.outDir);
+    ASSERT_EQ(rows.size(), 2u);
+    for (const json& row : rows) {
+        // Run 0 was recorded before the resume.
+        EXPECT_EQ(row.at("device").at("vulkan_device"), row.at("index").get<int>() == 0 ? "Imaginary GPU 9000" : here) << row.at("id");
+    }
+    meta = readJsonFile(o.outDir / "experiment.json");
+    EXPECT_EQ(meta.at("device").at("vulkan_device"), "Imaginary GPU 9000");
+    ASSERT_EQ(meta.at("devices").size(), 2u);
+    EXPECT_EQ(meta.at("devices")[1], deviceRecord());
+
+    // Resumed again here: nothing to do, no refusal (this machine is one of the set's devices).
+    allowed.pop_back();
+    r = test::runHybridlab(allowed);
+    EXPECT_EQ(r.exitStatus, 0) << r.err;
 }
 
 }  // namespace

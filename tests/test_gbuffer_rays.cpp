@@ -56,8 +56,10 @@ TEST(GBufferRays, FramesMatchTheRasterizedGBuffersAndCastOnePrimaryRayAPixel) {
         // The secondary rays start from nearly the same texels.
         const double secondary = cast.counters.at("rays_total") - cast.counters.at("rays_primary");
         EXPECT_NEAR(secondary, raster.counters.at("rays_total"), 0.02 * raster.counters.at("rays_total") + 10.0);
-        EXPECT_TRUE(hasStage(cast, "gbuffer_rays"));
-        EXPECT_FALSE(hasStage(raster, "gbuffer_rays"));
+        EXPECT_TRUE(hasStage(cast, "gbuffer.rays"));
+        EXPECT_FALSE(hasStage(raster, "gbuffer.rays"));
+        EXPECT_TRUE(hasStage(cast, "gbuffer.upload"));
+        EXPECT_FALSE(hasStage(cast, "gbuffer"));  // the G-buffer pass
         if (std::string(c.technique) == "ssr_fallback") {
             EXPECT_NEAR(cast.counters.at("ssr_hits"), raster.counters.at("ssr_hits"), 0.02 * raster.counters.at("ssr_hits") + 5.0);
             EXPECT_GT(raster.counters.at("ssr_hits"), 0.0);

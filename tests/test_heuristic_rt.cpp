@@ -113,7 +113,8 @@ TEST(HeuristicRt, RendersFromTheCommandLineWithWalewskisStages) {
     test::CliResult r = test::runHybridlab({"render", "--scene", "whitted-classic", "--technique", "heuristic_rt", "--param",
                                             "budget=100000", "--width", "160", "--height", "90", "--out", (dir / "h.exr").string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
-    for (const char* stage : {"stage raster", "stage heuristic", "stage trace", "stage blend"}) EXPECT_CONTAINS(r.out, stage);
+    // Walewski's RAST (here the rasterizer's stages), HEUR, RAYT and BLEND.
+    for (const char* stage : {"stage gbuffer", "stage lighting", "stage heuristic", "stage trace", "stage blend"}) EXPECT_CONTAINS(r.out, stage);
 }
 
 // The frame-time target's controller against a machine whose ray tracing costs a fixed rate per

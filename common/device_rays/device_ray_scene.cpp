@@ -1,11 +1,11 @@
 #include "common/device_rays/device_ray_scene.h"
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <string>
 
 #include "common/core/input_error.h"
+#include "common/core/wall_clock.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/shading.h"
 #include "common/scene/transform.h"
@@ -18,10 +18,6 @@ namespace {
 
 constexpr VkBufferUsageFlags kBuildInput =
     VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
@@ -88,7 +84,7 @@ AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& 
 
 DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, DeformedMeshCache& deformedMeshes, double time)
     : device_(std::move(device)), scene_(scene), deformedMeshes_(deformedMeshes), textures_(*device_, scene) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = WallClock::now();
     const VulkanDevice& dev = *device_;
     const std::size_t n = scene.objects.size();
 
@@ -334,7 +330,7 @@ void DeviceRayScene::build(const std::vector<std::size_t>& levels, bool update) 
 }
 
 void DeviceRayScene::setTime(double time) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = WallClock::now();
     if (anyDynamic_) {
         std::vector<std::size_t> refit;
         for (std::size_t o = 0; o < scene_.objects.size(); ++o) {

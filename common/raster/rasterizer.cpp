@@ -1,7 +1,6 @@
 #include "common/raster/rasterizer.h"
 
-#include <chrono>
-
+#include "common/core/wall_clock.h"
 #include "common/raster/deferred_lighting.h"
 #include "common/raster/frame_pass.h"
 #include "common/raster/gbuffer_pass.h"
@@ -11,14 +10,6 @@
 #include "common/raster/vulkan_error.h"
 
 namespace hybridlab {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-}  // namespace
 
 double RasterFrame::gpuMilliseconds(const std::string& stage) const {
     for (const auto& s : gpuStages)
@@ -61,7 +52,7 @@ struct Rasterizer::Impl {
 };
 
 Rasterizer::Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes) {
-    const auto start = Clock::now();
+    const auto start = WallClock::now();
     impl_ = std::make_unique<Impl>(VulkanDevice::shared(), scene, deformedMeshes);
     impl_->uploadMs = millisecondsSince(start);
 }
@@ -80,7 +71,7 @@ RasterFrame Rasterizer::render(const RasterRequest& request) {
 void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     if (request.width <= 0 || request.height <= 0) throw VulkanError("Rasterizer: the frame size must be positive");
     Impl& r = *impl_;
-    auto start = Clock::now();
+    auto start = WallClock::now();
     const bool moved = r.scene.setTime(request.time);
     r.gbuffer.resize(static_cast<std::uint32_t>(request.width), static_cast<std::uint32_t>(request.height));
     const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
@@ -143,11 +134,11 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     checkVk(vkEndCommandBuffer(cb), "recording the frame");
     frame.recordMilliseconds = millisecondsSince(start);
 
-    start = Clock::now();
+    start = WallClock::now();
     r.device->submitAndWait(cb);
     frame.submitMilliseconds = millisecondsSince(start);
 
-    start = Clock::now();
+    start = WallClock::now();
     if (request.hostGBuffer) frame.gbuffer = GBuffer{};  // the technique holds it
     else r.gbuffer.unpack(readback, frame.gbuffer);
     if (request.lighting) r.lighting.unpack(frame.lighting);

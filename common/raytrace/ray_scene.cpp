@@ -1,6 +1,5 @@
 #include "common/raytrace/ray_scene.h"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -8,16 +7,13 @@
 
 #include <glm/geometric.hpp>
 
+#include "common/core/wall_clock.h"
 #include "common/raytrace/medium_stack.h"
 #include "common/raytrace/shading.h"
 
 namespace hybridlab {
 
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 void checkDevice(RTCDevice device, const char* what) {
     RTCError e = rtcGetDeviceError(device);
@@ -98,7 +94,7 @@ void RayScene::deformObject(std::size_t object, double time) {
 }
 
 RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedMeshes) : scene_(scene), time_(time) {
-    auto start = std::chrono::steady_clock::now();
+    auto start = WallClock::now();
     if (!deformedMeshes) ownDeformedMeshes_ = std::make_unique<DeformedMeshCache>(scene);
     deformedMeshes_ = deformedMeshes ? deformedMeshes : ownDeformedMeshes_.get();
     device_ = rtcNewDevice(nullptr);
@@ -198,7 +194,7 @@ RayScene::~RayScene() {
 }
 
 void RayScene::setTime(double time) {
-    auto start = std::chrono::steady_clock::now();
+    auto start = WallClock::now();
     time_ = time;
     bool changed = false;
     for (std::size_t o = 0; o < scene_.objects.size(); ++o) {

@@ -133,7 +133,7 @@ void run(BakeEmOptions& o) {
                     o.settings.width, o.settings.height, o.settings.records.supersampling, o.settings.records.supersampling,
                     o.settings.inference.size);
         double total = 0.0;
-        for (const auto& [name, ms] : stats.stageMs) {
+        for (const auto& [name, ms] : stats.stages) {
             std::printf("  stage %-14s %10.1f ms\n", name.c_str(), ms);
             total += ms;
         }

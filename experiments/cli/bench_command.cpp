@@ -5,7 +5,6 @@
 // its acceleration-structure build, and the reference frame with rays = "vulkan".
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <vector>
@@ -15,13 +14,14 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
+#include "common/core/input_error.h"
+#include "common/core/wall_clock.h"
 #include "common/device_rays/device_ray_replay.h"
 #include "common/raster/vulkan_error.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "experiments/cli/commands.h"
-#include "common/core/input_error.h"
 #include "techniques/technique.h"
 
 namespace hybridlab::cli {
@@ -51,9 +51,9 @@ Summary summarize(std::vector<double> v) {
 
 template <typename F>
 double milliseconds(F&& f) {
-    auto start = std::chrono::steady_clock::now();
+    const auto start = WallClock::now();
     f();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return millisecondsSince(start);
 }
 
 // Traces every logged ray with bare rtcIntersect1 / rtcOccluded1; returns the number of hits so

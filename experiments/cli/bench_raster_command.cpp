@@ -5,11 +5,11 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <map>
 #include <vector>
 
+#include "common/core/wall_clock.h"
 #include "common/raster/gbuffer.h"
 #include "common/raster/rasterizer.h"
 #include "common/scene/scene_catalog.h"
@@ -117,9 +117,9 @@ void run(const BenchRasterOptions& o) {
     std::vector<double> countMs;
     std::size_t visible = 0;
     for (int i = 0; i < o.repeats; ++i) {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = WallClock::now();
         const auto counts = visiblePixelsFromIds(g.gbuffer, scene.objects.size());
-        countMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        countMs.push_back(millisecondsSince(start));
         visible = static_cast<std::size_t>(std::count_if(counts.begin(), counts.end(), [](std::uint64_t c) { return c > 0; }));
     }
 

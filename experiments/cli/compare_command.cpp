@@ -1,7 +1,6 @@
 // `hybridlab compare TEST REFERENCE`: every metric of a test image against its reference (SSIM,
 // RMSE, PSNR, FLIP), over the whole image and over an optional mask, and the error maps.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "common/core/input_error.h"
+#include "common/core/wall_clock.h"
 #include "common/image/image_io.h"
 #include "experiments/cli/commands.h"
 #include "metrics/metrics.h"
@@ -67,11 +67,11 @@ template <typename F>
 std::string medianMilliseconds(int repeats, F&& f) {
     std::vector<double> wall, cpu;
     for (int i = 0; i < repeats; ++i) {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = WallClock::now();
         const std::clock_t cpuStart = std::clock();
         f();
         cpu.push_back(1e3 * static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC);
-        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        wall.push_back(millisecondsSince(start));
     }
     std::ostringstream text;
     text << std::fixed << std::setprecision(2) << std::setw(9) << median(wall) << " ms  (cpu " << std::setw(8) << median(cpu) << " ms)";

@@ -17,6 +17,7 @@ struct RunOptions {
     std::string shard = "0/1";
     std::string cache;
     bool resume = false;
+    bool allowMixedDevices = false;
     long maxRuns = -1;
     bool quiet = false;
     bool dryRun = false;
@@ -79,6 +80,7 @@ void run(const RunOptions& o) {
     if (o.out.empty() && r.shardCount > 1) r.outDir += "-shard" + std::to_string(r.shardIndex) + "of" + std::to_string(r.shardCount);
     r.cacheDir = o.cache.empty() ? defaultReferenceCacheDir() : std::filesystem::path(o.cache);
     r.resume = o.resume;
+    r.allowMixedDevices = o.allowMixedDevices;
     r.maxRuns = o.maxRuns;
     r.quiet = o.quiet;
     if (o.dryRun) return listRuns(config, r);
@@ -121,6 +123,8 @@ void addRunCommand(CLI::App& app) {
     cmd->add_option("config", o->config, "Experiment config (TOML, see experiments/README.md)")->required();
     cmd->add_option("--out", o->out, "Output folder (default: results/<experiment name>)");
     cmd->add_flag("--resume", o->resume, "Continue an interrupted run in --out, skipping recorded runs");
+    cmd->add_flag("--allow-mixed-devices", o->allowMixedDevices,
+                  "With --resume: continue a result set measured on another device; each run keeps its device");
     cmd->add_option("--shard", o->shard, "Run only the i-th of n parts of the run list (0 <= i < n), balanced by estimated cost")->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));

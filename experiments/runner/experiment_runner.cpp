@@ -6,6 +6,7 @@
 #include <map>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -121,10 +122,31 @@ std::string configChangedMessage(const ExperimentConfig& config, const fs::path&
            ". To keep those results, give this config another --out; to redo them with this config, remove the folder first";
 }
 
-// Refuses to touch a folder that is not this experiment's (or empty/new), or one another runner
-// is writing; returns the lock that keeps others out while this runner writes.
+// The devices a result set was measured on: experiment.json's "devices" where a merge or a
+// resume mixed them, else its "device" (null in sets older than device records).
+std::vector<json> recordedDevices(const json& meta) {
+    if (meta.contains("devices")) return meta.at("devices").get<std::vector<json>>();
+    return {meta.value("device", json())};
+}
+
+bool knownDevice(const std::vector<json>& devices, const json& d) {
+    return std::any_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, d); });
+}
+
+// A result set measured on several devices, once this runner adds runs measured here: each run
+// keeps its device. experiment.json lists them all as "devices" and keeps its first "device".
+struct MixedDevices {
+    json first;                 // the result set's "device" before it was mixed
+    std::vector<json> devices;  // every device
+    json here;                  // this machine's, for the runs rendered now
+};
+
+// Refuses to touch a folder that is not this experiment's (or empty/new), one measured on another
+// device (unless allowed: then `mixed` is set), or one another runner is writing; returns the lock
+// that keeps others out while this runner writes.
 std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& config, const RunnerOptions& o, std::size_t runsTotal,
-                                                   std::size_t runsInShard, double estimatedCost, RunnerSummary& summary) {
+                                                   std::size_t runsInShard, double estimatedCost, RunnerSummary& summary,
+                                                   std::optional<MixedDevices>& mixed) {
     const fs::path meta = o.outDir / "experiment.json";
     if (fs::exists(o.outDir)) {
         if (fs::exists(meta)) {
@@ -138,6 +160,19 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
             if (!o.resume) {
                 throw InputError(o.outDir.string() + ": already holds results of this experiment; pass --resume to continue it, or choose another --out");
             }
+            const json here = deviceRecord();
+            std::vector<json> devices = recordedDevices(m);
+            if (!knownDevice(devices, here)) {
+                if (!o.allowMixedDevices) {
+                    std::string recorded;
+                    for (const json& d : devices) recorded += "\n  " + (o.outDir / "experiment.json").string() + ": " + deviceSummary(d);
+                    throw InputError(o.outDir.string() + ": was measured on another device than this one:" + recorded + "\n  here: " +
+                                     deviceSummary(here) + "\ntimes from two devices do not compare; pass --allow-mixed-devices to resume it "
+                                     "anyway (each run then keeps its device), or choose another --out");
+                }
+                devices.push_back(here);
+            }
+            if (devices.size() > 1) mixed = MixedDevices{m.value("device", json()), devices, here};
         } else if (!fs::is_directory(o.outDir) || !fs::is_empty(o.outDir)) {
             throw InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out");
         }
@@ -149,7 +184,18 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
     store.removeResults();
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
     if (o.resume) summary.staleTemporariesRemoved = removeStaleTemporaries(o.outDir);
-    writeFileAtomically(meta, experimentJson(config, runsTotal, o, runsInShard, estimatedCost).dump(1) + "\n");
+    json m = experimentJson(config, runsTotal, o, runsInShard, estimatedCost);
+    if (mixed) {
+        // The runs recorded before the set was mixed were measured on its one device.
+        for (json& r : store.loadRecords()) {
+            if (r.contains("device")) continue;
+            r["device"] = mixed->first;
+            store.writeRecord(r);
+        }
+        m["device"] = mixed->first;
+        m["devices"] = mixed->devices;
+    }
+    writeFileAtomically(meta, m.dump(1) + "\n");
     std::ifstream in(config.file, std::ios::binary);
     writeFileAtomically(o.outDir / "config.toml", std::string(std::istreambuf_iterator<char>(in), {}));
     return lock;
@@ -209,7 +255,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     const ShardPartition partition = partitionRuns(config, all, o.shardCount);
     const std::vector<const RunSpec*> mine = partition.runsOf(all, o.shardIndex);
     RunnerSummary summary;
-    const auto lock = prepareOutputFolder(config, o, all.size(), mine.size(), partition.estimatedCost.at(o.shardIndex), summary);
+    std::optional<MixedDevices> mixed;
+    const auto lock = prepareOutputFolder(config, o, all.size(), mine.size(), partition.estimatedCost.at(o.shardIndex), summary, mixed);
 
     const ResultsStore store(o.outDir);
     const ReferenceCache cache(o.cacheDir);
@@ -304,6 +351,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
                                {"frame_ms", ref->frameMilliseconds}, {"cache_hit", ref->cacheHit}};
         if (mask.count() > 0) record["reference"]["mask"] = "references/" + key + ".mask.png";
         record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
+        if (mixed) record["device"] = mixed->here;
         if (config.keepDebugImages) {
             for (const auto& [name, dbg] : result.debugImages) {
                 const std::string p = image + "." + name + ".png";

@@ -12,6 +12,9 @@ struct RunnerOptions {
     std::filesystem::path outDir;
     std::filesystem::path cacheDir;  // the reference cache
     bool resume = false;
+    // --resume on a result set measured on another device (device_record.h) goes on, each run
+    // keeping its device as "device", instead of being refused.
+    bool allowMixedDevices = false;
     int shardIndex = 0;  // this shard's runs, of shardCount balanced by estimated cost (shard_partition.h)
     int shardCount = 1;
     long maxRuns = -1;   // stop after this many renders (as if killed; for tests), -1: all
@@ -29,8 +32,8 @@ struct RunnerSummary {
 };
 
 // Throws InputError for an output folder that holds another experiment (or anything else), one
-// that exists without --resume, or one another runner is writing (its lock file, DirectoryLock);
-// nothing is written then.
+// that exists without --resume, one measured on another device (unless allowMixedDevices), or one
+// another runner is writing (its lock file, DirectoryLock); nothing is written then.
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& options);
 
 // `hybridlab run --dry-run`: the runs of the shard, each with whether its reference is cached, and

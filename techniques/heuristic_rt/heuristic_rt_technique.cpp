@@ -10,6 +10,8 @@
 #include "techniques/rt_only/rt_only_technique.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_stages.h"
+#include "techniques/shared/raster_warm_up.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -84,10 +86,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
     localBounds_.clear();
     for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
     // Lavapipe compiles shaders at the first draw.
-    RasterRequest warmUp;
-    warmUp.camera = context.scene().camera;
-    warmUp.width = 64;
-    warmUp.height = 36;
+    RasterRequest warmUp = RasterWarmUp::preparing(scene).rasterRequest();
     warmUp.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
     context.rasterizer().render(warmUp, raster_);
 }
@@ -146,8 +145,8 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     FrameResult result;
     StageClock clock(result);
 
-    // raster: the G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays
-    // (stage gbuffer_rays, after the BVH update it needs).
+    // The G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays (stage
+    // gbuffer.rays, after the BVH update it needs).
     RasterRequest request = frame.rasterRequest();
     request.readback = kGBufferSurfaceTargets;
     request.lighting = true;
@@ -156,7 +155,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
     RayStats primaryStats;
     const GBuffer& g = gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
-    clock.lap("raster");
+    lapRasterFrame(clock, raster_);
 
     // heuristic: the selection, then the heuristic mask.
     const Selection selection = selectObjects(

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -14,6 +13,7 @@
 #include "common/scene/surface_samples.h"
 #include "techniques/layered_em/layer_clustering.h"
 #include "techniques/layered_em/lens_raster.h"
+#include "techniques/stage_clock.h"
 
 namespace hybridlab {
 namespace {
@@ -22,20 +22,6 @@ namespace {
 // radius spread to settle to a few parts in a thousand.
 constexpr std::size_t kShellSurfaceSamples = 4096;
 constexpr std::uint32_t kShellSurfaceSeed = 2001;
-
-class Stopwatch {
-public:
-    explicit Stopwatch(EmBakeStats& stats) : stats_(stats), start_(std::chrono::steady_clock::now()) {}
-    void lap(const std::string& name) {
-        auto now = std::chrono::steady_clock::now();
-        stats_.stageMs.emplace_back(name, std::chrono::duration<double, std::milli>(now - start_).count());
-        start_ = now;
-    }
-
-private:
-    EmBakeStats& stats_;
-    std::chrono::steady_clock::time_point start_;
-};
 
 // Cells of side `cell` holding at least one point: "is there a lens record near this point".
 class OccupancyGrid {
@@ -215,7 +201,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
     auto report = [&](const std::string& stage, int done, int total) {
         if (progress) progress(stage, done, total);
     };
-    Stopwatch clock(stats);
+    StageClock clock(stats.stages);
     LensSystem system(scene, info);
     RayScene fullRays(scene);
     WhittedTracer shading(fullRays, WhittedSettings{});
@@ -290,12 +276,10 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
 
     // §4.3 and §5: per viewpoint sample the tessellated lens, its raster and the layer images, as
     // observations of every layer's cube map.
+    // Stages summed over the viewpoints: tessellation (and the lens raster), layer images, inference.
     const LensMesh mesh = buildLensMesh(system);
     const std::size_t layerCount = em.layers.size();
-    double tessellationMs = 0.0, imagesMs = 0.0, inferenceMs = 0.0;
-    auto since = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-    };
+    clock.lap("tessellation");
     std::vector<std::vector<EmObservation>> originImages(layerCount);  // layer -> faces
     if (settings.directImages && settings.originImages) {
         for (const auto& [c, direct] : originFaces) {
@@ -304,6 +288,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             for (std::size_t l = 0; l < layerCount; ++l) originImages[l].push_back(std::move(face[l]));
         }
     }
+    clock.lap("layer images");
     std::vector<std::vector<bool>> layerHolds;
     for (const EmLayer& layer : em.layers) layerHolds.push_back(texelsTheShellHolds(layer.shell, size));
     std::map<int, std::vector<std::vector<EmObservation>>> observations;  // viewpoint -> layer -> images
@@ -311,16 +296,15 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         auto it = observations.find(v);
         if (it != observations.end()) return it->second;
         const Camera& camera = cameras[v];
-        auto t0 = std::chrono::steady_clock::now();
+        clock.lap("inference");  // since the last lap: inference of earlier viewpoints, choosing the window
         TessellatedLens lens = tessellateLens(system, mesh, camera, w, h, settings.tessellation);
         std::vector<glm::vec3> positions(lens.vertices.size());
         for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = lens.vertices[i].position;
         LensRaster raster = rasterizeLens(positions, lens.triangles, camera, w, h);
         stats.tessellatedVertices += lens.vertices.size();
         stats.tessellatedTriangles += lens.triangles.size();
-        tessellationMs += since(t0);
+        clock.lap("tessellation");
 
-        t0 = std::chrono::steady_clock::now();
         ViewpointRecords recs = compileOutgoingRecords(system, shading, camera, w, h, settings.records);
         std::vector<std::vector<EmObservation>> perLayer(layerCount);
         std::vector<LayerImageAccumulator> acc;
@@ -368,7 +352,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
                 addDirect(direct, camera, w, h);
             }
         }
-        imagesMs += since(t0);
+        clock.lap("layer images");
         return observations.emplace(v, std::move(perLayer)).first->second;
     };
 
@@ -383,7 +367,6 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             window.push_back(u);
         }
         for (int u : window) observe(u);
-        auto t0 = std::chrono::steady_clock::now();
         for (std::size_t l = 0; l < layerCount; ++l) {
             std::vector<EmObservation> rows;
             for (int u : window) {
@@ -402,7 +385,6 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
             out.unobservedTexels.push_back(cubeMapTexelCount(size) - r.observedTexels);
             out.maps.push_back(std::move(r.em));
         }
-        inferenceMs += since(t0);
         em.viewpoints.push_back(std::move(out));
         // Observations no later window needs are dropped (a closed circle keeps the first ones).
         for (auto it = observations.begin(); it != observations.end();) {
@@ -412,9 +394,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
         }
         report("inference", v + 1, views);
     }
-    stats.stageMs.emplace_back("tessellation", tessellationMs);
-    stats.stageMs.emplace_back("layer images", imagesMs);
-    stats.stageMs.emplace_back("inference", inferenceMs);
+    clock.lap("inference");
     return em;
 }
 

@@ -15,6 +15,7 @@
 #include "techniques/layered_em/lens_tessellation.h"
 #include "techniques/layered_em/outgoing_records.h"
 #include "techniques/layered_em/viewpoint_samples.h"
+#include "techniques/technique.h"
 
 namespace hybridlab {
 
@@ -68,7 +69,7 @@ struct LayeredEm {
 };
 
 struct EmBakeStats {
-    std::vector<std::pair<std::string, double>> stageMs;   // in order
+    std::vector<StageTime> stages;  // in order: setup, records, clustering, tessellation, layer images, inference
     std::uint64_t records = 0, lensQueries = 0, environmentQueries = 0;
     std::uint64_t tessellatedVertices = 0, tessellatedTriangles = 0, inferenceRows = 0, inferenceUnknowns = 0;
     int maxIterations = 0;

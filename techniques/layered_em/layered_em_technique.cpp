@@ -1,12 +1,12 @@
 #include "techniques/layered_em/layered_em_technique.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "common/core/atomic_file.h"
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
+#include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
@@ -115,48 +115,36 @@ void LayeredEmTechnique::prepare(SceneContext& context) {
     }
     if (!pass_) pass_ = std::make_unique<LayeredEmPass>();
     pass_->forgetResidentTexels();  // ems_ was refilled
-    FrameRequest warmUp{scene.camera, 0.0, 64, 36};
-    context.rasterizer().render(rasterRequest(warmUp), raster_);
+    context.rasterizer().render(rasterRequest(RasterWarmUp::preparing(scene)), raster_);
 }
 
 FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest& frame) {
-    using Clock = std::chrono::steady_clock;
-    auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
-    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
-        // New targets cost page faults and allocations the steady state does not pay.
-        context.rasterizer().render(rasterRequest(frame), raster_);
-        warmWidth_ = frame.width;
-        warmHeight_ = frame.height;
-    }
+    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) { context.rasterizer().render(rasterRequest(f), raster_); });
     FrameResult result;
+    StageClock clock(result);
     // §5 per frame: vertex ray tracing with adaptive tessellation, then texture coordinates.
-    double traceMs = 0.0, tessellateMs = 0.0, texCoordMs = 0.0;
     TessellationStats stats;
     std::uint64_t vertices = 0, triangles = 0;
     std::vector<LensDrawGeometry> geometry;
     std::vector<LensDraw> draws;
     geometry.reserve(systems_.size());
     for (std::size_t s = 0; s < systems_.size(); ++s) {
-        auto t0 = Clock::now();
         const TessellatedLens lens = tessellateLens(systems_[s]->lens, systems_[s]->mesh, frame.camera, frame.width, frame.height, frameTessellation_);
-        const double ms = since(t0);
-        traceMs += lens.stats.traceMilliseconds;
-        tessellateMs += std::max(0.0, ms - lens.stats.traceMilliseconds);
+        clock.lap({{"trace.lens_vertices", lens.stats.traceMilliseconds}}, "lens.tessellation");
         stats.pathQueries += lens.stats.pathQueries;
         stats.visibilityQueries += lens.stats.visibilityQueries;
         stats.tracedVertices += lens.stats.tracedVertices;
         vertices += lens.vertices.size();
         triangles += lens.triangles.size();
-        t0 = Clock::now();
         geometry.push_back(lensDrawGeometry(lens, ems_[s].layers, context.scene(), frame.camera, frame.width, frame.height, bake_.inference.size));
         draws.push_back({&geometry.back(), &ems_[s], blendViewpoints(ems_[s], frame.camera.position, blendViewpoints_)});
-        texCoordMs += since(t0);
+        clock.lap("lens.texture_coordinates");
     }
 
-    // Other: the G-buffer, lighting and the lens pass in one frame, then the lens over the lit image.
-    auto t0 = Clock::now();
+    // The G-buffer, lighting and the lens pass in one frame, then the lens over the lit image.
     pass_->setDraws(std::move(draws));
     context.rasterizer().render(rasterRequest(frame), raster_);
+    lapRasterFrame(clock, raster_);
     const Image& lens = pass_->result();
     result.image = std::move(raster_.lighting);
     std::size_t lensPixels = 0;
@@ -171,8 +159,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
             out.a = 1.0f;
         }
     }
-    const double otherMs = since(t0);
-    result.stages = {{"vertex_ray_tracing", traceMs}, {"texture_coordinates", texCoordMs}, {"tessellation", tessellateMs}, {"other", otherMs}};
+    clock.lap("blend");
     result.counters["rays_total"] = static_cast<double>(stats.pathQueries + stats.visibilityQueries);
     result.counters["rays_lens_paths"] = static_cast<double>(stats.pathQueries);
     result.counters["rays_visibility"] = static_cast<double>(stats.visibilityQueries);
@@ -181,7 +168,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     result.counters["triangles"] = static_cast<double>(triangles);
     result.counters["lens_pixels"] = static_cast<double>(lensPixels);
     result.counters["pixels_ray_traced"] = 0.0;
-    // What "other" holds: the rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
+    // The rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
     for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
     recordRasterWork(raster_, result);
     result.counters["raster_wall_ms"] = raster_.wallMilliseconds();

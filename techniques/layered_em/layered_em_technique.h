@@ -4,14 +4,15 @@
 // frame draws the G-buffer and deferred lighting of the scene, traces the two ray paths at the lens
 // vertices from the current viewpoint with adaptive tessellation (§5), generates the per-vertex
 // cube-map indices and draws the lenses with the EMs on the GPU (layered_em_pass.h) over the lit
-// image. Stage times as the paper's results table: vertex ray tracing, texture-coordinate
-// generation, tessellation, other (rendering included).
+// image. The paper's results table's stages are trace.lens_vertices (vertex ray tracing),
+// lens.texture_coordinates, lens.tessellation, and the rest (rendering included).
 #include <memory>
 #include <vector>
 
 #include "common/raster/rasterizer.h"
 #include "techniques/layered_em/em_bake.h"
 #include "techniques/layered_em/layered_em_pass.h"
+#include "techniques/shared/raster_warm_up.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -44,7 +45,7 @@ private:
     std::vector<LayeredEm> ems_;
     std::unique_ptr<LayeredEmPass> pass_;
     RasterFrame raster_;
-    int warmWidth_ = 0, warmHeight_ = 0;
+    RasterWarmUp warmUp_;
 };
 
 }  // namespace hybridlab

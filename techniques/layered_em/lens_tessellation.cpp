@@ -1,7 +1,6 @@
 #include "techniques/layered_em/lens_tessellation.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -11,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <glm/mat4x4.hpp>
 
+#include "common/core/wall_clock.h"
 #include "common/scene/transform.h"
 
 namespace hybridlab {
@@ -53,7 +53,7 @@ public:
             if (marked[i]) toTrace.push_back(i);
             else ++out_.stats.skippedVertices;
         }
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = WallClock::now();
         tbb::combinable<TessellationStats> perThread;
         tbb::parallel_for(std::size_t{0}, toTrace.size(), [&](std::size_t k) { traceVertex(out_.vertices[toTrace[k]], perThread.local()); });
         perThread.combine_each([&](const TessellationStats& t) {
@@ -61,7 +61,7 @@ public:
             out_.stats.visibilityQueries += t.visibilityQueries;
             out_.stats.pathQueries += t.pathQueries;
         });
-        out_.stats.traceMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out_.stats.traceMilliseconds += millisecondsSince(start);
         for (const glm::uvec3& t : mesh.triangles) refine(t[0], t[1], t[2], 0);
         removeTJunctions();
     }
@@ -79,9 +79,9 @@ private:
     // the vertex itself, with its interpolated normal turned to face the viewer if it does not).
     void trace(std::uint32_t i) {
         if (out_.vertices[i].traced) return;
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = WallClock::now();
         traceVertex(out_.vertices[i], out_.stats);
-        out_.stats.traceMilliseconds += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out_.stats.traceMilliseconds += millisecondsSince(start);
     }
     void traceVertex(LensVertex& v, TessellationStats& stats) const {
         v.traced = true;

@@ -1,7 +1,6 @@
 #include "techniques/raster/raster_technique.h"
 
-#include <algorithm>
-
+#include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/shadow_parameters.h"
 
@@ -43,26 +42,15 @@ RasterRequest RasterTechnique::request(const FrameRequest& frame) const {
 }
 
 void RasterTechnique::prepare(SceneContext& context) {
-    FrameRequest warmUp{context.scene().camera, 0.0, 64, 36};
-    context.rasterizer().render(request(warmUp), frame_);
+    context.rasterizer().render(request(RasterWarmUp::preparing(context.scene())), frame_);
 }
 
 FrameResult RasterTechnique::render(SceneContext& context, const FrameRequest& frame) {
-    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
-        context.rasterizer().render(request(frame), frame_);
-        warmWidth_ = frame.width;
-        warmHeight_ = frame.height;
-    }
-    context.rasterizer().render(request(frame), frame_);
+    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) { context.rasterizer().render(request(f), frame_); });
     FrameResult result;
-    // GPU timestamps per pass; the read-back includes unpacking on the CPU; what the timestamps do
-    // not cover (recording, submission, waking up) is `overhead`, so the stages add up to the wall clock.
-    double gpu = 0.0;
-    for (const RasterStageTime& s : frame_.gpuStages) {
-        gpu += s.milliseconds;
-        result.stages.push_back({s.name, s.milliseconds + (s.name == "readback" ? frame_.unpackMilliseconds : 0.0)});
-    }
-    result.stages.push_back({"overhead", frame_.recordMilliseconds + std::max(0.0, frame_.submitMilliseconds - gpu)});
+    StageClock clock(result);
+    context.rasterizer().render(request(frame), frame_);
+    lapRasterFrame(clock, frame_);
     result.image = std::move(frame_.lighting);
     result.counters["draws"] = static_cast<double>(frame_.draws);
     recordRasterWork(frame_, result);

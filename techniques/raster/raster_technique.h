@@ -5,6 +5,7 @@
 // mapping, Blinn & Newell 1976) and compose by the shading model, so the baseline is the usual
 // raster answer rather than black.
 #include "common/raster/rasterizer.h"
+#include "techniques/shared/raster_warm_up.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -28,7 +29,7 @@ private:
     ShadowSettings shadows_;
     bool redrawShadowMaps_ = false;
     RasterFrame frame_;  // reused between frames
-    int warmWidth_ = 0, warmHeight_ = 0;
+    RasterWarmUp warmUp_;
 };
 
 }  // namespace hybridlab

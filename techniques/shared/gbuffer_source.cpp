@@ -21,7 +21,7 @@ const GBuffer& GBufferSource::render(Rasterizer& rasterizer, const RayScene* ray
     // Every colour target: the lighting pass reads them all; the depth target has no reader.
     constexpr GBufferTargets kUploaded = kGBufferPosition | kGBufferNormal | kGBufferMaterial | kGBufferObjectId;
     rayCastGBuffer(*rays, request.camera, request.width, request.height, kUploaded | (request.readback & kGBufferDepth), cast_, stats);
-    if (clock) clock->lap("gbuffer_rays");
+    if (clock) clock->lap("gbuffer.rays");
     request.hostGBuffer = &cast_;
     rasterizer.render(request, frame);
     return cast_;

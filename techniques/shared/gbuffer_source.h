@@ -19,7 +19,7 @@ public:
     bool rays() const { return rays_; }
 
     // Renders `request` into `frame`. With rays, the G-buffer is first cast from `rays` (which must
-    // be at the request's time; counted in `stats`, timed as stage "gbuffer_rays" when `clock` is
+    // be at the request's time; counted in `stats`, timed as stage "gbuffer.rays" when `clock` is
     // given) and replaces the rasterizer's G-buffer pass. Returns the G-buffer the later stages read:
     // the cast one, or frame.gbuffer (the request's read-back targets).
     const GBuffer& render(Rasterizer& rasterizer, const RayScene* rays, RasterRequest request, RasterFrame& frame, RayStats& stats,

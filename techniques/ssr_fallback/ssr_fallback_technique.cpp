@@ -6,6 +6,7 @@
 
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
+#include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
@@ -130,30 +131,24 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
     const RayScene& rays = context.rayScene(0.0);
     if (!ssr_) ssr_ = std::make_unique<SsrPass>();
     RayStats unused;
-    gbuffer_.render(context.rasterizer(), &rays, rasterRequest({context.scene().camera, 0.0, 64, 36}), raster_, unused);
+    gbuffer_.render(context.rasterizer(), &rays, rasterRequest(RasterWarmUp::preparing(context.scene())), raster_, unused);
 }
 
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
     Rasterizer& rasterizer = context.rasterizer();
-    if (frame.width != warmWidth_ || frame.height != warmHeight_) {
-        // New targets cost page faults and allocations the steady state does not pay.
+    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) {
         RayStats unused;
-        gbuffer_.render(rasterizer, &context.rayScene(frame.time), rasterRequest(frame), raster_, unused);
-        warmWidth_ = frame.width;
-        warmHeight_ = frame.height;
-    }
+        gbuffer_.render(rasterizer, &context.rayScene(f.time), rasterRequest(f), raster_, unused);
+    });
     FrameResult result;
     StageClock clock(result);
-    // With gbuffer = "rays" the G-buffer comes from primary rays (stage gbuffer_rays, after the BVH
-    // update it needs) and is uploaded for the lighting and SSR passes.
+    // With gbuffer = "rays" the G-buffer comes from primary rays (stage gbuffer.rays, after the BVH
+    // update it needs) and is uploaded for the lighting and SSR passes. The SSR pass runs inside the
+    // rasterizer's frame: its GPU time is its stage.
     const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
     RayStats primaryStats;
     const GBuffer& g = gbuffer_.render(rasterizer, primaryRays, rasterRequest(frame), raster_, primaryStats, &clock);
-    clock.lap("raster");
-    // The SSR pass ran inside the rasterizer's command buffer: its GPU time is its own stage.
-    const double ssrMs = raster_.gpuMilliseconds("ssr");
-    result.stages.back().milliseconds = std::max(0.0, result.stages.back().milliseconds - ssrMs);
-    result.stages.push_back({"ssr", ssrMs});
+    lapRasterFrame(clock, raster_);
 
     const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
 
@@ -232,7 +227,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     clock.lap("trace");
 
     const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_, blurRange_);
-    clock.lap("seam_blur");
+    clock.lap("blend.seam_blur");
 
     std::size_t reflective = 0, ssrHits = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -243,7 +238,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         parts.reflected = reflection[i];
         result.image.data()[i] = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
     }
-    clock.lap("composite");
+    clock.lap("blend");
 
     Image sourceImage(frame.width, frame.height), failures(frame.width, frame.height), confidence(frame.width, frame.height);
     std::map<std::uint32_t, std::size_t> failuresByReason;

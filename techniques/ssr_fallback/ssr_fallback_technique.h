@@ -12,6 +12,7 @@
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/ssr_fallback/seam_blur.h"
 #include "techniques/shared/gbuffer_source.h"
+#include "techniques/shared/raster_warm_up.h"
 #include "techniques/ssr_fallback/ssr_pass.h"
 #include "techniques/technique.h"
 
@@ -45,7 +46,7 @@ private:
     std::unique_ptr<SsrPass> ssr_;
     RasterFrame raster_;  // reused between frames
     GBufferSource gbuffer_;
-    int warmWidth_ = 0, warmHeight_ = 0;
+    RasterWarmUp warmUp_;
 };
 
 }  // namespace hybridlab
