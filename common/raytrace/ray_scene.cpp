@@ -105,6 +105,7 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
     if (!device_) throw std::runtime_error("cannot create an Embree device");
     textureMips_.reserve(scene.textures.size());
     for (const Texture& t : scene.textures) textureMips_.emplace_back(t.image);
+    for (const Material& m : scene.materials) diffuseTextures_.push_back(makeDiffuseTexture(m, textureMips(m.diffuseTexture)));
     const std::size_t n = scene.objects.size();
     toWorld_.resize(n);
     normalToWorld_.resize(n);

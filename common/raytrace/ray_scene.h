@@ -6,6 +6,7 @@
 // deformation moves vertices but keeps the topology, and a refit costs a pass over the nodes
 // where a rebuild sorts the triangles again (de Macedo & Rodrigues' Table II times this update).
 // Geometry and instance ids map back to objects and meshes.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "common/image/mip_chain.h"
 #include "common/raytrace/ray_log.h"
+#include "common/raytrace/shading.h"
 #include "common/scene/camera.h"
 #include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"
@@ -91,6 +93,15 @@ public:
     const MipChain* textureMips(std::int32_t index) const {
         return index == kNoTexture ? nullptr : &textureMips_[static_cast<std::size_t>(index)];
     }
+    // A material's diffuse texture (shading.h): made once for the scene's materials, on the spot for
+    // a copy of one (a G-buffer texel's).
+    DiffuseTexture diffuseTexture(const Material& material) const {
+        if (material.diffuseTexture == kNoTexture) return {};
+        const Material* first = scene_.materials.data();
+        if (std::less_equal<>{}(first, &material) && std::less<>{}(&material, first + scene_.materials.size()))
+            return diffuseTextures_[static_cast<std::size_t>(&material - first)];
+        return makeDiffuseTexture(material, textureMips(material.diffuseTexture));
+    }
 
     double buildMilliseconds() const { return buildMs_; }
     double lastUpdateMilliseconds() const { return updateMs_; }
@@ -131,6 +142,7 @@ private:
     std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)
     std::size_t rigidMovingTriangles_ = 0, deformingTriangles_ = 0, triangles_ = 0;
     std::vector<MipChain> textureMips_;                // per scene texture
+    std::vector<DiffuseTexture> diffuseTextures_;      // per material
     RayLog* log_ = nullptr;
     double time_ = 0.0;
     double buildMs_ = 0.0;

@@ -61,7 +61,7 @@ void rayCastGBuffer(const RayScene& rays, const Camera& camera, int width, int h
         glm::vec3 texel(1.0f);
         if (targets & (kGBufferAmbient | kGBufferDiffuse)) {
             const float lod = uvFootprintLod(hit.uvDensityLod, pixel.at(hit.t), ray.direction, hit.geometricNormal);
-            texel = diffuseTextureValue(m, rays.textureMips(m.diffuseTexture), hit.uv, lod);
+            texel = diffuseTextureValue(m, rays.diffuseTexture(m), hit.uv, lod);
         }
         const glm::vec2 ng = octahedralEncode(hit.geometricNormal);
         if (!g.position.empty()) g.position[i] = glm::vec4(hit.position, 1.0f);
