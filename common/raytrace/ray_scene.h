@@ -133,10 +133,20 @@ private:
     std::vector<std::uint32_t> instanceGeometry_;      // per object: its instance geomID in top_
     std::vector<glm::mat4> toWorld_;                   // per object, at time_
     std::vector<glm::mat3> normalToWorld_;             // per object, at time_
-    // Static meshes only (by mesh index; empty for animated ones): vertex positions and
-    // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
-    std::vector<std::vector<glm::vec3>> worldPositions_;
-    std::vector<std::vector<glm::vec3>> worldNormals_;
+    // A static mesh's triangle as resolving a hit reads it: its vertices' positions and
+    // (unnormalised) normals already in world space and its uvs, together in two cache lines (not
+    // an index and three vertices in each of three arrays, which Embree's traversal has left cold),
+    // and what depends on the triangle alone computed once.
+    struct alignas(64) StaticTriangle {
+        glm::vec3 position[3];
+        glm::vec3 normal[3];
+        glm::vec2 uv[3];
+        glm::vec3 geometricNormal;
+        float uvDensityLod;
+        glm::uvec3 vertices;  // indices (tangents)
+    };
+    // Static meshes only (by mesh index; empty for animated ones).
+    std::vector<std::vector<StaticTriangle>> staticTriangles_;
     std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
     DeformedMeshCache* deformedMeshes_ = nullptr;
     std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)
