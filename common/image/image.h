@@ -61,7 +61,15 @@ inline glm::vec4 Image::sampleBilinearWrap(float u, float v) const {
     float y = v * height_ - 0.5f;
     float fx = std::floor(x), fy = std::floor(y);
     float tx = x - fx, ty = y - fy;
-    auto wrap = [](int i, int n) { int r = i % n; return r < 0 ? r + n : r; };
+    // i mod n into [0, n): a mask for power-of-two sizes (also for negative i, in two's complement)
+    // and no division for an i already inside, since an integer division costs more than the rest
+    // of the lookup.
+    auto wrap = [](int i, int n) {
+        if ((n & (n - 1)) == 0) return i & (n - 1);
+        if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;
+        int r = i % n;
+        return r < 0 ? r + n : r;
+    };
     int x0 = wrap(static_cast<int>(fx), width_), x1 = x0 + 1 == width_ ? 0 : x0 + 1;
     int y0 = wrap(static_cast<int>(fy), height_), y1 = y0 + 1 == height_ ? 0 : y0 + 1;
     glm::vec4 top = at(x0, y0) * (1.0f - tx) + at(x1, y0) * tx;

@@ -54,6 +54,25 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
     if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
 }
 
+// What depends on a triangle alone (world-space vertices p0, p1, p2): its unit geometric normal by
+// the winding, and ray cones' Delta_0 = 0.5 log2(uv area / world area) (ray_cone.h; -inf without uvs).
+struct TriangleTerms {
+    glm::vec3 geometricNormal;
+    float uvDensityLod = -std::numeric_limits<float>::infinity();
+};
+
+TriangleTerms triangleTerms(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, const glm::vec2* uv) {
+    TriangleTerms terms;
+    terms.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    if (uv) {
+        const glm::vec2 a = uv[1] - uv[0], b = uv[2] - uv[0];
+        const float uvArea = std::abs(a.x * b.y - a.y * b.x);
+        const float worldArea = glm::length(glm::cross(p1 - p0, p2 - p0));
+        if (uvArea > 0.0f && worldArea > 0.0f) terms.uvDensityLod = 0.5f * std::log2(uvArea / worldArea);
+    }
+    return terms;
+}
+
 }  // namespace
 
 RTCGeometry RayScene::makeTriangleGeometry(const Mesh& mesh, const std::vector<glm::vec3>& positions, const glm::mat4* toWorld,
@@ -101,6 +120,7 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
     if (!device_) throw std::runtime_error("cannot create an Embree device");
     textureMips_.reserve(scene.textures.size());
     for (const Texture& t : scene.textures) textureMips_.emplace_back(t.image);
+    for (const Material& m : scene.materials) diffuseTextures_.push_back(makeDiffuseTexture(m, textureMips(m.diffuseTexture)));
     const std::size_t n = scene.objects.size();
     toWorld_.resize(n);
     normalToWorld_.resize(n);
@@ -116,14 +136,28 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
     deformed_.resize(scene.meshes.size());
 
     static_ = rtcNewScene(device_);
-    worldPositions_.resize(scene.meshes.size());
-    worldNormals_.resize(scene.meshes.size());
+    staticTriangles_.resize(scene.meshes.size());
     for (std::size_t o = 0; o < n; ++o) {
         if (scene.objects[o].isDynamic()) continue;
         for (std::uint32_t mesh : scene.objects[o].meshes) {
             const Mesh& m = scene.meshes[mesh];
-            for (const auto& p : m.positions) worldPositions_[mesh].push_back(glm::vec3(toWorld_[o] * glm::vec4(p, 1.0f)));
-            for (const auto& nrm : m.normals) worldNormals_[mesh].push_back(normalToWorld_[o] * nrm);
+            std::vector<glm::vec3> positions, normals;
+            for (const auto& p : m.positions) positions.push_back(glm::vec3(toWorld_[o] * glm::vec4(p, 1.0f)));
+            for (const auto& nrm : m.normals) normals.push_back(normalToWorld_[o] * nrm);
+            std::vector<StaticTriangle>& triangles = staticTriangles_[mesh];
+            triangles.resize(m.triangles.size());
+            for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+                StaticTriangle& t = triangles[i];
+                t.vertices = m.triangles[i];
+                for (int k = 0; k < 3; ++k) {
+                    t.position[k] = positions[t.vertices[k]];
+                    t.normal[k] = normals[t.vertices[k]];
+                    t.uv[k] = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t.vertices[k]];
+                }
+                const TriangleTerms terms = triangleTerms(t.position[0], t.position[1], t.position[2], m.uvs.empty() ? nullptr : t.uv);
+                t.geometricNormal = terms.geometricNormal;
+                t.uvDensityLod = terms.uvDensityLod;
+            }
             RTCGeometry g = makeTriangleGeometry(m, m.positions, &toWorld_[o], false);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);
@@ -269,7 +303,6 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
         mesh = ref.mesh;
     }
     const Mesh& m = scene_.meshes[mesh];
-    const glm::uvec3 tri = m.triangles[rh.hit.primID];
     const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
     const glm::mat4& M = toWorld_[object];
     const glm::mat3& N = normalToWorld_[object];
@@ -279,31 +312,37 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     hit.mesh = mesh;
     hit.primitive = rh.hit.primID;
     hit.material = &scene_.materials[m.material];
-    glm::vec3 p0, p1, p2;
-    if (const auto& wp = worldPositions_[mesh]; !wp.empty()) {
-        const auto& wn = worldNormals_[mesh];
-        p0 = wp[tri.x], p1 = wp[tri.y], p2 = wp[tri.z];
-        hit.shadingNormal = glm::normalize(w * wn[tri.x] + u * wn[tri.y] + v * wn[tri.z]);
+    glm::uvec3 tri;
+    if (const auto& triangles = staticTriangles_[mesh]; !triangles.empty()) {
+        const StaticTriangle& st = triangles[rh.hit.primID];
+        tri = st.vertices;
+        hit.shadingNormal = glm::normalize(w * st.normal[0] + u * st.normal[1] + v * st.normal[2]);
+        hit.position = w * st.position[0] + u * st.position[1] + v * st.position[2];
+        hit.geometricNormal = st.geometricNormal;
+        if (!m.uvs.empty()) {
+            hit.uv = w * st.uv[0] + u * st.uv[1] + v * st.uv[2];
+            hit.uvDensityLod = st.uvDensityLod;
+        }
     } else {
         // An instance: the object-space vertices, deformed at time_ for a deforming object.
+        tri = m.triangles[rh.hit.primID];
         const DeformedVertices& d = deformed_[mesh];
         const bool deformed = !d.positions.empty();
         const std::vector<glm::vec3>& positions = deformed ? d.positions : m.positions;
         const std::vector<glm::vec3>& normals = deformed ? d.normals : m.normals;
-        p0 = glm::vec3(M * glm::vec4(positions[tri.x], 1.0f));
-        p1 = glm::vec3(M * glm::vec4(positions[tri.y], 1.0f));
-        p2 = glm::vec3(M * glm::vec4(positions[tri.z], 1.0f));
+        const glm::vec3 p0 = glm::vec3(M * glm::vec4(positions[tri.x], 1.0f));
+        const glm::vec3 p1 = glm::vec3(M * glm::vec4(positions[tri.y], 1.0f));
+        const glm::vec3 p2 = glm::vec3(M * glm::vec4(positions[tri.z], 1.0f));
         hit.shadingNormal = glm::normalize(N * (w * normals[tri.x] + u * normals[tri.y] + v * normals[tri.z]));
-    }
-    hit.position = w * p0 + u * p1 + v * p2;
-    hit.geometricNormal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    if (!m.uvs.empty()) {
-        const glm::vec2 uv0 = m.uvs[tri.x], uv1 = m.uvs[tri.y], uv2 = m.uvs[tri.z];
-        hit.uv = w * uv0 + u * uv1 + v * uv2;
-        const glm::vec2 a = uv1 - uv0, b = uv2 - uv0;
-        const float uvArea = std::abs(a.x * b.y - a.y * b.x);
-        const float worldArea = glm::length(glm::cross(p1 - p0, p2 - p0));
-        if (uvArea > 0.0f && worldArea > 0.0f) hit.uvDensityLod = 0.5f * std::log2(uvArea / worldArea);
+        hit.position = w * p0 + u * p1 + v * p2;
+        const glm::vec2 uv[3] = {m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[tri.x], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[tri.y],
+                                 m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[tri.z]};
+        const TriangleTerms terms = triangleTerms(p0, p1, p2, m.uvs.empty() ? nullptr : uv);
+        hit.geometricNormal = terms.geometricNormal;
+        if (!m.uvs.empty()) {
+            hit.uv = w * uv[0] + u * uv[1] + v * uv[2];
+            hit.uvDensityLod = terms.uvDensityLod;
+        }
     }
     const Material& mat = *hit.material;
     if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {

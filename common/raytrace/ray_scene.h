@@ -6,6 +6,7 @@
 // deformation moves vertices but keeps the topology, and a refit costs a pass over the nodes
 // where a rebuild sorts the triangles again (de Macedo & Rodrigues' Table II times this update).
 // Geometry and instance ids map back to objects and meshes.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "common/image/mip_chain.h"
 #include "common/raytrace/ray_log.h"
+#include "common/raytrace/shading.h"
 #include "common/scene/camera.h"
 #include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"
@@ -91,6 +93,15 @@ public:
     const MipChain* textureMips(std::int32_t index) const {
         return index == kNoTexture ? nullptr : &textureMips_[static_cast<std::size_t>(index)];
     }
+    // A material's diffuse texture (shading.h): made once for the scene's materials, on the spot for
+    // a copy of one (a G-buffer texel's).
+    DiffuseTexture diffuseTexture(const Material& material) const {
+        if (material.diffuseTexture == kNoTexture) return {};
+        const Material* first = scene_.materials.data();
+        if (std::less_equal<>{}(first, &material) && std::less<>{}(&material, first + scene_.materials.size()))
+            return diffuseTextures_[static_cast<std::size_t>(&material - first)];
+        return makeDiffuseTexture(material, textureMips(material.diffuseTexture));
+    }
 
     double buildMilliseconds() const { return buildMs_; }
     double lastUpdateMilliseconds() const { return updateMs_; }
@@ -122,15 +133,26 @@ private:
     std::vector<std::uint32_t> instanceGeometry_;      // per object: its instance geomID in top_
     std::vector<glm::mat4> toWorld_;                   // per object, at time_
     std::vector<glm::mat3> normalToWorld_;             // per object, at time_
-    // Static meshes only (by mesh index; empty for animated ones): vertex positions and
-    // (unnormalised) normals already in world space, so that resolving a hit only interpolates.
-    std::vector<std::vector<glm::vec3>> worldPositions_;
-    std::vector<std::vector<glm::vec3>> worldNormals_;
+    // A static mesh's triangle as resolving a hit reads it: its vertices' positions and
+    // (unnormalised) normals already in world space and its uvs, together in two cache lines (not
+    // an index and three vertices in each of three arrays, which Embree's traversal has left cold),
+    // and what depends on the triangle alone computed once.
+    struct alignas(64) StaticTriangle {
+        glm::vec3 position[3];
+        glm::vec3 normal[3];
+        glm::vec2 uv[3];
+        glm::vec3 geometricNormal;
+        float uvDensityLod;
+        glm::uvec3 vertices;  // indices (tangents)
+    };
+    // Static meshes only (by mesh index; empty for animated ones).
+    std::vector<std::vector<StaticTriangle>> staticTriangles_;
     std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
     DeformedMeshCache* deformedMeshes_ = nullptr;
     std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)
     std::size_t rigidMovingTriangles_ = 0, deformingTriangles_ = 0, triangles_ = 0;
     std::vector<MipChain> textureMips_;                // per scene texture
+    std::vector<DiffuseTexture> diffuseTextures_;      // per material
     RayLog* log_ = nullptr;
     double time_ = 0.0;
     double buildMs_ = 0.0;

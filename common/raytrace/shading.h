@@ -41,9 +41,19 @@ struct SurfacePoint {
     const Material* material;
 };
 
-// The material's diffuse texture (1 without one, `texture` null) at uv, with its tiling and offset,
-// filtered over a footprint of 2^uvLod uv units (ray cones; -inf: a point, level 0's bilinear lookup).
-inline glm::vec3 diffuseTextureValue(const Material& m, const MipChain* texture, glm::vec2 uv, float uvLod);
+// A material's diffuse texture as lookups read it: the mip chain (null: none) and the level of
+// detail of a footprint of one uv unit, 0.5 log2 of the texels it covers (the texture's size times
+// the tiling; the rasterizer's gradients are the uv gradients times the tiling). A tracer makes one
+// per material, not one a lookup.
+struct DiffuseTexture {
+    const MipChain* mips = nullptr;
+    float uvUnitLod = 0.0f;
+};
+inline DiffuseTexture makeDiffuseTexture(const Material& m, const MipChain* mips);
+
+// The material's diffuse texture (1 without one) at uv, with its tiling and offset, filtered over a
+// footprint of 2^uvLod uv units (ray cones; -inf: a point, level 0's bilinear lookup).
+inline glm::vec3 diffuseTextureValue(const Material& m, const DiffuseTexture& texture, glm::vec2 uv, float uvLod);
 
 // Radiance arriving at `p` from light `l` ignoring shadows, and the unit direction towards it.
 struct LightSample {
@@ -99,15 +109,18 @@ glm::vec3 skyRadiance(const Scene& scene, glm::vec3 direction);
 
 // Per-light and per-hit terms, inline: they run for every light at every hit of every ray.
 
-inline glm::vec3 diffuseTextureValue(const Material& m, const MipChain* texture, glm::vec2 uv, float uvLod) {
-    if (!texture) return glm::vec3(1.0f);
+inline DiffuseTexture makeDiffuseTexture(const Material& m, const MipChain* mips) {
+    if (!mips) return {};
+    const Image& base = mips->level(0);
+    return {mips, 0.5f * std::log2(static_cast<float>(base.width()) * static_cast<float>(base.height()) *
+                                   std::abs(m.textureTiling.x * m.textureTiling.y))};
+}
+
+inline glm::vec3 diffuseTextureValue(const Material& m, const DiffuseTexture& texture, glm::vec2 uv, float uvLod) {
+    if (!texture.mips) return glm::vec3(1.0f);
     const glm::vec2 t = uv * m.textureTiling + m.textureOffset;
-    // The footprint in level-0 texels: uv units times the texture's size and the tiling (the
-    // rasterizer's gradients are the uv gradients times the tiling).
-    const Image& base = texture->level(0);
-    const float lod = uvLod + 0.5f * std::log2(static_cast<float>(base.width()) * static_cast<float>(base.height()) *
-                                               std::abs(m.textureTiling.x * m.textureTiling.y));
-    return glm::vec3(texture->sampleTrilinearWrap(t.x, t.y, lod));
+    // The footprint in level-0 texels.
+    return glm::vec3(texture.mips->sampleTrilinearWrap(t.x, t.y, uvLod + texture.uvUnitLod));
 }
 
 inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::vec3 p) {

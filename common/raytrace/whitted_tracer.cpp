@@ -35,7 +35,7 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
                                     RayStats& stats, bool shadowRays, float uvLod, glm::vec3 mediumAbsorption) const {
     const Scene& scene = rays_.scene();
     const SurfacePoint sp{hit.position, normal, hit.uv, hit.material};
-    const glm::vec3 tex = diffuseTextureValue(*hit.material, rays_.textureMips(hit.material->diffuseTexture), hit.uv, uvLod);
+    const glm::vec3 tex = diffuseTextureValue(*hit.material, rays_.diffuseTexture(*hit.material), hit.uv, uvLod);
     glm::vec3 c = unlitTerm(scene, sp, tex);
     const glm::vec3 shadowOrigin = offsetRayOrigin(hit.position, geometricNormal);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {

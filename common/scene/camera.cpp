@@ -42,15 +42,6 @@ glm::mat4 Camera::projectionMatrix(float aspect) const {
     return p;
 }
 
-Ray Camera::rayThroughNdc(glm::vec2 ndc, float aspect) const {
-    if (projection == Projection::Perspective) {
-        const float t = std::tan(glm::radians(fovYDegrees) * 0.5f);
-        glm::vec3 dirCam(ndc.x * t * aspect, -ndc.y * t, -1.0f);
-        return {position, glm::normalize(orientation * dirCam)};
-    }
-    const float h = 0.5f * orthoHeight;
-    glm::vec3 offset(ndc.x * h * aspect, -ndc.y * h, 0.0f);
-    return {position + orientation * offset, forward()};
-}
+Ray Camera::rayThroughNdc(glm::vec2 ndc, float aspect) const { return CameraRays(*this, aspect).throughNdc(ndc); }
 
 }  // namespace hybridlab

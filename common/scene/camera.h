@@ -3,7 +3,11 @@
 // -Z axis. Projection matrices map to Vulkan clip space: x right, y down (row 0 of an image is the
 // top), and reverse-Z depth in [0, 1] with the near plane at 1 and the far plane at 0 (Upchurch &
 // Desbrun; Walewski 2019 §3.1).
+#include <cmath>
+
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -39,6 +43,30 @@ struct Camera {
     // (x right, y down, both in [-1, 1]); for pixel (px, py) of a W x H image pass
     // ((px + 0.5) / W * 2 - 1, (py + 0.5) / H * 2 - 1).
     Ray rayThroughNdc(glm::vec2 ndc, float aspect) const;
+};
+
+// Rays through many points of one camera's image plane: Camera::rayThroughNdc with the frame's
+// constants (tan(fov_y / 2) for a perspective camera) taken once, not once a pixel.
+class CameraRays {
+public:
+    CameraRays(const Camera& camera, float aspect)
+        : camera_(camera), aspect_(aspect),
+          scale_(camera.projection == Camera::Projection::Perspective ? std::tan(glm::radians(camera.fovYDegrees) * 0.5f)
+                                                                      : 0.5f * camera.orthoHeight) {}
+
+    Ray throughNdc(glm::vec2 ndc) const {
+        if (camera_.projection == Camera::Projection::Perspective) {
+            const glm::vec3 dirCam(ndc.x * scale_ * aspect_, -ndc.y * scale_, -1.0f);
+            return {camera_.position, glm::normalize(camera_.orientation * dirCam)};
+        }
+        const glm::vec3 offset(ndc.x * scale_ * aspect_, -ndc.y * scale_, 0.0f);
+        return {camera_.position + camera_.orientation * offset, camera_.forward()};
+    }
+
+private:
+    const Camera& camera_;
+    float aspect_;
+    float scale_;  // tan(fov_y / 2), or half the orthographic height
 };
 
 // NDC of a pixel centre, matching the rasteriser's sample positions.

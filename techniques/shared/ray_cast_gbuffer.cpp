@@ -49,8 +49,9 @@ void rayCastGBuffer(const RayScene& rays, const Camera& camera, int width, int h
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     const glm::mat4 viewProj = camera.projectionMatrix(aspect) * camera.view();
     const RayCone pixel = pixelCone(camera, height);
+    const CameraRays cameraRays(camera, aspect);
     stats += forEachPixelInParallel(width, height, [&](int x, int y, RayStats& st) {
-        const Ray ray = camera.rayThroughNdc(pixelCenterNdc(x, y, width, height), aspect);
+        const Ray ray = cameraRays.throughNdc(pixelCenterNdc(x, y, width, height));
         ++st.primary;
         SurfaceHit hit;
         if (!rays.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) return;  // the sky: all zero
@@ -60,7 +61,7 @@ void rayCastGBuffer(const RayScene& rays, const Camera& camera, int width, int h
         glm::vec3 texel(1.0f);
         if (targets & (kGBufferAmbient | kGBufferDiffuse)) {
             const float lod = uvFootprintLod(hit.uvDensityLod, pixel.at(hit.t), ray.direction, hit.geometricNormal);
-            texel = diffuseTextureValue(m, rays.textureMips(m.diffuseTexture), hit.uv, lod);
+            texel = diffuseTextureValue(m, rays.diffuseTexture(m), hit.uv, lod);
         }
         const glm::vec2 ng = octahedralEncode(hit.geometricNormal);
         if (!g.position.empty()) g.position[i] = glm::vec4(hit.position, 1.0f);

@@ -96,6 +96,7 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     const float aspect = frame.aspect();
     // A sub-pixel's cone when supersampled.
     const RayCone cone = pixelCone(frame.camera, frame.height * n);
+    const CameraRays cameraRays(frame.camera, aspect);
     // Two-term mode: the pixels the model shaded and the rays spent on them (the paper's comparison).
     std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
     const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
@@ -107,7 +108,7 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
                 // Sub-pixel sample centres; n = 1 is the pixel centre.
                 glm::vec2 ndc((x + (sx + 0.5f) / n) / frame.width * 2.0f - 1.0f, (y + (sy + 0.5f) / n) / frame.height * 2.0f - 1.0f);
                 ++stats.primary;
-                const Ray ray = frame.camera.rayThroughNdc(ndc, aspect);
+                const Ray ray = cameraRays.throughNdc(ndc);
                 sum += twoTerm_ ? twoTerm_->radiance(tracer, rays, ray, stats, cone, &lens) : tracer.radiance(ray, 0, 1.0f, stats, cone);
             }
         }
