@@ -1,6 +1,6 @@
 #pragma once
 // The screen-space reflection pass (de Macedo & Rodrigues §III, the reflection composer's first
-// step): a Vulkan compute shader (common/raster/shaders/ssr_trace.comp) recorded by the shared
+// step): a Vulkan compute shader (shaders/ssr_trace.comp) recorded by the shared
 // Rasterizer after lighting, marching every opaque reflective texel's mirror ray through the
 // G-buffer's depth with McGuire & Mara's perspective-correct DDA and a thickness test. It reads
 // back, per texel, the lit image at the hit, a confidence, and the reasons the ray failed: the mask
