@@ -50,15 +50,15 @@
 // Shadows. POV-Ray lets a shadow ray through a surface times that surface's (filter * pigment +
 // transmit) at each crossing; ours multiplies by (1 - opacity) * diffuse at each crossing. For an
 // opaque material the visible object gives that (0). A transparent material's visible object
-// has no_shadow, and a twin (the same mesh, no_image no_reflection, pigment rgbf <diffuse,
+// has no_shadow, and a shadow copy (the same mesh, no_image no_reflection, pigment rgbf <diffuse,
 // 1 - opacity>) casts the shadow instead: exactly our transmittance, untextured as ours. Materials
-// that cast no shadow get no_shadow and no twin.
+// that cast no shadow get no_shadow and no shadow copy.
 //
 // Interior: ior = material ior / scene ambient ior (POV-Ray's surrounding medium has index 1 and
 // it uses only ratios); absorption as media absorption, which POV-Ray computes only inside hollow
 // objects (hence `hollow on`). POV-Ray keeps the list of interiors a ray is in and integrates the
 // media of all of them along every segment, eye rays and (with `media_attenuation on` on each
-// light, and the interior on the shadow twin, since shadow rays skip the no_shadow visible object)
+// light, and the interior on the shadow copy, since shadow rays skip the no_shadow visible object)
 // shadow rays: the rule of medium_stack.h. Where transparent objects nest or overlap,
 // POV-Ray refracts at their shared surfaces with the ratio of the two indices, ours against the
 // ambient index (listed when two transparent objects' bounds overlap); a camera inside a medium
@@ -136,7 +136,7 @@ struct MaterialPlan {
     bool used = false;
     bool reflects = false;       // has the top reflection layer
     bool transparent = false;    // o_r > 0
-    bool shadowTwin = false;     // a transparent shadow caster: the twin casts its shadow
+    bool shadowCopy = false;     // a transparent shadow caster: the copy casts its shadow
     bool noShadow = false;       // the visible object casts no shadow
     bool textured = false;
     bool absorbs = false;        // media absorption inside: the object must be hollow
@@ -167,7 +167,7 @@ std::string finish(glm::dvec3 ambient, glm::dvec3 emission, double diffuse, doub
 
 std::string materialId(std::size_t i) { return "HL_Material_" + std::to_string(i); }
 
-// The #declares of one material: its surface layer, reflection layer, shadow twin texture and
+// The #declares of one material: its surface layer, reflection layer, shadow copy texture and
 // interior. Appends what cannot be exact to `approximations`.
 std::string materialSdl(const Scene& scene, std::size_t index, const MaterialPlan& plan, std::vector<std::string>& approximations) {
     const Material& m = scene.materials[index];
@@ -243,8 +243,8 @@ std::string materialSdl(const Scene& scene, std::size_t index, const MaterialPla
                                        "1 - opacity");
     }
 
-    // Shadow twin: lets (1 - opacity) * diffuse through at each crossing, untextured.
-    if (plan.shadowTwin) {
+    // Shadow copy: lets (1 - opacity) * diffuse through at each crossing, untextured.
+    if (plan.shadowCopy) {
         sdl += "#declare " + id + "_Shadow = texture {\n  pigment { rgbf <" + num(D.x) + ", " + num(D.y) + ", " + num(D.z) + ", " +
                num(orr) + "> }\n  " + finish(glm::dvec3(0.0), glm::dvec3(0.0), 0.0, 0.0, 1.0, "rgb 0", false) + "\n};\n";
     }
@@ -324,7 +324,7 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         p.reflects = m.fresnel || m.reflectivity > 0.0f;
         p.transparent = m.opacity < 1.0f;
         p.noShadow = !m.castsShadows || p.transparent;
-        p.shadowTwin = m.castsShadows && p.transparent;
+        p.shadowCopy = m.castsShadows && p.transparent;
         p.textured = m.diffuseTexture != kNoTexture;
         p.absorbs = maxComponent(glm::dvec3(m.absorption)) > 0.0;
         if (!p.textured) continue;
@@ -446,8 +446,8 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             // POV-Ray computes interior media only along rays inside hollow objects.
             if (p.absorbs) sdl << "  hollow on\n";
             sdl << "}\n";
-            if (p.shadowTwin) {
-                // POV-Ray's shadow rays skip no_shadow objects, interiors included: the twin carries the
+            if (p.shadowCopy) {
+                // POV-Ray's shadow rays skip no_shadow objects, interiors included: the copy carries the
                 // media that absorb them.
                 sdl << "object { " << id << " texture { " << mat << "_Shadow }";
                 if (p.absorbs) sdl << " interior { " << mat << "_Interior } hollow on";
