@@ -422,7 +422,7 @@ private:
 
 // The viewpoint samples whose observations viewpoint v's maps are inferred from: v and its
 // neighbours (wrapping around a closed path), each once.
-std::vector<int> viewpointWindow(const EmBakeSettings& settings, int v, int views) {
+std::vector<int> windowAround(const EmBakeSettings& settings, int v, int views) {
     std::vector<int> window;
     for (int d = -settings.neighbourViewpoints; d <= settings.neighbourViewpoints; ++d) {
         int u = v + d;
@@ -438,7 +438,7 @@ std::vector<int> viewpointWindow(const EmBakeSettings& settings, int v, int view
 EmViewpoint inferViewpoint(const BakeInputs& in, int v, LayerObservations& observations,
                            const std::vector<std::vector<EmObservation>>& originImages, const std::vector<std::vector<bool>>& layerHolds,
                            EmBakeStats& stats) {
-    const std::vector<int> window = viewpointWindow(in.settings, v, in.views);
+    const std::vector<int> window = windowAround(in.settings, v, in.views);
     EmViewpoint out;
     out.camera = in.cameras[static_cast<std::size_t>(v)];
     const int size = in.size();
@@ -505,7 +505,7 @@ LayeredEm bakeLayeredEm(const Scene& scene, const LensSystemInfo& info, const Em
     double inferenceMs = 0.0;
     for (int v = 0; v < in.views; ++v) {
         // The window's observations first: their time is the images', not the inference's.
-        for (int u : viewpointWindow(settings, v, in.views)) observations.at(u);
+        for (int u : windowAround(settings, v, in.views)) observations.at(u);
         const auto t0 = std::chrono::steady_clock::now();
         em.viewpoints.push_back(inferViewpoint(in, v, observations, originImages, layerHolds, stats));
         inferenceMs += millisecondsSince(t0);
