@@ -153,7 +153,7 @@ TEST(LayeredEmPass, GpuDrawIsTheRenderingMatrixTimesTheEm) {
     RecordProperty("max_difference", std::to_string(maxDiff));
 }
 
-TEST(LayeredEmPass, GpuCompositesLayersSkyAndViewpointsAsItsCpuTwin) {
+TEST(LayeredEmPass, GpuCompositesLayersSkyAndViewpointsAsTheCpu) {
     LensFrame f;
     RASTERIZER_OR_SKIP(rasterizer, f.scene);
     const LayeredEm em = randomLayeredEm(3, 6, true, 9);
@@ -176,7 +176,7 @@ TEST(LayeredEmPass, GpuCompositesLayersSkyAndViewpointsAsItsCpuTwin) {
         }
     }
     EXPECT_GT(both, 1500u);
-    EXPECT_LE(off, both / 200) << "pixels further than 1e-4 from the CPU twin (face edges, as above)";
+    EXPECT_LE(off, both / 200) << "pixels further than 1e-4 from the CPU version (face edges, as above)";
     EXPECT_LT(maxDiff, 1e-2);
     EXPECT_GT(skyShare, 0.0) << "the sky shows behind translucent layers";
 }

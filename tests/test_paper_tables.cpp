@@ -302,7 +302,7 @@ params = { viewpoints = 2, bake_width = 24, bake_height = 18, supersampling = 1,
     EXPECT_NE(text.find(mean), std::string::npos) << mean << "\n" << text;
     const std::string figure8 = text.substr(0, text.find("**EM resolution**"));
     EXPECT_EQ(figure8.find("circle@3"), std::string::npos) << "frames 3 and 5 are not between samples";
-    // The EM resolution table (hakura2001_em_size.toml): the display bake and its 256-texel twin side by side.
+    // The EM resolution table (hakura2001_em_size.toml): the display bake and its 256-texel variant side by side.
     const std::string emRow = "| 64x36 camera | " + emResolution["lem-display"] + " | " + emResolution["lem-display-256"] + " |";
     EXPECT_NE(text.find("| view | lem-display | lem-display-256 |"), std::string::npos) << text;
     EXPECT_NE(text.find(emRow), std::string::npos) << emRow << "\n" << text;

@@ -1,4 +1,4 @@
-// The deferred lighting pass in GLSL against the C++ shading functions it twins (DESIGN.md "The
+// The deferred lighting pass in GLSL against the C++ shading functions it computes again (DESIGN.md "The
 // shading model"; common/raster/shaders/shading.glsl): on every texel of a read-back G-buffer,
 // the C++ local term (shadows off: visibility 1), the C++ sky where nothing was hit, and with
 // environment mapping the C++ composition with the sky in the reflected and refracted directions,

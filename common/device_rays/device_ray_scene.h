@@ -1,6 +1,6 @@
 #pragma once
-// The scene on a ray-tracing Vulkan device (VK_KHR_acceleration_structure): the device twin of
-// Embree's RayScene, built from the same Scene. A bottom-level acceleration structure per mesh
+// The scene on a ray-tracing Vulkan device (VK_KHR_acceleration_structure): what Embree's
+// RayScene is on the CPU, built from the same Scene. A bottom-level acceleration structure per mesh
 // (object space), one per mesh of each deforming object (refitted each frame from the
 // DeformedMeshCache's vertices, which the rasterizer and Embree share: the topology stays, so an
 // update replaces a rebuild, as RayScene's RTC_BUILD_QUALITY_REFIT); a top level of instances, one

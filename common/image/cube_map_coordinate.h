@@ -1,8 +1,9 @@
 #pragma once
 // The face and face coordinates of a cube-map direction (OpenGL's major-axis table, 3.19 in the
 // 4.x specification; faces +X, -X, +Y, -Y, +Z, -Z). One rule for every cube map in the project: the
-// sky's (shading.h) and the layered EMs' (techniques/layered_em/em_cube_map.h); the GLSL twin is
-// cubeMapCoordinate in common/raster/shaders/cube_map.glsl.
+// sky's (shading.h) and the layered EMs' (techniques/layered_em/em_cube_map.h); the GLSL
+// cubeMapCoordinate in common/raster/shaders/cube_map.glsl computes the same (held equal through
+// the sky by RasterLighting and the layered EMs by LayeredEmPass, tests/).
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

@@ -6,6 +6,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "common/raster/readback.h"
+#include "common/raster/shaders/raster_records.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/shading.h"
 
@@ -15,19 +16,8 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-// std140 twin of FrameUniforms in shaders/deferred_lighting.frag.
-struct FrameUniforms {
-    glm::vec4 cameraPosition, cameraRight, cameraUp, cameraForward;
-    glm::vec4 sceneAmbient, skyColor;
-    glm::uvec4 counts;
-    glm::vec4 shadowParams;
-};
-
-// std140 twin of LightData in shaders/shading.glsl.
-struct LightData {
-    glm::vec4 radiance, position, direction;
-    glm::ivec4 shadow;
-};
+using raster_records::FrameUniforms;
+using raster_records::LightData;
 
 }  // namespace
 
@@ -53,7 +43,9 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
         const SpotCone cone = spotCone(l);  // the same cosines the ray tracer uses
-        const float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
+        const auto type = static_cast<float>(l.type == Light::Type::Directional ? raster_records::kLightDirectional
+                                             : l.type == Light::Type::Point     ? raster_records::kLightPoint
+                                                                                : raster_records::kLightSpot);
         data.push_back({glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
                         glm::ivec4(shadows.firstLayer(i), shadows.layerCount(i), 0, 0)});
     }

@@ -27,22 +27,9 @@ Vertex packVertex(const Mesh& m, std::size_t v, const DeformedVertices* deformed
             tangents.empty() ? glm::vec4(0.0f) : tangents[v]};
 }
 
-// std140 twins of shaders/scene_data.glsl.
-struct ObjectData {
-    glm::mat4 model;
-    glm::mat4 normalMatrix;
-};
-
-struct MaterialData {
-    glm::vec4 emission, ambient, diffuse, specular, optical, tilingOffset;
-    glm::ivec4 textures;
-};
-
-struct DrawRecord {
-    ObjectData object;
-    MaterialData material;
-};
-static_assert(sizeof(DrawRecord) == 240);
+using raster_records::DrawRecord;
+using raster_records::MaterialData;
+using raster_records::ObjectData;
 
 MaterialData materialData(const Material& m) {
     return {glm::vec4(m.emission, 0.0f),

@@ -12,18 +12,15 @@
 #include "common/raster/gpu_buffer.h"
 #include "common/raster/pipelines.h"
 #include "common/raster/scene_textures.h"
+#include "common/raster/shaders/raster_records.h"
 #include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"
 
 namespace hybridlab {
 
-// Push constants of the geometry passes (shaders/scene_data.glsl, DrawConstants).
-struct DrawConstants {
-    glm::mat4 viewProj;
-    std::uint32_t object;
-    std::uint32_t flags;
-};
-inline constexpr std::uint32_t kHasTangentSpace = 1u;
+// Push constants of the geometry passes (shaders/scene_data.glsl).
+using raster_records::DrawConstants;
+using raster_records::kHasTangentSpace;
 
 struct MeshDraw {
     std::uint32_t object = 0;

@@ -13,14 +13,12 @@
 #include "common/raster/gpu_image.h"
 #include "common/raster/gpu_scene.h"
 #include "common/raster/raster_options.h"
+#include "common/raster/shaders/raster_records.h"
 
 namespace hybridlab {
 
-// std140 twin of ShadowLayer in shaders/deferred_lighting.frag.
-struct ShadowLayerData {
-    glm::mat4 viewProj;
-    glm::vec4 params;  // x texel world size (per unit distance when y = 1: perspective)
-};
+// One layer as the lighting pass reads it (shaders/raster_records.h).
+using ShadowLayerData = raster_records::ShadowLayer;
 
 class ShadowMaps {
 public:

@@ -50,15 +50,15 @@
 // Shadows. POV-Ray lets a shadow ray through a surface times that surface's (filter * pigment +
 // transmit) at each crossing; ours multiplies by (1 - opacity) * diffuse at each crossing. For an
 // opaque material the visible object gives that (0). A transparent material's visible object
-// has no_shadow, and a twin (the same mesh, no_image no_reflection, pigment rgbf <diffuse,
+// has no_shadow, and a shadow copy (the same mesh, no_image no_reflection, pigment rgbf <diffuse,
 // 1 - opacity>) casts the shadow instead: exactly our transmittance, untextured as ours. Materials
-// that cast no shadow get no_shadow and no twin.
+// that cast no shadow get no_shadow and no shadow copy.
 //
 // Interior: ior = material ior / scene ambient ior (POV-Ray's surrounding medium has index 1 and
 // it uses only ratios); absorption as media absorption, which POV-Ray computes only inside hollow
 // objects (hence `hollow on`). POV-Ray keeps the list of interiors a ray is in and integrates the
 // media of all of them along every segment, eye rays and (with `media_attenuation on` on each
-// light, and the interior on the shadow twin, since shadow rays skip the no_shadow visible object)
+// light, and the interior on the shadow copy, since shadow rays skip the no_shadow visible object)
 // shadow rays: the rule of medium_stack.h. Where transparent objects nest or overlap,
 // POV-Ray refracts at their shared surfaces with the ratio of the two indices, ours against the
 // ambient index (listed when two transparent objects' bounds overlap); a camera inside a medium
@@ -136,7 +136,7 @@ struct MaterialPlan {
     bool used = false;
     bool reflects = false;       // has the top reflection layer
     bool transparent = false;    // o_r > 0
-    bool shadowTwin = false;     // a transparent shadow caster: the twin casts its shadow
+    bool shadowCopy = false;     // a transparent shadow caster: the copy casts its shadow
     bool noShadow = false;       // the visible object casts no shadow
     bool textured = false;
     bool absorbs = false;        // media absorption inside: the object must be hollow
@@ -167,7 +167,7 @@ std::string finish(glm::dvec3 ambient, glm::dvec3 emission, double diffuse, doub
 
 std::string materialId(std::size_t i) { return "HL_Material_" + std::to_string(i); }
 
-// The #declares of one material: its surface layer, reflection layer, shadow twin texture and
+// The #declares of one material: its surface layer, reflection layer, shadow copy texture and
 // interior. Appends what cannot be exact to `approximations`.
 std::string materialSdl(const Scene& scene, std::size_t index, const MaterialPlan& plan, std::vector<std::string>& approximations) {
     const Material& m = scene.materials[index];
@@ -243,8 +243,8 @@ std::string materialSdl(const Scene& scene, std::size_t index, const MaterialPla
                                        "1 - opacity");
     }
 
-    // Shadow twin: lets (1 - opacity) * diffuse through at each crossing, untextured.
-    if (plan.shadowTwin) {
+    // Shadow copy: lets (1 - opacity) * diffuse through at each crossing, untextured.
+    if (plan.shadowCopy) {
         sdl += "#declare " + id + "_Shadow = texture {\n  pigment { rgbf <" + num(D.x) + ", " + num(D.y) + ", " + num(D.z) + ", " +
                num(orr) + "> }\n  " + finish(glm::dvec3(0.0), glm::dvec3(0.0), 0.0, 0.0, 1.0, "rgb 0", false) + "\n};\n";
     }
@@ -301,22 +301,13 @@ struct TemporaryFiles {
     }
 };
 
-}  // namespace
-
-PovExport writePovScene(const Scene& scene, const Camera& camera, double time, int width, int height, const fs::path& out) {
-    // Everything that can be wrong with the input is checked before anything is written.
-    if (width <= 0 || height <= 0) throw InputError("POV-Ray export: image size must be positive");
-    if (out.extension() != ".pov") throw InputError(out.string() + ": expected a .pov file name");
-    if (scene.sky.hasCubeMap()) throw InputError(scene.file.string() + ": cube-map skies are not exported to POV-Ray");
-    if (!std::isfinite(scene.ambientIor) || scene.ambientIor <= 0.0f) throw InputError(scene.file.string() + ": ambient ior must be positive");
-
-    PovExport result;
+// Per material: whether the scene uses it, how POV-Ray expresses it, and its pigment image (for a
+// textured one, the diffuse colour times the texture, scaled into [0, 1]).
+std::vector<MaterialPlan> planMaterials(const Scene& scene, const std::string& stem) {
     std::vector<MaterialPlan> plans(scene.materials.size());
     for (const auto& o : scene.objects)
         for (auto meshIndex : o.meshes) plans[scene.meshes[meshIndex].material].used = true;
 
-    const fs::path dir = out.parent_path();
-    const std::string stem = out.stem().string();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         MaterialPlan& p = plans[i];
@@ -324,7 +315,7 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         p.reflects = m.fresnel || m.reflectivity > 0.0f;
         p.transparent = m.opacity < 1.0f;
         p.noShadow = !m.castsShadows || p.transparent;
-        p.shadowTwin = m.castsShadows && p.transparent;
+        p.shadowCopy = m.castsShadows && p.transparent;
         p.textured = m.diffuseTexture != kNoTexture;
         p.absorbs = maxComponent(glm::dvec3(m.absorption)) > 0.0;
         if (!p.textured) continue;
@@ -348,8 +339,12 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         }
         p.pngName = stem + ".mat" + std::to_string(i) + ".png";
     }
+    return plans;
+}
 
-    std::ostringstream sdl;
+// The file's header comment (how to render it) and POV-Ray's global settings and background.
+void writeSdlHeader(std::ostream& sdl, const Scene& scene, double time, int width, int height, const fs::path& out) {
+    const std::string stem = out.stem().string();
     sdl << "// POV-Ray 3.7 scene exported by `hybridlab export-pov` (common/raytrace/pov_export.cpp says how each\n"
         << "// term of hybridlab's shading model is expressed here).\n"
         << "// scene: " << commentText(scene.name) << " (" << commentText(scene.file.string()) << "), time " << num(time) << " s\n"
@@ -361,8 +356,9 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
     sdl << "global_settings {\n  assumed_gamma 1.0\n  max_trace_level " << maxTraceLevel
         << "\n  adc_bailout 0\n  ambient_light rgb <1, 1, 1>\n}\n\n";
     sdl << "background { rgb " << vec(glm::dvec3(scene.sky.color)) << " }\n\n";
+}
 
-    // Camera.
+void writeSdlCamera(std::ostream& sdl, const Camera& camera, int width, int height) {
     const double aspect = static_cast<double>(width) / height;
     // An exactly orthonormal basis (POV-Ray warns about vectors that are not perpendicular).
     const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.forward()));
@@ -379,7 +375,10 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             << exactVec(pov(forward)) << "\n  right " << exactVec(pov(right * (h * aspect))) << "\n  up " << exactVec(pov(up * h)) << "\n}\n\n";
     }
 
-    // Lights.
+}
+
+// The lights; what POV-Ray cannot express exactly is added to `approximations`.
+void writeSdlLights(std::ostream& sdl, const Scene& scene, double time, std::vector<std::string>& approximations) {
     const Aabb bounds = scene.bounds(time);
     const glm::dvec3 centre = bounds.valid() ? glm::dvec3(bounds.center()) : glm::dvec3(0.0);
     const double radius = bounds.valid() ? 0.5 * glm::length(glm::dvec3(bounds.extent())) : 1.0;
@@ -399,7 +398,7 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
                 sdl << "  spotlight\n  point_at " << vec(pov(p + dir)) << "\n  radius " << num(inner) << "\n  falloff "
                     << num(l.outerConeDegrees) << "\n  tightness 0\n";
                 if (l.innerConeDegrees >= 90.0f || l.outerConeDegrees >= 90.0f) {
-                    result.approximations.push_back("light '" + l.name + "': POV-Ray's spot light cones end at 90 degrees");
+                    approximations.push_back("light '" + l.name + "': POV-Ray's spot light cones end at 90 degrees");
                 }
             }
             sdl << "  fade_distance " << num(kFadeDistance) << "\n  fade_power 2\n";
@@ -408,16 +407,16 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         sdl << "  media_attenuation on\n";
         if (!l.castsShadows) {
             sdl << "  shadowless\n";
-            result.approximations.push_back("light '" + l.name + "' casts no shadows: POV-Ray's shadowless lights add no "
+            approximations.push_back("light '" + l.name + "' casts no shadows: POV-Ray's shadowless lights add no "
                                             "specular highlights");
         }
         sdl << "}\n\n";
     }
 
-    for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        if (plans[i].used) sdl << materialSdl(scene, i, plans[i], result.approximations);
+}
 
-    // Objects: one mesh2 per mesh, in world space.
+// Objects: one mesh2 per mesh, in world space.
+void writeSdlObjects(std::ostream& sdl, const Scene& scene, const std::vector<MaterialPlan>& plans, double time) {
     std::size_t meshCount = 0;
     for (const auto& o : scene.objects) {
         const glm::mat4 toWorld = o.worldMatrix(time);
@@ -446,8 +445,8 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             // POV-Ray computes interior media only along rays inside hollow objects.
             if (p.absorbs) sdl << "  hollow on\n";
             sdl << "}\n";
-            if (p.shadowTwin) {
-                // POV-Ray's shadow rays skip no_shadow objects, interiors included: the twin carries the
+            if (p.shadowCopy) {
+                // POV-Ray's shadow rays skip no_shadow objects, interiors included: the copy carries the
                 // media that absorb them.
                 sdl << "object { " << id << " texture { " << mat << "_Shadow }";
                 if (p.absorbs) sdl << " interior { " << mat << "_Interior } hollow on";
@@ -456,7 +455,11 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
             sdl << "\n";
         }
     }
-    // Media: what the interior list of POV-Ray does that ours does not (see the top of this file).
+}
+
+// Media: what the interior list of POV-Ray does that ours does not (see the top of this file).
+void addMediaApproximations(const Scene& scene, const std::vector<MaterialPlan>& plans, const Camera& camera, double time,
+                            std::vector<std::string>& approximations) {
     auto overlap = [](const Aabb& a, const Aabb& b) {
         return a.valid() && b.valid() && glm::all(glm::lessThanEqual(a.lo, b.hi)) && glm::all(glm::lessThanEqual(b.lo, a.hi));
     };
@@ -470,34 +473,32 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         const Aabb bi = scene.objectBounds(i, time);
         if (absorbs(i) && bi.valid() && glm::all(glm::lessThanEqual(bi.lo, camera.position)) &&
             glm::all(glm::lessThanEqual(camera.position, bi.hi))) {
-            result.approximations.push_back("the camera is inside the bounds of absorbing object '" + scene.objects[i].name +
+            approximations.push_back("the camera is inside the bounds of absorbing object '" + scene.objects[i].name +
                                             "': if inside the object, POV-Ray absorbs along camera rays from the start, ours "
                                             "starts them outside every medium");
         }
         for (std::size_t j = i + 1; j < scene.objects.size(); ++j) {
             if (!scene.objectIsRefractive(j) || !overlap(bi, scene.objectBounds(j, time))) continue;
-            result.approximations.push_back("transparent objects '" + scene.objects[i].name + "' and '" + scene.objects[j].name +
+            approximations.push_back("transparent objects '" + scene.objects[i].name + "' and '" + scene.objects[j].name +
                                             "' have overlapping bounds: where one nests in or overlaps the other, POV-Ray "
                                             "refracts at their shared surfaces with the ratio of their indices, ours each "
                                             "against the ambient index");
         }
     }
 
-    // One note per distinct approximation.
-    std::sort(result.approximations.begin(), result.approximations.end());
-    result.approximations.erase(std::unique(result.approximations.begin(), result.approximations.end()), result.approximations.end());
-    if (!result.approximations.empty()) {
-        sdl << "// Not exact in POV-Ray:\n";
-        for (const auto& a : result.approximations) sdl << "//   " << commentText(a) << "\n";
-    }
+}
 
-    // Write everything under temporary names, then rename: no partial output.
+// Writes the SDL and the pigment images under temporary names, then renames them: no partial output.
+// Returns the files written.
+std::vector<fs::path> writeExportFiles(const fs::path& out, const std::string& sdl, const std::vector<MaterialPlan>& plans) {
+    const fs::path dir = out.parent_path();
+    std::vector<fs::path> files;
     if (!dir.empty()) createDirectories(dir);
     TemporaryFiles temporaries;
     std::vector<std::pair<fs::path, fs::path>> renames;
     const fs::path tmpPov = temporaryPathFor(out);
     temporaries.paths.push_back(tmpPov);
-    writeFileAtomically(tmpPov, sdl.str());
+    writeFileAtomically(tmpPov, sdl);
     renames.emplace_back(tmpPov, out);
     for (const auto& p : plans) {
         if (!p.used || !p.textured) continue;
@@ -511,8 +512,40 @@ PovExport writePovScene(const Scene& scene, const Camera& camera, double time, i
         std::error_code ec;
         fs::rename(from, to, ec);
         if (ec) throw IoError(to.string() + ": cannot write (" + ec.message() + ")");
-        result.files.push_back(to);
+        files.push_back(to);
     }
+    return files;
+}
+
+}  // namespace
+
+PovExport writePovScene(const Scene& scene, const Camera& camera, double time, int width, int height, const fs::path& out) {
+    // Everything that can be wrong with the input is checked before anything is written.
+    if (width <= 0 || height <= 0) throw InputError("POV-Ray export: image size must be positive");
+    if (out.extension() != ".pov") throw InputError(out.string() + ": expected a .pov file name");
+    if (scene.sky.hasCubeMap()) throw InputError(scene.file.string() + ": cube-map skies are not exported to POV-Ray");
+    if (!std::isfinite(scene.ambientIor) || scene.ambientIor <= 0.0f) throw InputError(scene.file.string() + ": ambient ior must be positive");
+    const std::vector<MaterialPlan> plans = planMaterials(scene, out.stem().string());
+
+    PovExport result;
+    std::ostringstream sdl;
+    writeSdlHeader(sdl, scene, time, width, height, out);
+    writeSdlCamera(sdl, camera, width, height);
+    writeSdlLights(sdl, scene, time, result.approximations);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (plans[i].used) sdl << materialSdl(scene, i, plans[i], result.approximations);
+    writeSdlObjects(sdl, scene, plans, time);
+    addMediaApproximations(scene, plans, camera, time, result.approximations);
+
+    // One note per distinct approximation.
+    std::sort(result.approximations.begin(), result.approximations.end());
+    result.approximations.erase(std::unique(result.approximations.begin(), result.approximations.end()), result.approximations.end());
+    if (!result.approximations.empty()) {
+        sdl << "// Not exact in POV-Ray:\n";
+        for (const auto& a : result.approximations) sdl << "//   " << commentText(a) << "\n";
+    }
+
+    result.files = writeExportFiles(out, sdl.str(), plans);
     return result;
 }
 

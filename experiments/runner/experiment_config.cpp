@@ -113,6 +113,111 @@ std::string sceneFileAsWritten(const std::string& written, const fs::path& confi
     return isPath && p.is_relative() ? (configFile.parent_path() / p).string() : written;
 }
 
+// One [[scenes.views]] entry of the scene `sceneName`: a camera path and its frames, or the scene's camera.
+ViewSpec readView(const TomlTable& v, const Scene& scene, const std::string& sceneName) {
+    ViewSpec view;
+    view.cameraPath = v.string("path", "");
+    if (view.cameraPath.empty()) {
+        if (v.has("frames") || v.has("stride")) v.failHere("frames and stride need a camera path ('path')");
+    } else {
+        const CameraPath* p = scene.findCameraPath(view.cameraPath);
+        if (!p) {
+            std::string known;
+            for (const auto& cp : scene.cameraPaths) known += (known.empty() ? "" : ", ") + cp.name;
+            v.fail("path", "scene " + sceneName + " has no camera path '" + view.cameraPath + "'" + (known.empty() ? "" : " (paths: " + known + ")"));
+        }
+        const int last = p->frameCount() - 1;
+        view.stride = v.integer("stride", 1, 1, 1000000);
+        if (v.has("frames")) {
+            auto fr = v.node("frames").as_array();
+            if (!fr || fr->size() != 2 || !fr->get(0)->is_integer() || !fr->get(1)->is_integer())
+                v.fail("frames", "expected [first, last] frame numbers");
+            const long long first = fr->get(0)->as_integer()->get(), lastAsked = fr->get(1)->as_integer()->get();
+            if (!integerProblem(first, 0, last).empty() || !integerProblem(lastAsked, 0, last).empty() || first > lastAsked)
+                v.fail("frames", "expected 0 <= first <= last <= " + std::to_string(last) + " (path '" + view.cameraPath + "' has " +
+                                     std::to_string(last + 1) + " frames), got [" + std::to_string(first) + ", " +
+                                     std::to_string(lastAsked) + "]");
+            view.firstFrame = static_cast<int>(first);
+            view.lastFrame = static_cast<int>(lastAsked);
+            v.node("frames");  // (marked as read above)
+        } else {
+            view.firstFrame = 0;
+            view.lastFrame = last;
+        }
+    }
+    v.rejectUnknownKeys();
+    return view;
+}
+
+// One [[scenes]] entry: the scene (resolved against the config file's folder), its resolutions and views.
+SceneSpec readSceneSpec(const TomlTable& t, const fs::path& configFile) {
+    SceneSpec s;
+    s.name = t.requiredString("scene");
+    try {
+        s.file = findSceneFile(sceneFileAsWritten(s.name, configFile));
+    } catch (const InputError& e) {
+        t.fail("scene", e.what());
+    }
+    Scene scene;
+    try {
+        scene = loadSceneFile(s.file, {.loadTextures = false});
+    } catch (const InputError& e) {
+        t.fail("scene", e.what());
+    }
+    s.label = scene.name;
+    const toml::node* res = t.has("resolutions") ? &t.node("resolutions") : nullptr;
+    if (!res) t.fail("resolutions", "missing (expected a list of [width, height] pairs)");
+    auto arr = res->as_array();
+    if (!arr || arr->empty()) t.fail("resolutions", "expected a non-empty list of [width, height] pairs");
+    for (const auto& r : *arr) {
+        auto pair = r.as_array();
+        if (!pair || pair->size() != 2 || !pair->get(0)->is_integer() || !pair->get(1)->is_integer())
+            t.fail("resolutions", "expected [width, height] pairs of integers");
+        // SSIM's 11 x 11 window needs at least that many pixels.
+        const int w = t.integerValue("resolutions", *pair->get(0), 11, limits::kImageSide);
+        const int h = t.integerValue("resolutions", *pair->get(1), 11, limits::kImageSide);
+        s.resolutions.emplace_back(w, h);
+    }
+    for (const auto& v : t.tableArray("views")) s.views.push_back(readView(v, scene, s.name));
+    if (s.views.empty()) s.views.push_back(ViewSpec{});
+    t.rejectUnknownKeys();
+    return s;
+}
+
+// One [[techniques]] entry: a registered technique, its label (unique among `labels`, which gains
+// it) and its parameter sets (a sweep, a list, or the defaults).
+TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& labels) {
+    TechniqueSpec s;
+    s.name = t.requiredString("name");
+    try {
+        findTechnique(s.name);
+    } catch (const InputError& e) {
+        t.fail("name", e.what());
+    }
+    s.label = t.string("label", s.name);
+    if (!labels.insert(s.label).second) t.fail("label", "two techniques are labelled '" + s.label + "' (give each entry its own label)");
+    auto params = t.table("params");
+    auto sets = t.tableArray("param_sets");
+    if (params && !sets.empty()) t.failHere("give 'params' (a sweep) or 'param_sets' (a list of sets), not both");
+    if (params) {
+        s.parameterSets = expandSweep(*params);
+        for (const auto& set : s.parameterSets) checkParameters(*params, s.name, set);
+        params->rejectUnknownKeys();
+    } else if (!sets.empty()) {
+        for (const auto& st : sets) {
+            ParameterList set;
+            for (const auto& key : st.keys()) set.emplace_back(key, toParamValue(st, key, st.node(key)));
+            checkParameters(st, s.name, set);
+            st.rejectUnknownKeys();
+            s.parameterSets.push_back(std::move(set));
+        }
+    } else {
+        s.parameterSets.emplace_back();
+    }
+    t.rejectUnknownKeys();
+    return s;
+}
+
 }  // namespace
 
 ExperimentConfig loadExperimentConfig(const fs::path& file) {
@@ -142,107 +247,12 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
 
     auto scenes = root.tableArray("scenes");
     if (scenes.empty()) root.failHere("no [[scenes]]: an experiment needs at least one scene");
-    for (const auto& t : scenes) {
-        SceneSpec s;
-        s.name = t.requiredString("scene");
-        try {
-            s.file = findSceneFile(sceneFileAsWritten(s.name, file));
-        } catch (const InputError& e) {
-            t.fail("scene", e.what());
-        }
-        Scene scene;
-        try {
-            scene = loadSceneFile(s.file, {.loadTextures = false});
-        } catch (const InputError& e) {
-            t.fail("scene", e.what());
-        }
-        s.label = scene.name;
-        const toml::node* res = t.has("resolutions") ? &t.node("resolutions") : nullptr;
-        if (!res) t.fail("resolutions", "missing (expected a list of [width, height] pairs)");
-        auto arr = res->as_array();
-        if (!arr || arr->empty()) t.fail("resolutions", "expected a non-empty list of [width, height] pairs");
-        for (const auto& r : *arr) {
-            auto pair = r.as_array();
-            if (!pair || pair->size() != 2 || !pair->get(0)->is_integer() || !pair->get(1)->is_integer())
-                t.fail("resolutions", "expected [width, height] pairs of integers");
-            // SSIM's 11 x 11 window needs at least that many pixels.
-            const int w = t.integerValue("resolutions", *pair->get(0), 11, limits::kImageSide);
-            const int h = t.integerValue("resolutions", *pair->get(1), 11, limits::kImageSide);
-            s.resolutions.emplace_back(w, h);
-        }
-        for (const auto& v : t.tableArray("views")) {
-            ViewSpec view;
-            view.cameraPath = v.string("path", "");
-            if (view.cameraPath.empty()) {
-                if (v.has("frames") || v.has("stride")) v.failHere("frames and stride need a camera path ('path')");
-            } else {
-                const CameraPath* p = scene.findCameraPath(view.cameraPath);
-                if (!p) {
-                    std::string known;
-                    for (const auto& cp : scene.cameraPaths) known += (known.empty() ? "" : ", ") + cp.name;
-                    v.fail("path", "scene " + s.name + " has no camera path '" + view.cameraPath + "'" + (known.empty() ? "" : " (paths: " + known + ")"));
-                }
-                const int last = p->frameCount() - 1;
-                view.stride = v.integer("stride", 1, 1, 1000000);
-                if (v.has("frames")) {
-                    auto fr = v.node("frames").as_array();
-                    if (!fr || fr->size() != 2 || !fr->get(0)->is_integer() || !fr->get(1)->is_integer())
-                        v.fail("frames", "expected [first, last] frame numbers");
-                    const long long first = fr->get(0)->as_integer()->get(), lastAsked = fr->get(1)->as_integer()->get();
-                    if (!integerProblem(first, 0, last).empty() || !integerProblem(lastAsked, 0, last).empty() || first > lastAsked)
-                        v.fail("frames", "expected 0 <= first <= last <= " + std::to_string(last) + " (path '" + view.cameraPath + "' has " +
-                                             std::to_string(last + 1) + " frames), got [" + std::to_string(first) + ", " +
-                                             std::to_string(lastAsked) + "]");
-                    view.firstFrame = static_cast<int>(first);
-                    view.lastFrame = static_cast<int>(lastAsked);
-                    v.node("frames");  // (marked as read above)
-                } else {
-                    view.firstFrame = 0;
-                    view.lastFrame = last;
-                }
-            }
-            v.rejectUnknownKeys();
-            s.views.push_back(view);
-        }
-        if (s.views.empty()) s.views.push_back(ViewSpec{});
-        t.rejectUnknownKeys();
-        c.scenes.push_back(std::move(s));
-    }
+    for (const auto& t : scenes) c.scenes.push_back(readSceneSpec(t, file));
 
     auto techniques = root.tableArray("techniques");
     if (techniques.empty()) root.failHere("no [[techniques]]: an experiment needs at least one technique");
     std::set<std::string> labels;
-    for (const auto& t : techniques) {
-        TechniqueSpec s;
-        s.name = t.requiredString("name");
-        try {
-            findTechnique(s.name);
-        } catch (const InputError& e) {
-            t.fail("name", e.what());
-        }
-        s.label = t.string("label", s.name);
-        if (!labels.insert(s.label).second) t.fail("label", "two techniques are labelled '" + s.label + "' (give each entry its own label)");
-        auto params = t.table("params");
-        auto sets = t.tableArray("param_sets");
-        if (params && !sets.empty()) t.failHere("give 'params' (a sweep) or 'param_sets' (a list of sets), not both");
-        if (params) {
-            s.parameterSets = expandSweep(*params);
-            for (const auto& set : s.parameterSets) checkParameters(*params, s.name, set);
-            params->rejectUnknownKeys();
-        } else if (!sets.empty()) {
-            for (const auto& st : sets) {
-                ParameterList set;
-                for (const auto& key : st.keys()) set.emplace_back(key, toParamValue(st, key, st.node(key)));
-                checkParameters(st, s.name, set);
-                st.rejectUnknownKeys();
-                s.parameterSets.push_back(std::move(set));
-            }
-        } else {
-            s.parameterSets.emplace_back();
-        }
-        t.rejectUnknownKeys();
-        c.techniques.push_back(std::move(s));
-    }
+    for (const auto& t : techniques) c.techniques.push_back(readTechniqueSpec(t, labels));
     root.rejectUnknownKeys();
     return c;
 }

@@ -18,6 +18,7 @@
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
+#include "common/core/wall_clock.h"
 #include "experiments/runner/parameter_json.h"
 #include "experiments/runner/device_record.h"
 #include "experiments/runner/progress.h"
@@ -241,6 +242,75 @@ struct ActiveScene {
     }
 };
 
+// The reference of one run: from the cache, or rendered now (by `active`'s whitted) and cached.
+CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCache& cache, ActiveScene& active, const RunSpec& run,
+                             const View& view, const FrameRequest& request, RunnerSummary& summary) {
+    const std::string key = ReferenceCache::key(*active.scene, view, run.width, run.height, config.referenceParameters);
+    if (std::optional<CachedReference> cached = cache.find(key)) {
+        ++summary.referenceCacheHits;
+        return std::move(*cached);
+    }
+    Technique& whitted = active.technique("\x01reference", "whitted", config.referenceParameters);
+    FrameResult r = whitted.render(*active.context, request);
+    CachedReference ref{key, std::move(r.image), reflectiveRefractiveMask(active.context->rayScene(view.time), view.camera, run.width, run.height),
+                        r.totalMilliseconds(), false};
+    cache.store(ref);
+    ++summary.referencesRendered;
+    return ref;
+}
+
+// A technique's frame after the warm-up frames, with every timed repeat's stage and frame times.
+struct TimedFrame {
+    FrameResult result;  // the last repeat
+    std::map<std::string, std::vector<double>> stageTimes;
+    std::vector<double> frameTimes;
+};
+
+TimedFrame timeTechnique(const ExperimentConfig& config, Technique& technique, SceneContext& context, const FrameRequest& request) {
+    for (int i = 0; i < config.warmupFrames; ++i) technique.render(context, request);
+    TimedFrame timed;
+    for (int i = 0; i < config.repeats; ++i) {
+        timed.result = technique.render(context, request);
+        for (const auto& s : timed.result.stages) timed.stageTimes[s.name].push_back(s.milliseconds);
+        timed.frameTimes.push_back(timed.result.totalMilliseconds());
+    }
+    return timed;
+}
+
+// The results record of one run (experiments/README.md): what ran, its times, counters and scores,
+// and the paths of its images beside the reference's.
+json runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const json& sceneStats, const View& view, const TechniqueSpec& techSpec,
+               const TimedFrame& timed, const MetricReport& report, const ReportSources& sources, const CachedReference& ref, bool masked,
+               const std::string& image, const json& maps) {
+    const std::string& key = ref.key;
+    json record;
+    record["index"] = run.index;
+    record["id"] = run.id;
+    record["scene"] = sceneSpec.label;
+    record["scene_stats"] = sceneStats;
+    record["view"] = run.cameraPath.empty() ? "camera" : run.cameraPath;
+    record["frame"] = run.frame;
+    record["time"] = view.time;
+    record["width"] = run.width;
+    record["height"] = run.height;
+    record["technique"] = techSpec.name;
+    record["label"] = techSpec.label;
+    record["parameters"] = json::object();
+    for (const auto& [k, v] : run.parameters) record["parameters"][k] = parameterJson(v);
+    record["parameters_text"] = run.parametersText;
+    record["sequence"] = run.sequenceKey;
+    record["frame_ms"] = toJson(spread(timed.frameTimes));
+    record["stages"] = json::object();
+    for (const auto& [name, times] : timed.stageTimes) record["stages"][name] = toJson(spread(times));
+    record["counters"] = timed.result.counters;
+    record["metrics"] = reportJson(report, sources);
+    record["reference"] = {{"key", key}, {"exr", "references/" + key + ".exr"}, {"png", "references/" + key + ".png"},
+                           {"frame_ms", ref.frameMilliseconds}, {"cache_hit", ref.cacheHit}};
+    if (masked) record["reference"]["mask"] = "references/" + key + ".mask.png";
+    record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
+    return record;
+}
+
 void checkShard(const RunnerOptions& o) {
     if (o.shardCount < 1 || o.shardIndex < 0 || o.shardIndex >= o.shardCount) {
         throw InputError("--shard " + std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount) + ": expected i/n with 0 <= i < n");
@@ -271,7 +341,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             continue;
         }
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
-        const auto runStart = std::chrono::steady_clock::now();
+        const auto runStart = WallClock::now();
         const SceneSpec& sceneSpec = config.scenes[run->scene];
         const TechniqueSpec& techSpec = config.techniques[run->technique];
         progress.start(done, run->id);
@@ -280,38 +350,19 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         const View view = resolveView(scene, run->cameraPath, run->frame >= 0 ? std::optional<int>(run->frame) : std::nullopt, std::nullopt);
         const FrameRequest request{view.camera, view.time, run->width, run->height};
 
-        // The reference: from the cache, or rendered now and cached.
-        const std::string key = ReferenceCache::key(scene, view, run->width, run->height, config.referenceParameters);
-        std::optional<CachedReference> ref = cache.find(key);
-        if (ref) {
-            ++summary.referenceCacheHits;
-        } else {
-            Technique& whitted = active.technique("\x01reference", "whitted", config.referenceParameters);
-            FrameResult r = whitted.render(*active.context, request);
-            ref = CachedReference{key, std::move(r.image),
-                                  reflectiveRefractiveMask(active.context->rayScene(view.time), view.camera, run->width, run->height),
-                                  r.totalMilliseconds(), false};
-            cache.store(*ref);
-            ++summary.referencesRendered;
-        }
+        const CachedReference ref = referenceFor(config, cache, active, *run, view, request, summary);
+        const std::string& key = ref.key;
 
         // The technique: warm-up frames, then timed repeats (medians, min and max per stage).
         Technique& technique = active.technique(std::to_string(run->technique) + "|" + run->parametersText, techSpec.name, run->parameters);
-        for (int i = 0; i < config.warmupFrames; ++i) technique.render(*active.context, request);
-        std::map<std::string, std::vector<double>> stageTimes;
-        std::vector<double> frameTimes;
-        FrameResult result;
-        for (int i = 0; i < config.repeats; ++i) {
-            result = technique.render(*active.context, request);
-            for (const auto& s : result.stages) stageTimes[s.name].push_back(s.milliseconds);
-            frameTimes.push_back(result.totalMilliseconds());
-        }
+        const TimedFrame timed = timeTechnique(config, technique, *active.context, request);
+        const FrameResult& result = timed.result;
 
-        const PixelMask mask = PixelMask::fromImage(ref->mask);
-        writeReferenceCopy(store, *ref, mask.count() > 0);
+        const PixelMask mask = PixelMask::fromImage(ref.mask);
+        writeReferenceCopy(store, ref, mask.count() > 0);
         MetricOptions scoring;
         scoring.selection = config.metrics;
-        const MetricReport report = computeMetrics(result.image, ref->image, scoring, mask.count() > 0 ? &mask : nullptr);
+        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
         const std::string image = "images/" + run->id;
         writeImageAtomically(o.outDir / (image + ".exr"), result.image);
         writeImageAtomically(o.outDir / (image + ".png"), result.image);
@@ -323,34 +374,10 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             maps = "maps/" + run->id;
         }
 
-        json record;
-        record["index"] = run->index;
-        record["id"] = run->id;
-        record["scene"] = sceneSpec.label;
-        record["scene_stats"] = active.stats;
-        record["view"] = run->cameraPath.empty() ? "camera" : run->cameraPath;
-        record["frame"] = run->frame;
-        record["time"] = view.time;
-        record["width"] = run->width;
-        record["height"] = run->height;
-        record["technique"] = techSpec.name;
-        record["label"] = techSpec.label;
-        record["parameters"] = json::object();
-        for (const auto& [k, v] : run->parameters) record["parameters"][k] = parameterJson(v);
-        record["parameters_text"] = run->parametersText;
-        record["sequence"] = run->sequenceKey;
-        record["frame_ms"] = toJson(spread(frameTimes));
+        json record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
         // The run's time so far (scene load, reference, warm-up, repeats, scoring, error maps): what
         // `merge` sums per shard beside the shard's estimated cost.
-        record["run_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-        record["stages"] = json::object();
-        for (const auto& [name, times] : stageTimes) record["stages"][name] = toJson(spread(times));
-        record["counters"] = result.counters;
-        record["metrics"] = reportJson(report, sources);
-        record["reference"] = {{"key", key}, {"exr", "references/" + key + ".exr"}, {"png", "references/" + key + ".png"},
-                               {"frame_ms", ref->frameMilliseconds}, {"cache_hit", ref->cacheHit}};
-        if (mask.count() > 0) record["reference"]["mask"] = "references/" + key + ".mask.png";
-        record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
+        record["run_seconds"] = millisecondsSince(runStart) / 1000.0;
         if (mixed) record["device"] = mixed->here;
         if (config.keepDebugImages) {
             for (const auto& [name, dbg] : result.debugImages) {

@@ -57,7 +57,7 @@ float cubeMapLod(float radiansPerPixel, int size) {
 
 namespace {
 
-// Bilinear taps of one level (twin of cubeLevelTaps in layered_em.frag), each weight times `scale`.
+// Bilinear taps of one level (layered_em.frag's levelTaps computes the same), each weight times `scale`.
 void levelTaps(const CubeMapCoordinate& c, int size, int level, float scale, CubeMapTap* taps) {
     const int side = cubeMapLevelSize(size, level);
     const float fs = static_cast<float>(side);

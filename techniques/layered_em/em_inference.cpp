@@ -117,6 +117,141 @@ std::vector<bool> activeTexels(const std::vector<double>& observedWeight, const 
     return active;
 }
 
+// What the data rows tell of every texel of the chain.
+struct TexelData {
+    std::vector<double> observedWeight;  // sum of confidence * tap weight
+    std::vector<double> normalDiagonal;  // diagonal of A^T A over the data rows
+    std::vector<glm::dvec4> splat;       // weighted sum of the targets reading a texel
+};
+
+TexelData texelData(const std::vector<EmObservation>& observations, std::size_t texels) {
+    TexelData d{std::vector<double>(texels, 0.0), std::vector<double>(texels, 0.0), std::vector<glm::dvec4>(texels, glm::dvec4(0.0))};
+    for (const EmObservation& o : observations) {
+        for (std::size_t r = 0; r < o.lookups.size(); ++r) {
+            const double c = o.confidence[r];
+            for (const CubeMapTap& t : o.lookups[r].taps) {
+                if (t.weight == 0.0f) continue;
+                d.observedWeight[t.texel] += c * t.weight;
+                d.normalDiagonal[t.texel] += (c * t.weight) * (c * t.weight);
+                d.splat[t.texel] += c * static_cast<double>(t.weight) * glm::dvec4(o.targets[r]);
+            }
+        }
+    }
+    return d;
+}
+
+// The regularising weights are relative to the data's mean diagonal of A^T A, so scaling every
+// confidence alike does not change the solution (the paper multiplies both sides by it).
+double meanDiagonal(const std::vector<double>& normalDiagonal) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (double v : normalDiagonal) {
+        sum += v;
+        count += v > 0.0 ? 1 : 0;
+    }
+    return count > 0 ? sum / static_cast<double>(count) : 1.0;
+}
+
+// The stacked least-squares system over the active texels (the unknowns, numbered in chain order
+// by `column`, -1 for the rest): its entries and right-hand sides, row after row.
+class StackedRows {
+public:
+    explicit StackedRows(const std::vector<Eigen::Index>& column) : column_(column) {}
+
+    // The confidence-weighted rows of every observation.
+    void addData(const std::vector<EmObservation>& observations) {
+        for (const EmObservation& o : observations) {
+            for (std::size_t r = 0; r < o.lookups.size(); ++r, ++row_) {
+                const double c = o.confidence[r];
+                for (const CubeMapTap& t : o.lookups[r].taps) {
+                    if (t.weight != 0.0f && column_[t.texel] >= 0) entries_.emplace_back(row_, column_[t.texel], c * t.weight);
+                }
+                rhs_.push_back(c * glm::dvec4(o.targets[r]));
+            }
+        }
+    }
+
+    // Smoothness between neighbouring active texels of a level-0 face, weight s; the pyramid carries
+    // it to the coarser levels (smoothness there would pull them away from the mean of what they cover).
+    void addSmoothness(const std::vector<bool>& active, int size, double s) {
+        auto addPair = [&](std::size_t a, std::size_t b) {
+            if (column_[a] < 0 || column_[b] < 0) return;
+            entries_.emplace_back(row_, column_[a], s);
+            entries_.emplace_back(row_, column_[b], -s);
+            rhs_.push_back(glm::dvec4(0.0));
+            ++row_;
+        };
+        for (int f = 0; f < 6; ++f) {
+            for (int j = 0; j < size; ++j) {
+                for (int i = 0; i < size; ++i) {
+                    const std::size_t t = static_cast<std::size_t>((f * size + j) * size + i);  // level 0 starts the chain
+                    if (!active[t]) continue;
+                    if (i + 1 < size) addPair(t, t + 1);
+                    if (j + 1 < size) addPair(t, t + static_cast<std::size_t>(size));
+                }
+            }
+        }
+    }
+
+    // Damping towards the splat (the weighted mean of the targets that read the texel), weight d: a
+    // texel that rows touch only with small bilinear weights would otherwise take extreme values
+    // (alpha far outside [0, 1], negative colours) to fix other texels' residuals, and "over"
+    // amplifies them.
+    void addDamping(const TexelData& data, double d) {
+        for (std::size_t t = 0; t < column_.size() && d > 0.0; ++t) {
+            const double w = data.observedWeight[t];
+            if (w <= 0.0 || column_[t] < 0) continue;
+            entries_.emplace_back(row_, column_[t], d);
+            rhs_.push_back(d * data.splat[t] / w);
+            ++row_;
+        }
+    }
+
+    // The pyramid, weight p: each active texel of level k >= 1 against the mean of its active children.
+    void addPyramid(const std::vector<bool>& active, const std::vector<std::uint32_t>& parents, double p) {
+        const std::size_t texels = column_.size();
+        std::vector<std::vector<std::uint32_t>> children(texels);
+        for (std::size_t t = 0; t < texels; ++t) {
+            if (active[t] && parents[t] != kNoParent) children[parents[t]].push_back(static_cast<std::uint32_t>(t));
+        }
+        for (std::size_t parent = 0; parent < texels; ++parent) {
+            if (children[parent].empty()) continue;
+            entries_.emplace_back(row_, column_[parent], p);
+            for (std::uint32_t c : children[parent]) entries_.emplace_back(row_, column_[c], -p / static_cast<double>(children[parent].size()));
+            rhs_.push_back(glm::dvec4(0.0));
+            ++row_;
+        }
+    }
+
+    Eigen::Index rows() const { return row_; }
+
+    // Solves the system channel by channel (LSCG) into the active texels of `result.em`.
+    void solve(Eigen::Index unknowns, const EmInferenceSettings& settings, EmInferenceResult& result) const {
+        SparseRows a(row_, unknowns);
+        a.setFromTriplets(entries_.begin(), entries_.end());
+        Eigen::LeastSquaresConjugateGradient<SparseRows> solver;
+        solver.setTolerance(settings.tolerance);
+        solver.setMaxIterations(settings.maxIterations);
+        solver.compute(a);
+        for (int channel = 0; channel < 4; ++channel) {
+            Eigen::VectorXd b(row_);
+            for (Eigen::Index r = 0; r < row_; ++r) b[r] = rhs_[static_cast<std::size_t>(r)][channel];
+            Eigen::VectorXd x = solver.solve(b);
+            result.iterations = std::max(result.iterations, static_cast<int>(solver.iterations()));
+            result.relativeResidual = std::max(result.relativeResidual, solver.error());
+            for (std::size_t t = 0; t < column_.size(); ++t) {
+                if (column_[t] >= 0) result.em.texels[t][channel] = static_cast<float>(x[column_[t]]);
+            }
+        }
+    }
+
+private:
+    const std::vector<Eigen::Index>& column_;
+    std::vector<Eigen::Triplet<double>> entries_;
+    std::vector<glm::dvec4> rhs_;
+    Eigen::Index row_ = 0;
+};
+
 }  // namespace
 
 EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, const EmInferenceSettings& settings,
@@ -126,23 +261,10 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
     EmInferenceResult result;
     result.em = LayerCubeMap(size);
     result.observed.assign(texels, false);
-    std::vector<double> observedWeight(texels, 0.0);
-    std::vector<double> normalDiagonal(texels, 0.0);             // diagonal of A^T A over the data rows
-    std::vector<glm::dvec4> splat(texels, glm::dvec4(0.0));      // weighted sum of the targets reading a texel
-    for (const EmObservation& o : observations) {
-        for (std::size_t r = 0; r < o.lookups.size(); ++r) {
-            const double c = o.confidence[r];
-            for (const CubeMapTap& t : o.lookups[r].taps) {
-                if (t.weight == 0.0f) continue;
-                observedWeight[t.texel] += c * t.weight;
-                normalDiagonal[t.texel] += (c * t.weight) * (c * t.weight);
-                splat[t.texel] += c * static_cast<double>(t.weight) * glm::dvec4(o.targets[r]);
-            }
-        }
-    }
+    const TexelData data = texelData(observations, texels);
     // The unknowns: the active texels, numbered in chain order.
     const std::vector<std::uint32_t> parents = cubeMapParents(size);
-    std::vector<bool> active = activeTexels(observedWeight, parents, size, settings.ring, settings.finerLevels);
+    std::vector<bool> active = activeTexels(data.observedWeight, parents, size, settings.ring, settings.finerLevels);
     if (!holds.empty()) {
         for (std::size_t t = 0; t < texels; ++t) active[t] = active[t] && holds[t];
     }
@@ -152,96 +274,22 @@ EmInferenceResult inferLayerEm(const std::vector<EmObservation>& observations, c
         if (active[t]) column[t] = unknowns++;
     }
 
-    // Stack the confidence-weighted rows of every observation, then the regularising rows.
-    std::vector<Eigen::Triplet<double>> entries;
-    std::vector<glm::dvec4> rhs;
-    Eigen::Index row = 0;
-    for (const EmObservation& o : observations) {
-        for (std::size_t r = 0; r < o.lookups.size(); ++r, ++row) {
-            const double c = o.confidence[r];
-            for (const CubeMapTap& t : o.lookups[r].taps) {
-                if (t.weight != 0.0f && column[t.texel] >= 0) entries.emplace_back(row, column[t.texel], c * t.weight);
-            }
-            rhs.push_back(c * glm::dvec4(o.targets[r]));
-        }
-    }
-    result.rows = static_cast<std::size_t>(row);
-    // The regularising weights are relative to the data's mean diagonal of A^T A, so scaling every
-    // confidence alike does not change the solution (the paper multiplies both sides by it).
-    double diagonalSum = 0.0;
-    std::size_t diagonalCount = 0;
-    for (double v : normalDiagonal) {
-        diagonalSum += v;
-        diagonalCount += v > 0.0 ? 1 : 0;
-    }
-    const double meanDiagonal = diagonalCount > 0 ? diagonalSum / static_cast<double>(diagonalCount) : 1.0;
-    // Smoothness between neighbouring active texels of a level-0 face; the pyramid carries it to the
-    // coarser levels (smoothness there would pull them away from the mean of what they cover).
-    const double s = std::sqrt(settings.smoothness * meanDiagonal);
-    auto addPair = [&](std::size_t a, std::size_t b) {
-        if (column[a] < 0 || column[b] < 0) return;
-        entries.emplace_back(row, column[a], s);
-        entries.emplace_back(row, column[b], -s);
-        rhs.push_back(glm::dvec4(0.0));
-        ++row;
-    };
-    for (int f = 0; f < 6; ++f) {
-        for (int j = 0; j < size; ++j) {
-            for (int i = 0; i < size; ++i) {
-                const std::size_t t = static_cast<std::size_t>((f * size + j) * size + i);  // level 0 starts the chain
-                if (!active[t]) continue;
-                if (i + 1 < size) addPair(t, t + 1);
-                if (j + 1 < size) addPair(t, t + static_cast<std::size_t>(size));
-            }
-        }
-    }
-    // Damping towards the splat (the weighted mean of the targets that read the texel): a texel that
-    // rows touch only with small bilinear weights would otherwise take extreme values (alpha far
-    // outside [0, 1], negative colours) to fix other texels' residuals, and "over" amplifies them.
-    const double d = std::sqrt(settings.damping * meanDiagonal);
-    for (std::size_t t = 0; t < texels && d > 0.0; ++t) {
-        const double w = observedWeight[t];
-        if (w <= 0.0 || column[t] < 0) continue;
-        entries.emplace_back(row, column[t], d);
-        rhs.push_back(d * splat[t] / w);
-        ++row;
-    }
-    // The pyramid: each active texel of level k >= 1 against the mean of its active children.
-    const double p = std::sqrt(settings.pyramid * meanDiagonal);
-    std::vector<std::vector<std::uint32_t>> children(texels);
-    for (std::size_t t = 0; t < texels; ++t) {
-        if (active[t] && parents[t] != kNoParent) children[parents[t]].push_back(static_cast<std::uint32_t>(t));
-    }
-    for (std::size_t parent = 0; parent < texels; ++parent) {
-        if (children[parent].empty()) continue;
-        entries.emplace_back(row, column[parent], p);
-        for (std::uint32_t c : children[parent]) entries.emplace_back(row, column[c], -p / static_cast<double>(children[parent].size()));
-        rhs.push_back(glm::dvec4(0.0));
-        ++row;
-    }
+    // The confidence-weighted rows of every observation, then the regularising rows.
+    StackedRows system(column);
+    system.addData(observations);
+    result.rows = static_cast<std::size_t>(system.rows());
+    const double mean = meanDiagonal(data.normalDiagonal);
+    system.addSmoothness(active, size, std::sqrt(settings.smoothness * mean));
+    system.addDamping(data, std::sqrt(settings.damping * mean));
+    system.addPyramid(active, parents, std::sqrt(settings.pyramid * mean));
     if (unknowns == 0) return result;  // no image saw the layer: it stays empty
-    SparseRows a(row, unknowns);
-    a.setFromTriplets(entries.begin(), entries.end());
-    Eigen::LeastSquaresConjugateGradient<SparseRows> solver;
-    solver.setTolerance(settings.tolerance);
-    solver.setMaxIterations(settings.maxIterations);
-    solver.compute(a);
-    for (int channel = 0; channel < 4; ++channel) {
-        Eigen::VectorXd b(row);
-        for (Eigen::Index r = 0; r < row; ++r) b[r] = rhs[static_cast<std::size_t>(r)][channel];
-        Eigen::VectorXd x = solver.solve(b);
-        result.iterations = std::max(result.iterations, static_cast<int>(solver.iterations()));
-        result.relativeResidual = std::max(result.relativeResidual, solver.error());
-        for (std::size_t t = 0; t < texels; ++t) {
-            if (active[t]) result.em.texels[t][channel] = static_cast<float>(x[column[t]]);
-        }
-    }
+    system.solve(unknowns, settings, result);
     // What a texture can hold: premultiplied colour is not negative and alpha is a coverage in
     // [0, 1]; "over" with alpha outside it subtracts the layers behind (the projection of the
     // damped solution onto that set).
     for (glm::vec4& t : result.em.texels) t = glm::vec4(glm::max(glm::vec3(t), glm::vec3(0.0f)), std::clamp(t.a, 0.0f, 1.0f));
     for (std::size_t t = 0; t < result.observed.size(); ++t) {
-        result.observed[t] = observedWeight[t] >= settings.observedWeight;
+        result.observed[t] = data.observedWeight[t] >= settings.observedWeight;
         result.observedTexels += result.observed[t] ? 1 : 0;
     }
     result.activeTexels = static_cast<std::size_t>(unknowns);

@@ -15,22 +15,9 @@ namespace {
 constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
-// std430 twin of LensVertex in layered_em_common.glsl.
-struct GpuLensVertex {
-    glm::vec4 position;
-    glm::vec4 weight[kPathTerms];
-    glm::vec4 sky[kPathTerms];
-    glm::vec4 direction[kPathTerms * kMaxDrawnLayers];
-};
-
-// Twin of the push constants of layered_em_common.glsl.
-struct LensDrawConstants {
-    glm::mat4 viewProj;
-    glm::vec4 cameraPosition;
-    glm::ivec4 maps;
-    glm::vec4 blend;
-    glm::ivec4 chain;
-};
+using GpuLensVertex = layered_em_records::LensVertex;
+using layered_em_records::LensDrawConstants;
+static_assert(layered_em_records::kDrawnPathTerms == kPathTerms);
 
 // A host-visible buffer of at least `bytes` (grown, never shrunk); true when it was (re)allocated,
 // its contents lost.

@@ -3,7 +3,7 @@
 // the tessellated lens's front-facing triangles with, per vertex, F G of each term, F G times the
 // sky in the term's exit direction (rays that leave to the sky meet no layer: the sky is behind
 // the last layer), and per term and layer the cube-map index and level of detail; which two viewpoint samples are
-// blended and how; and the CPU twin of the GPU pass (layered_em.frag), built on rasterizeLens and
+// blended and how; and the GPU pass (layered_em.frag) computed on the CPU, built on rasterizeLens and
 // pixelCubeMapLookup as the rendering matrix is, so that A x is what the GPU draws.
 #include <array>
 #include <cstdint>
@@ -17,10 +17,11 @@
 #include "techniques/layered_em/em_bake.h"
 #include "techniques/layered_em/lens_raster.h"
 #include "techniques/layered_em/lens_tessellation.h"
+#include "techniques/layered_em/shaders/layered_em_records.h"
 
 namespace hybridlab {
 
-inline constexpr int kMaxDrawnLayers = 4;  // kMaxLayers of layered_em_common.glsl
+using layered_em_records::kMaxDrawnLayers;  // the layers the GPU pass composites at most
 
 struct LensDrawGeometry {
     std::vector<glm::vec3> positions;
@@ -49,7 +50,8 @@ ViewpointBlend blendViewpoints(const LayeredEm& em, glm::vec3 eye, bool blend);
 glm::vec3 compositeLensTerms(const std::array<std::vector<glm::vec4>, kPathTerms>& layerColors,
                              const std::array<glm::vec3, kPathTerms>& weights, const std::array<glm::vec3, kPathTerms>& skyWeights);
 
-// The CPU twin of the GPU lens pass (no occlusion by the rest of the scene): per pixel the lens
+// The GPU lens pass computed on the CPU, held equal to it by LayeredEmPass.GpuCompositesLayersSkyAndViewpointsAsTheCpu
+// (tests/test_layered_em.cpp) (no occlusion by the rest of the scene): per pixel the lens
 // radiance, alpha 1 where the lens covers the pixel, 0 elsewhere.
 std::vector<glm::vec4> drawLensOnCpu(const LensDrawGeometry& geometry, const LayeredEm& em, const ViewpointBlend& blend,
                                      const Camera& camera, int width, int height);

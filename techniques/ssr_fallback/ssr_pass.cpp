@@ -11,37 +11,18 @@ namespace {
 
 constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kPyramidFormat = VK_FORMAT_R32_SFLOAT;
-constexpr std::uint32_t kGroupSize = 8;  // local_size of ssr_depth_pyramid.comp (ssr_trace.comp: 64 x 1, dispatched indirectly)
+using ssr_records::MarchListHeader;
+using ssr_records::PyramidUniforms;
+using ssr_records::SsrUniforms;
 
-std::uint32_t groups(std::uint32_t n) { return (n + kGroupSize - 1) / kGroupSize; }
-
-// The march list's header (MarchList in the shaders): the indirect dispatch's group counts, then the
-// number of texels listed.
-struct MarchListHeader {
-    std::uint32_t groups[3];
-    std::uint32_t count;
-};
+// Work groups of ssr_depth_pyramid.comp along a side of n cells (ssr_trace.comp's are dispatched indirectly).
+std::uint32_t groups(std::uint32_t n) { return (n + ssr_records::kSsrPyramidGroupSize - 1) / ssr_records::kSsrPyramidGroupSize; }
 
 // Compute-shader writes visible to the compute shaders that follow.
 void computeToComputeBarrier(VkCommandBuffer cb) {
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
     vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
-
-// std140 twin of PyramidUniforms in ssr_depth_pyramid.comp.
-struct PyramidUniforms {
-    glm::mat4 view;
-    glm::vec4 flags;
-};
-
-// std140 twin of SsrUniforms in ssr_trace.comp.
-struct SsrUniforms {
-    glm::mat4 view, projection;
-    glm::vec4 cameraPosition, cameraForward;
-    glm::vec4 march;
-    glm::vec4 screen;
-    glm::vec4 hiz;
-};
 
 }  // namespace
 

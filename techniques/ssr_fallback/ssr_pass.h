@@ -1,6 +1,6 @@
 #pragma once
 // The screen-space reflection pass (de Macedo & Rodrigues §III, the reflection composer's first
-// step): a Vulkan compute shader (common/raster/shaders/ssr_trace.comp) recorded by the shared
+// step): a Vulkan compute shader (shaders/ssr_trace.comp) recorded by the shared
 // Rasterizer after lighting, marching every opaque reflective texel's mirror ray through the
 // G-buffer's depth with McGuire & Mara's perspective-correct DDA and a thickness test. It reads
 // back, per texel, the lit image at the hit, a confidence, and the reasons the ray failed: the mask
@@ -16,6 +16,7 @@
 #include "common/raster/gpu_buffer.h"
 #include "common/raster/gpu_image.h"
 #include "common/raster/pipelines.h"
+#include "techniques/ssr_fallback/shaders/ssr_records.h"
 
 namespace hybridlab {
 
@@ -35,22 +36,11 @@ struct SsrSettings {
     bool refractive = false;     // also march the mirror rays of refractive texels (their Fresnel reflection)
 };
 
-// Bits of SsrPixel::flags (the twins of the constants in ssr_trace.comp).
-enum SsrFlag : std::uint32_t {
-    kSsrTraced = 1u << 0,       // a reflective texel (opaque, or any with SsrSettings::refractive): a ray was marched
-    kSsrOffScreen = 1u << 1,    // the ray left the screen, or the view frustum through the near plane
-    kSsrBehind = 1u << 2,       // it passed behind a surface by more than the thickness and found no hit
-    kSsrOutOfSteps = 1u << 3,   // it ran out of steps
-    kSsrBackFace = 1u << 4,     // it hit the back of the surface seen at the hit pixel
-    kSsrMaxDistance = 1u << 5,  // it reached the maximum distance without a hit
-};
-inline constexpr std::uint32_t kSsrFailures = kSsrOffScreen | kSsrBehind | kSsrOutOfSteps | kSsrBackFace | kSsrMaxDistance;
-
 struct SsrPixel {
     glm::vec3 color{0.0f};   // the lit image at the hit
     float confidence = 0.0f; // 0 where the ray failed; the screen-edge fade where it hit
     glm::ivec2 hit{-1, -1};  // the hit pixel, (-1, -1) without one
-    std::uint32_t flags = 0;
+    std::uint32_t flags = 0;  // kSsrTraced, kSsr* failures (shaders/ssr_records.h)
     int steps = 0;
 
     bool traced() const { return (flags & kSsrTraced) != 0; }

@@ -1,7 +1,8 @@
 // The viewer in a real browser: the runner makes a small result set (whitted-classic at 64x36,
 // three frames of the orbit path, two techniques), `hybridlab report` writes viewer.html, and
 // headless Chromium (Debian's, driven by playwright-core) opens it from the file system and checks:
-// every pane's image loads, a wheel event zooms all panes alike, flip changes the image and back,
+// the records validate against experiments/results.schema.json, every pane's image loads, a wheel
+// event zooms all panes alike, flip changes the image and back,
 // the FLIP (LDR) and HDR-FLIP map layers show their maps' files and each pane reads out both
 // FLIPs of its run, the frame slider moves every pane to the new frame, the inspector shows the
 // same pixel in every pane, exposure changes the pixels drawn (and the inspector shows linear
@@ -95,6 +96,13 @@ const resultDir = path.join(work, 'results');
 const reportDir = path.join(resultDir, 'report');
 hybridlabRun(['run', path.join(work, 'viewer-test.toml'), '--out', resultDir, '--cache', path.join(work, 'cache')]);
 ensureDebugImages(resultDir);
+// The records the viewer reads hold to the results schema (experiments/results.schema.json), checked
+// by the validator the other readers' tests use.
+{
+  const validator = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'paper_figures', 'results_schema.py');
+  const v = spawnSync('/usr/bin/python3', [validator, resultDir], { encoding: 'utf8' });
+  assert.equal(v.status, 0, `results.json breaks experiments/results.schema.json:\n${v.stdout}${v.stderr}`);
+}
 hybridlabRun(['report', resultDir, '--out', reportDir]);
 const manifest = JSON.parse(fs.readFileSync(path.join(reportDir, 'viewer', 'manifest.json'), 'utf8'));
 const viewerUrl = pathToFileURL(path.join(reportDir, 'viewer.html')).href;

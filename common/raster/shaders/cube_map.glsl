@@ -1,6 +1,6 @@
-// The face and face coordinates of a cube-map direction: the GLSL twin of cubeMapCoordinate in
-// common/image/cube_map_coordinate.h (OpenGL's major-axis table), for the sky (shading.glsl) and the
-// layered EMs (layered_em.frag).
+// The face and face coordinates of a cube-map direction: cubeMapCoordinate of
+// common/image/cube_map_coordinate.h (OpenGL's major-axis table) in GLSL, for the sky (shading.glsl) and the
+// layered EMs (techniques/layered_em/shaders/layered_em.frag).
 #ifndef CUBE_MAP_GLSL
 #define CUBE_MAP_GLSL
 

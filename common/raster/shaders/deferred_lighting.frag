@@ -20,22 +20,8 @@ layout(constant_id = 3) const bool kSkyCubeMap = false;          // the sky is a
 layout(constant_id = 4) const int kLightArraySize = 1;
 layout(constant_id = 5) const int kShadowLayerArraySize = 1;
 
-layout(std140, set = 0, binding = 0) uniform FrameUniforms {
-    vec4 cameraPosition;  // xyz; w 1 perspective, 0 orthographic
-    vec4 cameraRight;     // right * tan(fovY / 2) * aspect (perspective) or * half width (orthographic)
-    vec4 cameraUp;        // up * tan(fovY / 2) or * half height
-    vec4 cameraForward;
-    vec4 sceneAmbient;    // rgb; a = ambient IOR
-    vec4 skyColor;        // rgb
-    uvec4 counts;         // x lights, z width, w height
-    vec4 shadowParams;    // x PCF radius (texels), y normal offset (texels)
-} frame;
-
-struct ShadowLayer {
-    mat4 viewProj;  // world to the light's clip space (y down, reverse-Z)
-    vec4 params;    // x world size of a texel (at unit distance when y = 1: perspective)
-};
-
+// The records (FrameUniforms, LightData, ShadowLayer) are declared in raster_records.h.
+layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 
 
 layout(std140, set = 0, binding = 1) uniform Lights { LightData lights[kLightArraySize]; };
@@ -53,13 +39,13 @@ layout(set = 0, binding = 12) uniform usampler2D gObjectId;
 
 layout(location = 0) out vec4 outColor;
 
-// Twin of skyRadiance(): the cube map, or the constant colour.
+// As skyRadiance() (C++): the cube map, or the constant colour.
 vec3 skyRadiance(vec3 d) {
     if (!kSkyCubeMap) return frame.skyColor.rgb;
     return skyCubeRadiance(skyFaces, d);
 }
 
-// Twin of Camera::rayThroughNdc's direction for the pixel centre (pixelCenterNdc()).
+// As Camera::rayThroughNdc's direction for the pixel centre (pixelCenterNdc()).
 vec3 cameraRayDirection(vec2 fragCoord) {
     vec2 ndc = fragCoord / vec2(frame.counts.zw) * 2.0 - 1.0;
     if (frame.cameraPosition.w == 0.0) return frame.cameraForward.xyz;
@@ -116,7 +102,7 @@ void main() {
     vec4 specular = texelFetch(gSpecular, pixel, 0);
     vec3 toViewer = -incoming;
 
-    // Twin of WhittedTracer::localColor, with shadow maps in place of shadow rays.
+    // As WhittedTracer::localColor, with shadow maps in place of shadow rays.
     vec3 c = unlitTerm(texelFetch(gEmission, pixel, 0).rgb, texelFetch(gAmbient, pixel, 0).rgb, frame.sceneAmbient.rgb);
     for (uint i = 0u; i < frame.counts.x; ++i) {
         LightSample ls = sampleLight(lights[i], p);

@@ -1,4 +1,4 @@
-// The media a device ray travels in and Beer-Lambert absorption along it: the GLSL twin of
+// The media a device ray travels in and Beer-Lambert absorption along it: in GLSL,
 // MediumStack and segmentTransmittance (common/raytrace/medium_stack.h), which states the rule.
 // These few lines mirror that header line by line; change both together.
 #ifndef DEVICE_MEDIUM_STACK_GLSL

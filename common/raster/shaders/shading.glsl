@@ -1,31 +1,21 @@
-// The GLSL twin of common/raytrace/shading.h and shading.cpp (DESIGN.md "The shading model"): the
-// same functions, in the same order of operations, so that a test can hold the lighting pass and
-// the C++ to the same numbers. Change one, change the other.
+// common/raytrace/shading.h and shading.cpp in GLSL (DESIGN.md "The shading model"): the same
+// functions, in the same order of operations; RasterLighting (tests/test_raster_lighting.cpp)
+// holds the lighting pass and the C++ to the same numbers. Change one, change the other.
 #ifndef SHADING_GLSL
 #define SHADING_GLSL
 
 #include "cube_map.glsl"
 
-const uint kLightDirectional = 0u;
-const uint kLightPoint = 1u;
-const uint kLightSpot = 2u;
+#include "raster_records.h"  // LightData, kLight*
 
-// A light as the lighting pass sees it (the C++ side fills it in deferred_lighting.cpp).
-struct LightData {
-    vec4 radiance;   // rgb = colour * intensity, a = type (kLight*)
-    vec4 position;   // xyz (point, spot), w = cos of the inner cone half-angle (spotCone())
-    vec4 direction;  // xyz the way the light travels (unit), w = cos of the outer cone half-angle
-    ivec4 shadow;    // x first shadow-map layer (-1: casts no shadow), y its layer count (1, or 6 for a cube)
-};
-
-// Twin of LightSample.
+// As LightSample.
 struct LightSample {
     vec3 radiance;
     vec3 toLight;    // unit
     float distance;  // infinity for directional lights
 };
 
-// Twin of sampleLight(const Light&, const SpotCone&, glm::vec3): inverse-square falloff for point
+// As sampleLight(const Light&, const SpotCone&, glm::vec3): inverse-square falloff for point
 // and spot lights, and the spot cone's smoothstep written out as in the C++.
 LightSample sampleLight(LightData light, vec3 p) {
     LightSample s;
@@ -52,7 +42,7 @@ LightSample sampleLight(LightData light, vec3 p) {
     return s;
 }
 
-// Twin of blinnPhong(): E * (diffuse * T * N.L + specular * (N.H)^n), with the C++'s skip of the
+// As blinnPhong(): E * (diffuse * T * N.L + specular * (N.H)^n), with the C++'s skip of the
 // specular term for materials without one. `diffuse` is the material diffuse times the texture T
 // (the G-buffer stores the product).
 vec3 blinnPhong(vec3 normal, vec3 diffuse, vec3 specular, float exponent, vec3 toViewer, LightSample light) {
@@ -66,16 +56,16 @@ vec3 blinnPhong(vec3 normal, vec3 diffuse, vec3 specular, float exponent, vec3 t
     return light.radiance * c;
 }
 
-// Twin of unlitTerm(): emission + ambient * sceneAmbient * T (`ambient` is the material ambient
+// As unlitTerm(): emission + ambient * sceneAmbient * T (`ambient` is the material ambient
 // times T, as the G-buffer stores it).
 vec3 unlitTerm(vec3 emission, vec3 ambient, vec3 sceneAmbient) {
     return emission + ambient * sceneAmbient;
 }
 
-// Twin of reflectDirection().
+// As reflectDirection().
 vec3 reflectDirection(vec3 d, vec3 n) { return d - 2.0 * dot(d, n) * n; }
 
-// Twin of refractDirection(): false on total internal reflection.
+// As refractDirection(): false on total internal reflection.
 bool refractDirection(vec3 d, vec3 n, float eta, out vec3 refracted) {
     float cosi = -dot(d, n);
     float k = 1.0 - eta * eta * (1.0 - cosi * cosi);
@@ -85,7 +75,7 @@ bool refractDirection(vec3 d, vec3 n, float eta, out vec3 refracted) {
     return true;
 }
 
-// Twin of fresnelDielectric(): exact unpolarised Fresnel reflectance, 1 under total internal reflection.
+// As fresnelDielectric(): exact unpolarised Fresnel reflectance, 1 under total internal reflection.
 float fresnelDielectric(float cosIncident, float n1, float n2) {
     float cosi = clamp(cosIncident, 0.0, 1.0);
     float sint2 = (n1 / n2) * (n1 / n2) * (1.0 - cosi * cosi);
@@ -96,13 +86,13 @@ float fresnelDielectric(float cosIncident, float n1, float n2) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
-// Twin of occluderTransmittance(): what one shadow-ray crossing of a surface lets through.
+// As occluderTransmittance(): what one shadow-ray crossing of a surface lets through.
 vec3 occluderTransmittance(bool castsShadows, float opacity, vec3 diffuse) {
     if (!castsShadows) return vec3(1.0);
     return (1.0 - opacity) * diffuse;
 }
 
-// Twin of compose() with BlendRule::Design (walewski = false) or BlendRule::Walewski2019.
+// As compose() with BlendRule::Design (walewski = false) or BlendRule::Walewski2019.
 vec3 compose(float om, float orr, vec3 M, vec3 R, vec3 C, bool walewski) {
     vec3 cm = om * M + (1.0 - om) * (orr * R + (1.0 - orr) * C);
     if (!walewski) return cm;

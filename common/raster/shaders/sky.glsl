@@ -1,4 +1,4 @@
-// Twin of skyRadiance() in common/raytrace/shading.cpp for a cube-map sky: the six faces as layers
+// skyRadiance() of common/raytrace/shading.cpp for a cube-map sky, in GLSL: the six faces as layers
 // of an RGBA32F array image, read with texelFetch and filtered by hand as the C++ does. Shared by
 // the lighting pass and the ray-tracing shaders.
 #ifndef SKY_GLSL
@@ -6,7 +6,7 @@
 
 #include "cube_map.glsl"
 
-// Twin of Image::sampleBilinearWrap on sky face `face`.
+// As Image::sampleBilinearWrap on sky face `face`.
 vec3 sampleFaceBilinearWrap(sampler2DArray faces, int face, float u, float v) {
     ivec2 size = textureSize(faces, 0).xy;
     float x = u * float(size.x) - 0.5;

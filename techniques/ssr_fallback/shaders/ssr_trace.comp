@@ -11,27 +11,14 @@
 // level where it may meet it, the thickness test at level 0. One invocation per texel of the march
 // list that ssr_depth_pyramid.comp wrote (dispatched indirectly); the outputs of the other texels
 // keep their cleared values (colour 0, hit (-1, -1), no flags).
-layout(local_size_x = 64) in;
+#extension GL_GOOGLE_include_directive : require
+#include "ssr_records.h"
+
+layout(local_size_x = kSsrMarchGroupSize) in;
 
 layout(constant_id = 0) const bool kHiZ = false;
 
-// Bits of ssrHit.z; the failure bits mirror SsrFailure in techniques/ssr_fallback/ssr_pass.h.
-const uint kTraced = 1u;       // a texel of the march list: a ray was marched
-const uint kOffScreen = 2u;    // the ray left the screen (or the view frustum through the near plane)
-const uint kBehind = 4u;       // it passed behind a surface by more than the thickness and found no hit
-const uint kOutOfSteps = 8u;   // it ran out of steps
-const uint kBackFace = 16u;    // it hit the back of the surface seen at the hit pixel
-const uint kMaxDistance = 32u; // it reached the maximum distance without a hit
-
-layout(std140, set = 0, binding = 0) uniform SsrUniforms {
-    mat4 view;
-    mat4 projection;      // Vulkan clip, y down, reverse-Z
-    vec4 cameraPosition;  // xyz; w 1 perspective, 0 orthographic
-    vec4 cameraForward;   // xyz
-    vec4 march;           // x max steps, y stride (pixels), z thickness (view depth), w max distance (world)
-    vec4 screen;          // x width, y height, z edge fade (fraction of the smaller side), w near plane distance
-    vec4 hiz;             // x the pyramid's top level
-} u;
+layout(std140, set = 0, binding = 0) uniform Uniforms { SsrUniforms u; };
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
 layout(set = 0, binding = 5) uniform sampler2D litImage;
@@ -39,8 +26,7 @@ layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D ssrColor;  // rg
 layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D ssrHit;    // xy hit pixel (-1 without), z flag bits, w steps
 layout(set = 0, binding = 8) uniform sampler2D depthPyramid;               // min view depth per cell, by level (linear: level 0 only)
 layout(std430, set = 0, binding = 9) readonly buffer MarchList {
-    uint groups[3];
-    uint count;
+    MarchListHeader header;
     uint texels[];  // x | y << 16
 } marchList;
 
@@ -62,7 +48,7 @@ struct March {
 };
 
 void main() {
-    if (gl_GlobalInvocationID.x >= marchList.count) return;
+    if (gl_GlobalInvocationID.x >= marchList.header.count) return;
     uint packed = marchList.texels[gl_GlobalInvocationID.x];
     ivec2 pixel = ivec2(packed & 0xffffu, packed >> 16);
     ivec2 size = ivec2(u.screen.xy);
@@ -199,19 +185,19 @@ void main() {
         if (refineSteps >= 0) hit = true;  // a coarse hit whose refinement did not land: keep the coarse pixel
     }
 
-    uint flags = kTraced;
+    uint flags = kSsrTraced;
     if (hit) {
         ivec2 h = ivec2(hitPixel);
         vec4 hn = texelFetch(gNormal, h, 0);
         vec3 hitNormal = hn.w < 0.0 ? -hn.xyz : hn.xyz;  // towards the viewer at the hit pixel
-        if (dot(hitNormal, r) >= 0.0) flags |= kBackFace;
+        if (dot(hitNormal, r) >= 0.0) flags |= kSsrBackFace;
     } else {
-        if (steps >= maxSteps) flags |= kOutOfSteps;
-        else if (screenClipped || nearClipped) flags |= kOffScreen;
-        else flags |= kMaxDistance;
-        if (behind) flags |= kBehind;
+        if (steps >= maxSteps) flags |= kSsrOutOfSteps;
+        else if (screenClipped || nearClipped) flags |= kSsrOffScreen;
+        else flags |= kSsrMaxDistance;
+        if (behind) flags |= kSsrBehind;
     }
-    if (flags == kTraced) {
+    if (flags == kSsrTraced) {
         ivec2 h = ivec2(hitPixel);
         // Screen-edge fade: hits near the border are trusted less (their neighbourhood is cut off).
         float border = min(min(hitPixel.x, u.screen.x - hitPixel.x), min(hitPixel.y, u.screen.y - hitPixel.y));

@@ -3,16 +3,17 @@
 // map's MIP chain read at the interpolated index and level of detail with cubeMapLookup's texels
 // and weights (texel reads, no hardware filtering), layers composited front to back with "over" on premultiplied RGBA, the sky
 // behind the last layer, times the interpolated F G, the two terms summed; the two nearest
-// viewpoint samples blended. The twin of compositeLensPixel (techniques/layered_em/lens_draw.cpp).
+// viewpoint samples blended. compositeLensPixel (techniques/layered_em/lens_draw.cpp) computes the
+// same on the CPU; LayeredEmPass.GpuCompositesLayersSkyAndViewpointsAsTheCpu holds them equal.
 // Fragments behind what the G-buffer shows at the pixel are discarded (the lens is occluded).
 #extension GL_GOOGLE_include_directive : require
 #include "cube_map.glsl"
-#include "layered_em_common.glsl"
+#include "layered_em_bindings.glsl"
 
 layout(location = 0) in vec3 worldPosition;
-layout(location = 1) in vec3 pathWeight[2];
-layout(location = 3) in vec3 skyWeight[2];
-layout(location = 5) in vec4 direction[2 * kMaxLayers];
+layout(location = 1) in vec3 pathWeight[kDrawnPathTerms];
+layout(location = 3) in vec3 skyWeight[kDrawnPathTerms];
+layout(location = 5) in vec4 direction[kDrawnPathTerms * kMaxDrawnLayers];
 
 layout(location = 0) out vec4 outColor;  // radiance; alpha 1 (coverage)
 
@@ -33,7 +34,7 @@ int levelOffset(int level) {
 // bilinear weights around texel centres (i + 0.5) / side, clamped to the face, each level's weights
 // times its share of lod.
 struct Taps {
-    ivec4 texel[2];
+    ivec4 texel[2];  // per level
     vec4 weight[2];
 };
 void levelTaps(int face, vec2 st, int level, float scale, out ivec4 texel, out vec4 weight) {
@@ -82,11 +83,11 @@ void main() {
     int layerTexels = pc.chain.y;
     bool blend = pc.blend.y > 0.0;
     vec3 c = vec3(0.0);
-    for (int t = 0; t < 2; ++t) {
+    for (int t = 0; t < kDrawnPathTerms; ++t) {
         vec4 a = vec4(0.0), b = vec4(0.0);
         for (int l = 0; l < pc.maps.x; ++l) {
             if (a.a >= 1.0 && (!blend || b.a >= 1.0)) break;  // opaque: the layers behind add (1 - a.a) * ... = 0
-            Taps taps = cubeLookup(direction[t * kMaxLayers + l]);
+            Taps taps = cubeLookup(direction[t * kMaxDrawnLayers + l]);
             a += (1.0 - a.a) * fetch(pc.maps.z + l * layerTexels, taps);
             if (blend) b += (1.0 - b.a) * fetch(pc.maps.w + l * layerTexels, taps);
         }

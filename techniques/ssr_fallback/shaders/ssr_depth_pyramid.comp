@@ -6,23 +6,22 @@
 // ssr_trace.comp marches (reflective, opaque unless the uniforms ask for refractive ones too), so that
 // it runs on those alone: lavapipe executes every instruction of a shader for a group of lanes
 // while any lane is live, so a full-screen dispatch pays the march's set-up for every texel.
-layout(local_size_x = 8, local_size_y = 8) in;
+#extension GL_GOOGLE_include_directive : require
+#include "ssr_records.h"
+
+layout(local_size_x = kSsrPyramidGroupSize, local_size_y = kSsrPyramidGroupSize) in;
 
 layout(constant_id = 0) const bool kFromGBuffer = false;  // level 0
 
-layout(std140, set = 0, binding = 0) uniform PyramidUniforms {
-    mat4 view;
-    vec4 flags;  // x 1: refractive texels are marched too (SsrSettings::refractive)
-} u;
+layout(std140, set = 0, binding = 0) uniform Uniforms { PyramidUniforms u; };
 layout(set = 0, binding = 1) uniform sampler2D gPosition;
 layout(set = 0, binding = 2) uniform usampler2D gObjectId;
 layout(set = 0, binding = 3, r32f) uniform readonly image2D finer;  // the level below (unused for level 0)
 layout(set = 0, binding = 4, r32f) uniform writeonly image2D level;
 layout(set = 0, binding = 5) uniform sampler2D gOptical;
-// The texels to march, packed x | y << 16, and the indirect dispatch that marches them (64 per group).
+// The texels to march, packed x | y << 16, and the indirect dispatch that marches them.
 layout(std430, set = 0, binding = 6) buffer MarchList {
-    uint groups[3];
-    uint count;
+    MarchListHeader header;
     uint texels[];
 } marchList;
 
@@ -40,9 +39,9 @@ void main() {
         bool reflective = optical.x > 0.0 || optical.w > 0.5;
         // SSR does not refract: refractive texels are ray traced, their reflection too unless flags.x asks for it.
         if (!sky && reflective && (optical.z >= 1.0 || u.flags.x > 0.5)) {
-            uint i = atomicAdd(marchList.count, 1u);
+            uint i = atomicAdd(marchList.header.count, 1u);
             marchList.texels[i] = uint(cell.x) | (uint(cell.y) << 16);
-            atomicMax(marchList.groups[0], i / 64u + 1u);
+            atomicMax(marchList.header.groups[0], i / kSsrMarchGroupSize + 1u);
         }
         return;
     }

@@ -1,0 +1,126 @@
+#!/usr/bin/python3
+"""The results record's schema (experiments/results.schema.json) against its writer and a reader.
+
+1. The validator (paper_figures/results_schema.py) refuses records broken in known ways.
+2. The C++ writer: `hybridlab run` on a small experiment (a camera path's two frames, so that
+   temporal errors are added; debug images and error maps kept; a technique that ray traces and
+   a hybrid with debug images) writes results.json and runs/<id>.json records that all validate.
+3. paper_figures/results.py reads those records: every accessor the report scripts use works.
+
+usage: results_schema_test.py HYBRIDLAB_BINARY SCRATCH_DIR
+"""
+import copy
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "paper_figures"))
+import results  # noqa: E402
+import results_schema  # noqa: E402
+
+CONFIG = """
+[experiment]
+name = "schema"
+repeats = 1
+warmup_frames = 0
+keep = ["debug_images", "error_maps"]
+
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[24, 16]]
+[[scenes.views]]
+path = "orbit"
+frames = [0, 1]
+
+[[techniques]]
+name = "ssr_fallback"
+
+[[techniques]]
+name = "rt_only"
+params = { max_depth = [1, 3] }
+"""
+
+
+def check(condition, message):
+    if not condition:
+        sys.exit("FAILED: " + message)
+
+
+def check_refusals(record):
+    """Each mutation must produce the one problem named (a validator that accepts anything fails)."""
+    def mutated(change):
+        r = copy.deepcopy(record)
+        change(r)
+        return results_schema.validate_record(r)
+
+    cases = [
+        (lambda r: r.pop("id"), "$: missing required 'id'"),
+        (lambda r: r.__setitem__("width", "24"), "$.width: expected integer"),
+        (lambda r: r.__setitem__("frame", -2), "$.frame: -2 is below the minimum -1"),
+        (lambda r: r["frame_ms"].pop("median"), "$.frame_ms: missing required 'median'"),
+        (lambda r: r.__setitem__("colour", 1), "$: unexpected 'colour'"),
+        (lambda r: r["reference"].__setitem__("cache_hit", 1), "$.reference.cache_hit: expected boolean"),
+        (lambda r: r["counters"].__setitem__("rays_total", "many"), "$.counters.rays_total: expected number"),
+        (lambda r: r["metrics"]["whole"].__setitem__("rmse", -1.0), "$.metrics.whole.rmse: -1.0 is below the minimum 0"),
+    ]
+    for change, expected in cases:
+        found = mutated(change)
+        check(len(found) == 1 and found[0].startswith(expected), f"expected [{expected}...], got {found}")
+    # What the schema allows: no finite PSNR (identical images), no masked pixels, no maps.
+    allowed = [
+        lambda r: r["metrics"]["whole"].__setitem__("psnr_db", None),
+        lambda r: r["metrics"].__setitem__("masked", None),
+        lambda r: r["images"].__setitem__("maps", None),
+    ]
+    for change in allowed:
+        found = mutated(change)
+        check(found == [], f"a valid variant refused: {found}")
+    print(f"validator: {len(cases)} broken records refused, {len(allowed)} valid variants accepted")
+
+
+def main():
+    binary, scratch = sys.argv[1], os.path.abspath(sys.argv[2])
+    shutil.rmtree(scratch, ignore_errors=True)
+    os.makedirs(scratch)
+    config = os.path.join(scratch, "schema.toml")
+    with open(config, "w") as f:
+        f.write(CONFIG)
+    out = os.path.join(scratch, "results")
+    env = dict(os.environ, HYBRIDLAB_CACHE=os.path.join(scratch, "cache"), HYBRIDLAB_VULKAN_DEVICE="llvmpipe")
+    done = subprocess.run([binary, "run", config, "--out", out], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          timeout=600)
+    if done.returncode == 77 or "no Vulkan device" in done.stdout:
+        print(done.stdout)
+        sys.exit(77)
+    check(done.returncode == 0, "hybridlab run failed:\n" + done.stdout)
+
+    records = results.load(out)
+    check(len(records) == 6, f"expected 6 records (2 frames x 3 settings), got {len(records)}")
+    problems = results_schema.validate_results(records)
+    for name in sorted(os.listdir(os.path.join(out, "runs"))):
+        with open(os.path.join(out, "runs", name)) as f:
+            problems += [f"runs/{name}: {p}" for p in results_schema.validate_record(json.load(f))]
+    check(not problems, "records break the schema:\n  " + "\n  ".join(problems))
+    check(any("temporal_error" in r for r in records), "no record has a temporal error (the path's second frame should)")
+    check(any(r["images"].get("debug") for r in records), "no record lists debug images")
+    print(f"writer: {len(records)} records of results.json and runs/ validate")
+
+    check_refusals(records[-1])
+
+    for r in records:
+        check(isinstance(results.variant(r), str) and results.view_name(r).startswith("orbit@"), "results.py names")
+        check(results.resolution(r) == "24x16", "results.resolution")
+        for region in ("whole", "masked"):
+            for name in ("ssim", "flip", "flip_hdr", "psnr", "rmse"):
+                value = results.metric(r, region, name)
+                check(value is None or isinstance(value, (int, float)), f"results.metric({region}, {name}) = {value!r}")
+        check(isinstance(results.metric(r, "whole", "ssim"), float), "every record has a whole-image SSIM")
+    print("results.py: every record read")
+    shutil.rmtree(scratch, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,26 @@
+#include "techniques/throwaway/throwaway_technique.h"
+
+namespace hybridlab {
+
+TechniqueInfo ThrowawayTechnique::info() {
+    return {"throwaway",
+            "A template: one colour",
+            {ParamSpec::real("level", 0.5, 0.0, 1.0, "the grey level of every pixel")},
+            [](const ParameterSet& p) { return std::make_unique<ThrowawayTechnique>(p); }};
+}
+
+ThrowawayTechnique::ThrowawayTechnique(const ParameterSet& params) : level_(static_cast<float>(params.getFloat("level"))) {}
+
+FrameResult ThrowawayTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    (void)context;
+    if (!pipeline_) {
+        const VulkanDevice& device = *VulkanDevice::shared();
+        layout_ = createPipelineLayout(device, {}, sizeof(float));
+        pipeline_ = createComputePipeline(device, "throwaway_fill.comp", layout_);
+    }
+    FrameResult result;
+    result.image = Image(frame.width, frame.height, glm::vec4(level_, level_, level_, 1.0f));
+    return result;
+}
+
+}  // namespace hybridlab
