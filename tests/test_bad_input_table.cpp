@@ -64,6 +64,13 @@ void writeInputs(const fs::path& d) {
     b.setRoots({b.addNode({{"mesh", b.addMesh("huge", pos)}})});
     b.writeGltf(d / "huge.gltf");
     writeTextFile(d / "huge-count.toml", sceneText("", "model = \"huge.gltf\"\n"));
+    // A glTF whose buffer `uri` is a folder (tinygltf read it as a file of 2^63 - 1 bytes).
+    test::GltfBuilder quad;
+    quad.setRoots({quad.addNode({{"mesh", quad.addMesh("quad", quad.addFloats(test::kTrianglePositions, "VEC3"))}})});
+    nlohmann::json bufferFolder = nlohmann::json::parse(quad.gltfText());
+    bufferFolder["buffers"][0]["uri"] = ".";
+    writeTextFile(d / "buffer-folder.gltf", bufferFolder.dump());
+    writeTextFile(d / "buffer-folder.toml", sceneText("", "model = \"buffer-folder.gltf\"\n"));
     // Textures that are not images: text, and a folder. scene-info does not decode textures, but
     // checks them.
     writeTextFile(d / "not-an-image.png", "this is text, not a PNG\n");
@@ -115,6 +122,7 @@ const std::vector<BadInputCase> kCases = {
     {{"scene-info", "%d/model-folder.toml"}, 2, "%d/model-folder.toml:8:9: objects[0].model: 'folder.glb' is a directory (%d/folder.glb), expected a file"},
     {{"scene-info", "%d/huge-count.toml"}, 2,
      "%d/huge-count.toml:8:9: objects[0].model: %d/huge.gltf: mesh 'huge' primitive 0 POSITION: accessor's 1152921504606846976 elements of 12 bytes"},
+    {{"scene-info", "%d/buffer-folder.toml"}, 2, "%d/buffer-folder.toml:8:9: objects[0].model: %d/buffer-folder.gltf: not a valid glTF 2.0 file ("},
     {{"scene-info", "%d/texture-text.toml"}, 2,
      "%d/texture-text.toml:5:19: materials.grey.diffuse_texture: %d/not-an-image.png: cannot read image ("},
     {{"scene-info", "%d/texture-folder.toml"}, 2,
