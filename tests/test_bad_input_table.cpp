@@ -77,6 +77,8 @@ void writeInputs(const fs::path& d) {
     writeTextFile(d / "texture-text.toml", sceneText("diffuse_texture = \"not-an-image.png\"\n", "primitive = \"cube\"\n"));
     fs::create_directories(d / "folder.png");
     writeTextFile(d / "texture-folder.toml", sceneText("diffuse_texture = \"folder.png\"\n", "primitive = \"cube\"\n"));
+    // A texture that is a device which never ends (OpenImageIO read it forever).
+    writeTextFile(d / "texture-device.toml", sceneText("diffuse_texture = \"/dev/zero\"\n", "primitive = \"cube\"\n"));
     // A camera path of 2e10 frames (frame numbers are ints).
     writeTextFile(d / "long-path.toml", sceneText("", "primitive = \"cube\"\n") +
                                             "\n[camera_paths.long]\nfps = 10000.0\nkeys = [\n"
@@ -127,6 +129,8 @@ const std::vector<BadInputCase> kCases = {
      "%d/texture-text.toml:5:19: materials.grey.diffuse_texture: %d/not-an-image.png: cannot read image ("},
     {{"scene-info", "%d/texture-folder.toml"}, 2,
      "%d/texture-folder.toml:5:19: materials.grey.diffuse_texture: 'folder.png' is a directory (%d/folder.png), expected a file"},
+    {{"scene-info", "%d/texture-device.toml"}, 2,
+     "%d/texture-device.toml:5:19: materials.grey.diffuse_texture: /dev/zero: is not a regular file (a device or a pipe), expected an image file"},
     {{"scene-info", "%d/long-path.toml"}, 2, "%d/long-path.toml:16:7: camera_paths.long.fps: the path's 1e+06 s at 10000 fps make more frames than the limit of 10000000"},
     {{"scene-info", "%d/a-folder"}, 2, "%d/a-folder: is a directory, expected a scene file (.toml) or a scene's name"},
     // Experiment configs.
