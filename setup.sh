@@ -32,6 +32,8 @@ PACKAGES=(
   libopencv-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the tests' sanitizer build and fuzz targets (tests/sanitize: AddressSanitizer, UBSan, libFuzzer)
+  clang-14 libclang-rt-14-dev
   # ray tracing (Embree 3 on TBB)
   libembree-dev libtbb-dev
   # independent check of the Whitted reference

@@ -64,12 +64,21 @@ void writeInputs(const fs::path& d) {
     b.setRoots({b.addNode({{"mesh", b.addMesh("huge", pos)}})});
     b.writeGltf(d / "huge.gltf");
     writeTextFile(d / "huge-count.toml", sceneText("", "model = \"huge.gltf\"\n"));
+    // A glTF whose buffer `uri` is a folder (tinygltf read it as a file of 2^63 - 1 bytes).
+    test::GltfBuilder quad;
+    quad.setRoots({quad.addNode({{"mesh", quad.addMesh("quad", quad.addFloats(test::kTrianglePositions, "VEC3"))}})});
+    nlohmann::json bufferFolder = nlohmann::json::parse(quad.gltfText());
+    bufferFolder["buffers"][0]["uri"] = ".";
+    writeTextFile(d / "buffer-folder.gltf", bufferFolder.dump());
+    writeTextFile(d / "buffer-folder.toml", sceneText("", "model = \"buffer-folder.gltf\"\n"));
     // Textures that are not images: text, and a folder. scene-info does not decode textures, but
     // checks them.
     writeTextFile(d / "not-an-image.png", "this is text, not a PNG\n");
     writeTextFile(d / "texture-text.toml", sceneText("diffuse_texture = \"not-an-image.png\"\n", "primitive = \"cube\"\n"));
     fs::create_directories(d / "folder.png");
     writeTextFile(d / "texture-folder.toml", sceneText("diffuse_texture = \"folder.png\"\n", "primitive = \"cube\"\n"));
+    // A texture that is a device which never ends (OpenImageIO read it forever).
+    writeTextFile(d / "texture-device.toml", sceneText("diffuse_texture = \"/dev/zero\"\n", "primitive = \"cube\"\n"));
     // A camera path of 2e10 frames (frame numbers are ints).
     writeTextFile(d / "long-path.toml", sceneText("", "primitive = \"cube\"\n") +
                                             "\n[camera_paths.long]\nfps = 10000.0\nkeys = [\n"
@@ -127,10 +136,13 @@ const std::vector<BadInputCase> kCases = {
     {{"scene-info", "%d/model-folder.toml"}, 2, "%d/model-folder.toml:8:9: objects[0].model: 'folder.glb' is a directory (%d/folder.glb), expected a file"},
     {{"scene-info", "%d/huge-count.toml"}, 2,
      "%d/huge-count.toml:8:9: objects[0].model: %d/huge.gltf: mesh 'huge' primitive 0 POSITION: accessor's 1152921504606846976 elements of 12 bytes"},
+    {{"scene-info", "%d/buffer-folder.toml"}, 2, "%d/buffer-folder.toml:8:9: objects[0].model: %d/buffer-folder.gltf: not a valid glTF 2.0 file ("},
     {{"scene-info", "%d/texture-text.toml"}, 2,
      "%d/texture-text.toml:5:19: materials.grey.diffuse_texture: %d/not-an-image.png: cannot read image ("},
     {{"scene-info", "%d/texture-folder.toml"}, 2,
      "%d/texture-folder.toml:5:19: materials.grey.diffuse_texture: 'folder.png' is a directory (%d/folder.png), expected a file"},
+    {{"scene-info", "%d/texture-device.toml"}, 2,
+     "%d/texture-device.toml:5:19: materials.grey.diffuse_texture: /dev/zero: is not a regular file (a device or a pipe), expected an image file"},
     {{"scene-info", "%d/long-path.toml"}, 2, "%d/long-path.toml:16:7: camera_paths.long.fps: the path's 1e+06 s at 10000 fps make more frames than the limit of 10000000"},
     {{"scene-info", "%d/a-folder"}, 2, "%d/a-folder: is a directory, expected a scene file (.toml) or a scene's name"},
     // Experiment configs.

@@ -308,6 +308,41 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
     EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "c", cache)).referencesRendered, 1u);
 }
 
+// A run's counters are a function of the run alone: the same whitted run in an experiment of its
+// own (its reference rendered first), and after `raster` with the reference from the cache, in
+// fresh processes of the program, where the order once mattered (10588 shadow rays instead of
+// 10395 here: TBB's workers had started in another floating-point mode, see
+// test_technique_determinism.cpp).
+TEST(ExperimentRunner, ARunsCountersDoNotDependOnTheRunsBeforeIt) {
+    TempDir dir;
+    const std::string head = "[experiment]\nname = \"order\"\nwarmup_frames = 0\nrepeats = 1\n[[scenes]]\nscene = \"whitted-classic\"\n"
+                             "resolutions = [[96, 54]]\n[[scenes.views]]\n";
+    const fs::path alone = writeConfig(dir, head + "[[techniques]]\nname = \"whitted\"\n", "alone.toml");
+    const fs::path afterRaster = writeConfig(dir, head + "[[techniques]]\nname = \"raster\"\n[[techniques]]\nname = \"whitted\"\n", "after-raster.toml");
+    const fs::path cache = dir.path() / "cache";
+    auto whittedRecord = [&](const fs::path& config, const std::string& out) {
+        const test::CliResult r = test::runHybridlab({"run", config.string(), "--out", (dir.path() / out).string(), "--cache", cache.string(), "--quiet"});
+        EXPECT_EQ(r.exitStatus, 0) << r.err;
+        for (const json& record : test::readResults(dir.path() / out))
+            if (record.at("technique") == "whitted") return record;
+        ADD_FAILURE() << out << ": no whitted run";
+        return json();
+    };
+    const json first = whittedRecord(alone, "alone");
+    const json second = whittedRecord(afterRaster, "after-raster");
+    ASSERT_FALSE(first.is_null() || second.is_null());
+    EXPECT_FALSE(first["reference"]["cache_hit"].get<bool>());
+    EXPECT_TRUE(second["reference"]["cache_hit"].get<bool>());
+    std::size_t compared = 0;
+    for (const auto& [name, value] : first.at("counters").items()) {
+        if (name.ends_with("_ms") || name.ends_with("_per_second")) continue;  // measurements, not counts
+        EXPECT_EQ(value, second.at("counters").value(name, json())) << "counter " << name;
+        ++compared;
+    }
+    EXPECT_GT(first.at("counters").at("rays_shadow").get<double>(), 0.0);
+    std::printf("[ counters ] whitted alone and after raster: %zu counters compared\n", compared);
+}
+
 // A scene given by a path relative to the config file resolves against the config's folder (not the
 // working folder), and the records call it by its own name; --resume on a result set whose config
 // has changed says what changed and how to go on.

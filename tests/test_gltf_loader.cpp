@@ -339,6 +339,27 @@ TEST(GltfLoader, UnreadableFilesAreErrors) {
     empty.setRoots({empty.addNode({{"name", "empty"}})});
     empty.writeGltf(dir / "empty.gltf");
     EXPECT_CONTAINS(loadError(dir / "empty.gltf"), (dir / "empty.gltf").string() + ": no triangle meshes");
+
+    // Folders where files belong: a buffer's or an image's `uri`, and the model itself. tinygltf
+    // read a folder as a file of 2^63 - 1 bytes (std::bad_alloc, exit 1 in the program); the glTF
+    // fuzz target found them (tests/fuzz/corpus/gltf/regression-*).
+    GltfBuilder named;
+    const int material = named.addMaterial("textured", {1.0, 1.0, 1.0, 1.0});
+    named.setRoots({named.addNode({{"mesh", named.addMesh("tri", named.addFloats(kTrianglePositions, "VEC3"), -1, -1, material)}})});
+    const nlohmann::json original = nlohmann::json::parse(named.gltfText());
+    nlohmann::json d = original;
+    d["buffers"][0]["uri"] = ".";
+    test::writeTextFile(dir / "buffer-folder.gltf", d.dump());
+    EXPECT_CONTAINS(loadError(dir / "buffer-folder.gltf"), (dir / "buffer-folder.gltf").string() + ": not a valid glTF 2.0 file (");
+    EXPECT_CONTAINS(loadError(dir / "buffer-folder.gltf"), "is not a regular file (a directory or a device)");
+    d = original;
+    d["images"] = {{{"uri", "."}}};
+    d["textures"] = {{{"source", 0}}};
+    d["materials"][material]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    test::writeTextFile(dir / "image-folder.gltf", d.dump());
+    EXPECT_CONTAINS(loadError(dir / "image-folder.gltf"), (dir / ".").string() + ": is a directory, expected an image file");
+    std::filesystem::create_directory(dir / "folder.glb");
+    EXPECT_CONTAINS(loadError(dir / "folder.glb"), (dir / "folder.glb").string() + ": not a valid glTF 2.0 file (");
 }
 
 }  // namespace

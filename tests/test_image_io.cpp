@@ -228,6 +228,14 @@ TEST(ImageIo, ReadErrorsNameTheFile) {
     } catch (const InputError& e) {
         EXPECT_CONTAINS(e.what(), (dir / "fake.png").string());
     }
+
+    // A device that never ends is refused before it is read.
+    try {
+        readImage("/dev/zero");
+        ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_CONTAINS(e.what(), "/dev/zero: is not a regular file (a device or a pipe), expected an image file");
+    }
 }
 
 TEST(ImageIo, DecodesEncodedImagesFromMemory) {

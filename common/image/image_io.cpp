@@ -105,6 +105,8 @@ namespace {
 std::unique_ptr<ImageInput> openImage(const fs::path& path) {
     if (!fs::exists(path)) throw InputError(path.string() + ": image file not found");
     if (fs::is_directory(path)) throw InputError(path.string() + ": is a directory, expected an image file");
+    // A device or a pipe (/dev/zero) never ends: OpenImageIO would read it forever.
+    if (!fs::is_regular_file(path)) throw InputError(path.string() + ": is not a regular file (a device or a pipe), expected an image file");
     const ImageSpec config = unassociatedAlphaConfig();
     auto in = ImageInput::open(path.string(), &config);
     if (!in) throw InputError(path.string() + ": cannot read image (" + OIIO::geterror() + ")");

@@ -351,12 +351,24 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
     return true;
 }
 
+// tinygltf's own file reading, for regular files only: it opens a folder (a buffer or image `uri`
+// of "." or "textures/", or a .glb that is one) as a file of 2^63 - 1 bytes and allocates that.
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        if (err) *err += "'" + path + "' is " + (fs::exists(path, ec) ? "not a regular file (a directory or a device)" : "missing") + "\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, user);
+}
+
 }  // namespace
 
 GltfContent loadGltf(const fs::path& file, const GltfLoadOptions& options) {
     if (!fs::exists(file)) throw InputError(file.string() + ": glTF file not found");
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(skipImage, nullptr);
+    gltf.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
     tinygltf::Model model;
     std::string err, warnings;
     std::string ext = file.extension().string();

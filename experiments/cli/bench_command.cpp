@@ -18,6 +18,7 @@
 #include "common/core/wall_clock.h"
 #include "common/device_rays/device_ray_replay.h"
 #include "common/raster/vulkan_error.h"
+#include "common/raytrace/ray_task_context.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
@@ -60,6 +61,7 @@ double milliseconds(F&& f) {
 // that the work cannot be optimised away.
 std::size_t replay(RTCScene scene, const std::vector<LoggedRay>& rays) {
     std::atomic<std::size_t> hits{0};
+    RayTaskContext context;  // the mode the reference traces in, for a like-for-like throughput
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
         std::size_t local = 0;
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
@@ -84,7 +86,7 @@ std::size_t replay(RTCScene scene, const std::vector<LoggedRay>& rays) {
             }
         }
         hits += local;
-    });
+    }, context);
     return hits;
 }
 

@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "common/core/wall_clock.h"
+#include "common/raytrace/ray_task_context.h"
 #include "common/scene/transform.h"
 
 namespace hybridlab {
@@ -55,7 +56,8 @@ public:
         }
         const auto start = WallClock::now();
         tbb::combinable<TessellationStats> perThread;
-        tbb::parallel_for(std::size_t{0}, toTrace.size(), [&](std::size_t k) { traceVertex(out_.vertices[toTrace[k]], perThread.local()); });
+        RayTaskContext context;
+        tbb::parallel_for(std::size_t{0}, toTrace.size(), [&](std::size_t k) { traceVertex(out_.vertices[toTrace[k]], perThread.local()); }, context);
         perThread.combine_each([&](const TessellationStats& t) {
             out_.stats.tracedVertices += t.tracedVertices;
             out_.stats.visibilityQueries += t.visibilityQueries;

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/raytrace/ray_offset.h"
+#include "common/raytrace/ray_task_context.h"
 
 namespace hybridlab {
 namespace {
@@ -59,7 +60,8 @@ ViewpointRecords compileRows(const Camera& camera, int width, int height, int n,
     v.rayEscaped.assign(rays, 0);
     std::vector<std::vector<OutgoingRecord>> rows(static_cast<std::size_t>(height));
     std::vector<std::uint64_t> lensQueries(static_cast<std::size_t>(height), 0), envQueries(static_cast<std::size_t>(height), 0);
-    tbb::parallel_for(0, height, [&](int y) { perRow(v, y, rows[static_cast<std::size_t>(y)], lensQueries[static_cast<std::size_t>(y)], envQueries[static_cast<std::size_t>(y)]); });
+    RayTaskContext context;
+    tbb::parallel_for(0, height, [&](int y) { perRow(v, y, rows[static_cast<std::size_t>(y)], lensQueries[static_cast<std::size_t>(y)], envQueries[static_cast<std::size_t>(y)]); }, context);
     for (int y = 0; y < height; ++y) {
         v.records.insert(v.records.end(), rows[static_cast<std::size_t>(y)].begin(), rows[static_cast<std::size_t>(y)].end());
         v.lensQueries += lensQueries[static_cast<std::size_t>(y)];
