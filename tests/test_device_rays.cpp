@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli_runner.h"
+#include "common/core/input_error.h"
 #include "common/device_rays/device_whitted_tracer.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/whitted_tracer.h"
@@ -324,6 +325,12 @@ TEST(DeviceRays, HeuristicRtAgreesWithEmbreeOnTheBuiltInScenes) {
     expectHeuristicAgrees("cornell-mirror-glass", 160, 90);
 }
 
+TEST(DeviceRays, SsrFallbackAgreesWithEmbreeOnTheFourScenes) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    for (const char* scene : {"whitted-classic", "cornell-mirror-glass", "sponza-spheres", "teapot-lens"})
+        expectBackendsAgree(scene, "ssr_fallback", 160, 90);
+}
+
 TEST(DeviceRays, HeuristicRtAgreesWithEmbreeOnThePaperScenes) {
     REQUIRE_RAY_TRACING_DEVICE();
     expectHeuristicAgrees("sponza-spheres", 160, 90);
@@ -388,6 +395,20 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_CONTAINS(r.err, "lacks VK_KHR_ray_tracing_pipeline");
     EXPECT_CONTAINS(r.err, VulkanDevice::shared({.rayTracing = true})->name());
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(DeviceRays, AHybridOnTheDeviceRefusesTheRayCastGBuffer) {
+    // gbuffer = "rays" is cast by Embree: with rays = "vulkan" the hybrid says so when created,
+    // before any device is asked for.
+    for (const char* technique : {"heuristic_rt", "ssr_fallback"}) {
+        SCOPED_TRACE(technique);
+        try {
+            createTechnique(technique, {{"rays", std::string("vulkan")}, {"gbuffer", std::string("rays")}});
+            ADD_FAILURE() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_CONTAINS(e.what(), std::string(technique) + ": rays = \"vulkan\" reads the rasterizer's G-buffer");
+        }
+    }
 }
 
 TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {

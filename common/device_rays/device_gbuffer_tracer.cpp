@@ -49,7 +49,7 @@ void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) 
 }
 
 DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
-                                              const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
+                                              const std::function<void(VkCommandBuffer)>& after) {
     if (targets.lighting == VK_NULL_HANDLE) throw VulkanError("the G-buffer tracer needs the lit image: ask the rasterizer for lighting");
     const VulkanDevice& dev = pipeline_.device();
     const int width = static_cast<int>(targets.width), height = static_cast<int>(targets.height);
@@ -73,7 +73,7 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     in.writeImage(11, sampled, ssrHit_ ? ssrHit_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     std::memset(counts_.mapped(), 0, kTechniqueCounters * sizeof(std::uint32_t));
 
-    const auto counts = pipeline_.launch(targets.width, targets.height, "trace", after, afterStage);
+    const auto counts = pipeline_.launch(targets.width, targets.height, "trace", after);
     DeviceGBufferTrace result;
     result.rays.primary = counts[0];
     result.rays.shadow = counts[1];

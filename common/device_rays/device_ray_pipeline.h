@@ -43,12 +43,11 @@ public:
     // Set 1 (with `inputs` only), written by the caller before launch().
     DescriptorSet& inputs() { return inputs_; }
 
-    // Zeroes the counters, traces a width x height x 1 launch (GPU-timed as `stage`), records
-    // `after` (GPU-timed as `afterStage`: passes that read the trace's output) in the same command
-    // buffer, waits; returns the counters (device_rays.glsl rayCounts).
+    // Zeroes the counters, traces a width x height x 1 launch, records `after` (passes that read the
+    // trace's output) in the same command buffer, both GPU-timed as `stage`, waits; returns the
+    // counters (device_rays.glsl rayCounts).
     std::array<std::uint32_t, device_rays::kRayCounterCount> launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
-                                                                    const std::function<void(VkCommandBuffer)>& after = {},
-                                                                    const std::string& afterStage = {});
+                                                                    const std::function<void(VkCommandBuffer)>& after = {});
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
 private:

@@ -90,17 +90,18 @@ Parts shadeParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float im
     p.composes = h.composes;
     p.skyReflected = h.skyReflected;
     p.skyRefracted = h.skyRefracted;
-    p.reflected = h.reflected.value;
-    if (h.reflected.traced) {
-        ++countReflection;
-        p.reflected = traceTree(h.reflected.ray);
-    }
-    p.refracted = h.refracted.value;
-    if (h.tir) {
-        p.refracted = p.reflected;
-    } else if (h.refracted.traced) {
-        ++countRefraction;
-        p.refracted = traceTree(h.refracted.ray);
+    // M, then R (under total internal reflection, M again), from one call site of the tree: lavapipe
+    // compiles each inlined copy of the loop anew.
+    for (int k = 0; k < 2; ++k) {
+        HitTerm term = k == 0 ? h.reflected : h.refracted;
+        vec3 v = k == 1 && h.tir ? p.reflected : term.value;
+        if (term.traced) {
+            if (k == 0) ++countReflection;
+            else ++countRefraction;
+            v = traceTree(term.ray);
+        }
+        if (k == 0) p.reflected = v;
+        else p.refracted = v;
     }
     return p;
 }
