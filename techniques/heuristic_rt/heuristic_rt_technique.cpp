@@ -57,8 +57,8 @@ TechniqueInfo HeuristicRtTechnique::info() {
     };
     for (ParamSpec& s : tracerParameterSpecs()) specs.push_back(std::move(s));
     return {"heuristic_rt",
-            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, Embree secondary "
-            "rays for the selected objects' pixels, blending",
+            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, secondary rays "
+            "(Embree or the Vulkan device) for the selected objects' pixels, blending",
             std::move(specs), [](const ParameterSet& p) { return std::make_unique<HeuristicRtTechnique>(p); }};
 }
 
