@@ -39,6 +39,18 @@ def variant(r):
     return r["label"] + (" [" + r["parameters_text"] + "]" if r["parameters_text"] else "")
 
 
+def backend(r):
+    """The ray backend of a run: its `rays` parameter ("embree", the CPU, where it has none, as the
+    techniques' default; "vulkan", the ray-tracing Vulkan device)."""
+    m = re.search(r"(?:^| )rays=(\S+)", r["parameters_text"])
+    return m.group(1) if m else "embree"
+
+
+def without_backend(r):
+    """The record with `rays=...` taken out of its parameters_text, for tables split by backend."""
+    return dict(r, parameters_text=re.sub(r"(?:^| )rays=\S+", "", r["parameters_text"]).strip())
+
+
 def natural_key(value):
     """A sort key that orders the numbers inside names by value, so that "budget=5000" comes before
     "budget=20000" (plain string order puts it after); tuples of names are keyed element by element."""

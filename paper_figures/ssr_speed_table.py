@@ -22,7 +22,8 @@ def frame(r):
 
 
 def key(r):
-    return (r["scene"], results.resolution(r), results.view_name(r))
+    # The ray backend too: a run is compared with whitted on its own backend (ssr_backends.toml).
+    return (r["scene"], results.resolution(r), results.view_name(r), results.backend(r))
 
 
 def beside_whitted(rows, whitted, label):

@@ -9,7 +9,9 @@ HEUR, RAYT, BLEND, FRAME) and the frame time of `rt_only` ("RAYT ONLY FRAME"), w
 frame time and each one's SSIM and FLIP against the reference beside them. Table 6 (along the
 scene's camera path): mean frame time with and without the heuristic. Times are the medians over a
 run's repeats; means along a path are over its frames. The technique entries are found by label
-(heuristic, no-heuristic, rt_only, whitted), as the config names them."""
+(heuristic, no-heuristic, rt_only, whitted), as the config names them. Runs on both ray backends
+(a `rays` parameter, walewski2019_backends.toml) get one pair of tables per backend, each run
+compared with rt_only and whitted on its own backend."""
 import statistics
 import sys
 
@@ -123,7 +125,19 @@ def main():
     a, rows = results.table_script(__doc__, "walewski_tables", [(("--target",), {
         "action": "store_true", "help": "report the frame-time target run (walewski2019_target.toml)"})])
     scenes = sorted({r["scene"] for r in rows})
-    results.write_table(target_report(rows) if a.target else table5(rows, scenes) + table6(rows, scenes), a.out, results.device_line(a.result_dir, rows))
+    if a.target:
+        lines = target_report(rows)
+    else:
+        lines = []
+        backends = sorted({results.backend(r) for r in rows})
+        for b in backends:
+            same = [results.without_backend(r) for r in rows if results.backend(r) == b]
+            if len(backends) > 1 or b != "embree":
+                lines += ["", "### rays = %s (ratios to rt_only and whitted on this backend)" % b, ""]
+            lines += table5(same, scenes)
+            if len(backends) == 1 or any(r["frame"] >= 0 for r in same):  # Table 6 needs camera-path runs
+                lines += table6(same, scenes)
+    results.write_table(lines, a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

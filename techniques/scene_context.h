@@ -22,7 +22,9 @@ public:
     bool hasRayScene() const { return rays_ != nullptr; }
 
     // Created at first call (uploads the scene to the GPU); throws VulkanUnavailable without a device.
-    Rasterizer& rasterizer();
+    // With `features.rayTracing`, a rasterizer of its own on the ray-tracing device, the one
+    // deviceRayScene() is on: a hybrid's frame with rays = "vulkan" stays on that device.
+    Rasterizer& rasterizer(DeviceFeatures features = {});
 
     // The scene on the ray-tracing Vulkan device (techniques with rays = "vulkan"): built at first
     // call (on VulkanDevice::shared({.rayTracing = true})), then moved to `time`. Throws
@@ -35,7 +37,7 @@ private:
     // Shared by the ray scene and the rasterizer: a hybrid frame deforms each object once.
     DeformedMeshCache deformedMeshes_;
     std::unique_ptr<RayScene> rays_;
-    std::unique_ptr<Rasterizer> rasterizer_;
+    std::unique_ptr<Rasterizer> rasterizer_, rayTracingRasterizer_;
     std::unique_ptr<DeviceRayScene> deviceRays_;
 };
 

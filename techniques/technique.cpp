@@ -22,9 +22,10 @@ DeviceRayScene& SceneContext::deviceRayScene(double time) {
     return *deviceRays_;
 }
 
-Rasterizer& SceneContext::rasterizer() {
-    if (!rasterizer_) rasterizer_ = std::make_unique<Rasterizer>(scene_, &deformedMeshes_);
-    return *rasterizer_;
+Rasterizer& SceneContext::rasterizer(DeviceFeatures features) {
+    std::unique_ptr<Rasterizer>& r = features.rayTracing ? rayTracingRasterizer_ : rasterizer_;
+    if (!r) r = std::make_unique<Rasterizer>(scene_, &deformedMeshes_, features);
+    return *r;
 }
 
 const TechniqueInfo& findTechnique(const std::string& name) {

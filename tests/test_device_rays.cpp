@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli_runner.h"
+#include "common/core/input_error.h"
 #include "common/device_rays/device_whitted_tracer.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/whitted_tracer.h"
@@ -278,12 +279,18 @@ TEST(DeviceRays, DepthLimitReturnsTheWeightedOrTheLocalColour) {
     }
 }
 
-// Whitted (or rt_only) on both backends at a small size: SSIM and ray counts by kind.
-void expectBackendsAgree(const std::string& sceneName, const std::string& technique, int width, int height) {
+// A technique (whitted, rt_only, heuristic_rt, ssr_fallback) on both backends at a small size, with
+// `params` besides `rays`: SSIM and ray counts by kind. Returns the Embree frame.
+FrameResult expectBackendsAgree(const std::string& sceneName, const std::string& technique, int width, int height,
+                                const test::TechniqueParams& params = {}) {
     SCOPED_TRACE(sceneName + " " + technique);
     const Scene scene = loadSceneFile(findSceneFile(sceneName));
-    const FrameResult embree = test::renderFrame(scene, technique, {{"rays", std::string("embree")}}, width, height);
-    const FrameResult device = test::renderFrame(scene, technique, {{"rays", std::string("vulkan")}}, width, height);
+    auto on = [&](const std::string& rays) {
+        test::TechniqueParams p = params;
+        p.push_back({"rays", rays});
+        return test::renderFrame(scene, technique, p, width, height);
+    };
+    const FrameResult embree = on("embree"), device = on("vulkan");
     const double ssim = computeMetrics(device.image, embree.image).whole.ssim;
     EXPECT_GE(ssim, 0.995);
     std::printf("[ backends ] %s %s %dx%d: SSIM %.5f", sceneName.c_str(), technique.c_str(), width, height, ssim);
@@ -293,7 +300,41 @@ void expectBackendsAgree(const std::string& sceneName, const std::string& techni
         std::printf(", %s %.0f / %.0f", kind + 5, d, e);
     }
     EXPECT_EQ(device.counters.at("medium_errors"), embree.counters.at("medium_errors"));
+    // The hybrids' own work: the same texels traced, the same objects selected.
+    for (const char* counter : {"pixels_ray_traced", "objects_selected", "cost_selected", "fallback_rays", "ssr_hits", "ssr_recursion_rays"}) {
+        if (!embree.counters.count(counter)) continue;
+        EXPECT_EQ(device.counters.at(counter), embree.counters.at(counter)) << counter;
+        std::printf(", %s %.0f", counter, device.counters.at(counter));
+    }
     std::printf("\n");
+    return embree;
+}
+
+// heuristic_rt with an unlimited budget and with half of the visible objects' cost (the same
+// selection on both backends: it is made from the same G-buffer).
+void expectHeuristicAgrees(const std::string& sceneName, int width, int height) {
+    const FrameResult unlimited = expectBackendsAgree(sceneName, "heuristic_rt", width, height);
+    const double budget = 0.5 * unlimited.counters.at("cost_visible");
+    const FrameResult finite = expectBackendsAgree(sceneName, "heuristic_rt", width, height, {{"budget", budget}});
+    EXPECT_LT(finite.counters.at("cost_selected"), unlimited.counters.at("cost_selected")) << sceneName << ": the budget selects less";
+}
+
+TEST(DeviceRays, HeuristicRtAgreesWithEmbreeOnTheBuiltInScenes) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    expectHeuristicAgrees("whitted-classic", 160, 90);
+    expectHeuristicAgrees("cornell-mirror-glass", 160, 90);
+}
+
+TEST(DeviceRays, SsrFallbackAgreesWithEmbreeOnTheFourScenes) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    for (const char* scene : {"whitted-classic", "cornell-mirror-glass", "sponza-spheres", "teapot-lens"})
+        expectBackendsAgree(scene, "ssr_fallback", 160, 90);
+}
+
+TEST(DeviceRays, HeuristicRtAgreesWithEmbreeOnThePaperScenes) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    expectHeuristicAgrees("sponza-spheres", 160, 90);
+    expectHeuristicAgrees("teapot-lens", 160, 90);
 }
 
 TEST(DeviceRays, WhittedAgreesWithEmbreeOnTheBuiltInScenes) {
@@ -354,6 +395,20 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_CONTAINS(r.err, "lacks VK_KHR_ray_tracing_pipeline");
     EXPECT_CONTAINS(r.err, VulkanDevice::shared({.rayTracing = true})->name());
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+TEST(DeviceRays, AHybridOnTheDeviceRefusesTheRayCastGBuffer) {
+    // gbuffer = "rays" is cast by Embree: with rays = "vulkan" the hybrid says so when created,
+    // before any device is asked for.
+    for (const char* technique : {"heuristic_rt", "ssr_fallback"}) {
+        SCOPED_TRACE(technique);
+        try {
+            createTechnique(technique, {{"rays", std::string("vulkan")}, {"gbuffer", std::string("rays")}});
+            ADD_FAILURE() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_CONTAINS(e.what(), std::string(technique) + ": rays = \"vulkan\" reads the rasterizer's G-buffer");
+        }
+    }
 }
 
 TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {

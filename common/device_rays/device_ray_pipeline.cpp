@@ -38,10 +38,16 @@ std::vector<VkDescriptorSetLayoutBinding> descriptorBindings(std::uint32_t textu
 
 // Compiles the pipeline and its binding table. Slow (lavapipe compiles the shaders into one
 // program with LLVM: about 10 s of CPU time), hence compiled once per process and shared.
-std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, const std::string& raygenShader, std::uint32_t textureCount) {
+std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, const std::string& raygenShader, std::uint32_t textureCount,
+                                                   const std::vector<VkDescriptorSetLayoutBinding>& inputs) {
     auto program = std::make_shared<CompiledRayPipeline>();
     program->setLayout = DescriptorSet(dev, descriptorBindings(textureCount));
-    program->layout = createPipelineLayout(dev, {program->setLayout.layout()}, 0);
+    std::vector<VkDescriptorSetLayout> sets = {program->setLayout.layout()};
+    if (!inputs.empty()) {
+        program->inputLayout = DescriptorSet(dev, inputs);
+        sets.push_back(program->inputLayout.layout());
+    }
+    program->layout = createPipelineLayout(dev, sets, 0);
 
     const std::string shaders[kStageCount] = {raygenShader, "device_radiance.rchit", "device_radiance.rmiss", "device_shadow.rmiss",
                                         "device_shadow.rahit"};
@@ -118,21 +124,24 @@ std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, cons
 
 }  // namespace
 
-DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader)
+DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader,
+                                     const std::vector<VkDescriptorSetLayoutBinding>& inputs)
     : device_(scene.device()), timer_(scene.device(), 1) {
     const VulkanDevice& dev = device_;
     const std::uint32_t textureCount = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(scene.scene().textures.size()));
     {
-        // Identically declared set layouts are compatible: this scene's set binds to the shared pipeline.
+        // Identically declared set layouts are compatible: this scene's sets bind to the shared
+        // pipeline (a ray-generation shader declares one set 1, so its name keys it).
         static std::mutex mutex;
         static std::map<std::tuple<VkDevice, std::string, std::uint32_t>, std::shared_ptr<const CompiledRayPipeline>> compiled;
         std::lock_guard lock(mutex);
         auto& entry = compiled[{dev.device(), raygenShader, textureCount}];
-        if (!entry) entry = compile(dev, raygenShader, textureCount);
+        if (!entry) entry = compile(dev, raygenShader, textureCount, inputs);
         program_ = entry;
     }
     const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     descriptors_ = DescriptorSet(dev, descriptorBindings(textureCount));
+    if (!inputs.empty()) inputs_ = DescriptorSet(dev, inputs);
     frame_ = GpuBuffer(dev, sizeof(DeviceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     counters_ = GpuBuffer(dev, kRayCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
 
@@ -176,22 +185,38 @@ void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {
     descriptors_.writeBuffer(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, replay_.buffer());
 }
 
-std::array<std::uint32_t, kRayCounterCount> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage) {
+std::array<std::uint32_t, kRayCounterCount> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
+                                                                       const std::function<void(VkCommandBuffer)>& after) {
     const VulkanDevice& dev = device_;
     std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
     dev.submitAndWait([&](VkCommandBuffer cb) {
         timer_.reset(cb);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
-        VkDescriptorSet set = descriptors_.set();
-        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->layout, 0, 1, &set, 0, nullptr);
+        const VkDescriptorSet sets[2] = {descriptors_.set(), inputs_.layout() != VK_NULL_HANDLE ? inputs_.set() : VK_NULL_HANDLE};
+        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->layout, 0, sets[1] ? 2 : 1, sets, 0, nullptr);
+        // The rasterizer's targets the shader may read were written by an earlier submission on this queue.
+        VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1, &inputs, 0, nullptr, 0,
+                             nullptr);
+        // One GPU stage for the trace and the pass after it: on lavapipe (Mesa 25.0.7) a second
+        // stage's pipeline-statistics query after vkCmdTraceRaysKHR crashes the queue thread.
         timer_.begin(cb, stage);
         dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, width, height, 1);
-        timer_.end(cb);
+        VkPipelineStageFlags readers = VK_PIPELINE_STAGE_HOST_BIT;
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0,
-                             nullptr);
+        if (after) {
+            readers |= VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+            barrier.dstAccessMask |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+        }
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, readers, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+        if (after) {
+            after(cb);
+            VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
+        }
+        timer_.end(cb);
     });
     std::array<std::uint32_t, kRayCounterCount> counts;
     std::memcpy(counts.data(), counters_.mapped(), sizeof(counts));

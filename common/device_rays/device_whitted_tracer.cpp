@@ -11,8 +11,6 @@ namespace hybridlab {
 
 using namespace device_rays;
 
-namespace {
-
 DeviceFrame deviceFrame(const DeviceRayScene& scene, const Camera& camera, int width, int height, const WhittedSettings& s,
                         TracedEffects effects) {
     const Scene& sc = scene.scene();
@@ -37,8 +35,6 @@ DeviceFrame deviceFrame(const DeviceRayScene& scene, const Camera& camera, int w
     f.rules = glm::uvec4(s.depthLimit == DepthLimit::Weighted ? 1u : 0u, 0u, 0u, 0u);
     return f;
 }
-
-}  // namespace
 
 DeviceWhittedTracer::DeviceWhittedTracer(const DeviceRayScene& scene) : scene_(scene), pipeline_(scene, "device_whitted.rgen") {}
 

@@ -22,6 +22,11 @@ struct DeviceTraceResult {
     std::vector<GpuStageTime> gpuStages;  // "trace"
 };
 
+// The launch's uniforms (device_ray_records.h DeviceFrame) for `camera` at width x height with
+// `settings`, and `effects` traced at each camera ray's first hit.
+device_rays::DeviceFrame deviceFrame(const DeviceRayScene& scene, const Camera& camera, int width, int height, const WhittedSettings& settings,
+                                     TracedEffects effects = {});
+
 class DeviceWhittedTracer {
 public:
     explicit DeviceWhittedTracer(const DeviceRayScene& scene);

@@ -29,6 +29,7 @@ struct Rasterizer::Impl {
     VkCommandBuffer commands = VK_NULL_HANDLE;  // freed with the pool
     UniqueQueryPool occlusion;
     double uploadMs = 0.0;
+    RasterRequest last;  // camera and size of the last frame (targets())
 
     Impl(std::shared_ptr<VulkanDevice> d, const Scene& s, DeformedMeshCache* deformedMeshes)
         : device(std::move(d)), scene(device, s, deformedMeshes), gbuffer(scene), shadows(scene), lighting(scene, gbuffer, shadows), timer(*device, kMaxGpuStages) {
@@ -51,10 +52,27 @@ struct Rasterizer::Impl {
     }
 };
 
-Rasterizer::Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes) {
+Rasterizer::Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes) : Rasterizer(scene, deformedMeshes, DeviceFeatures{}) {}
+
+Rasterizer::Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes, const DeviceFeatures& features) {
     const auto start = WallClock::now();
-    impl_ = std::make_unique<Impl>(VulkanDevice::shared(), scene, deformedMeshes);
+    impl_ = std::make_unique<Impl>(VulkanDevice::shared(features), scene, deformedMeshes);
     impl_->uploadMs = millisecondsSince(start);
+}
+
+FrameTargets Rasterizer::targets() const {
+    const Impl& r = *impl_;
+    FrameTargets t;
+    t.width = r.gbuffer.width();
+    t.height = r.gbuffer.height();
+    t.camera = r.last.camera;
+    if (t.width == 0) return t;
+    const float aspect = static_cast<float>(t.width) / static_cast<float>(t.height);
+    t.view = t.camera.view();
+    t.projection = t.camera.projectionMatrix(aspect);
+    for (int i = 0; i < GBufferPass::kColorTargets; ++i) t.gbuffer[i] = r.gbuffer.targetView(i);
+    t.lighting = r.last.lighting ? r.lighting.output() : VK_NULL_HANDLE;
+    return t;
 }
 
 Rasterizer::~Rasterizer() = default;
@@ -112,15 +130,10 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         r.lighting.record(cb, request.camera, request.lightingOptions, request.shadowSettings);
         r.timer.end(cb);
     }
+    r.last.camera = request.camera;
+    r.last.lighting = request.lighting;
     if (!request.passes.empty()) {
-        FrameTargets targets;
-        targets.width = r.gbuffer.width();
-        targets.height = r.gbuffer.height();
-        targets.camera = request.camera;
-        targets.view = request.camera.view();
-        targets.projection = request.camera.projectionMatrix(aspect);
-        for (int i = 0; i < GBufferPass::kColorTargets; ++i) targets.gbuffer[i] = r.gbuffer.targetView(i);
-        targets.lighting = request.lighting ? r.lighting.output() : VK_NULL_HANDLE;
+        const FrameTargets targets = this->targets();
         for (RasterFramePass* pass : request.passes) {
             r.timer.begin(cb, pass->name());
             pass->record(cb, targets);
@@ -129,7 +142,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     }
     r.timer.begin(cb, "readback");
     if (readback) r.gbuffer.recordReadback(cb, readback);
-    if (request.lighting) r.lighting.recordReadback(cb);
+    if (request.lighting && request.lightingReadback) r.lighting.recordReadback(cb);
     r.timer.end(cb);
     checkVk(vkEndCommandBuffer(cb), "recording the frame");
     frame.recordMilliseconds = millisecondsSince(start);
@@ -141,7 +154,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     start = WallClock::now();
     if (request.hostGBuffer) frame.gbuffer = GBuffer{};  // the technique holds it
     else r.gbuffer.unpack(readback, frame.gbuffer);
-    if (request.lighting) r.lighting.unpack(frame.lighting);
+    if (request.lighting && request.lightingReadback) r.lighting.unpack(frame.lighting);
     else frame.lighting = Image();
     frame.visiblePixelsByQuery.clear();
     if (request.occlusionQueries) {

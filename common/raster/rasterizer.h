@@ -16,6 +16,8 @@
 namespace hybridlab {
 
 class RasterFramePass;     // common/raster/frame_pass.h
+struct FrameTargets;       // common/raster/frame_pass.h
+struct DeviceFeatures;     // common/raster/vulkan_device.h
 class DeformedMeshCache;   // common/scene/deformed_mesh_cache.h
 
 struct RasterRequest {
@@ -25,6 +27,7 @@ struct RasterRequest {
     int height = 0;
     GBufferTargets readback = 0;        // G-buffer targets to read back (only these are copied)
     bool lighting = true;               // run the lighting pass and read its image back
+    bool lightingReadback = true;       // false: the lit image stays on the device (targets()), RasterFrame::lighting is empty
     LightingOptions lightingOptions;
     ShadowSettings shadowSettings;      // when lightingOptions.shadows
     bool redrawShadowMaps = false;      // else shadow maps are redrawn only when something moved or the settings changed
@@ -69,7 +72,10 @@ public:
     // Uploads the scene. Throws VulkanUnavailable when there is no usable Vulkan device (the
     // message says why), VulkanError for other failures.
     // `deformedMeshes`: shared with the ray scene (deformed_mesh_cache.h), or null for a cache of its own.
+    // `features`: the device to rasterize on (VulkanDevice::shared); with ray tracing, the device
+    // whose ray-tracing pipelines read the targets where they lie (targets()).
     explicit Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes = nullptr);
+    Rasterizer(const Scene& scene, DeformedMeshCache* deformedMeshes, const DeviceFeatures& features);
     ~Rasterizer();
     Rasterizer(const Rasterizer&) = delete;
     Rasterizer& operator=(const Rasterizer&) = delete;
@@ -77,6 +83,10 @@ public:
     // Renders one frame into `frame`, reusing its buffers.
     void render(const RasterRequest& request, RasterFrame& frame);
     RasterFrame render(const RasterRequest& request);
+
+    // The last frame's targets on the device (every view in VK_IMAGE_LAYOUT_GENERAL after render()),
+    // for passes that run after the frame in submissions of their own.
+    FrameTargets targets() const;
 
     std::string deviceName() const;
     double uploadMilliseconds() const;

@@ -8,6 +8,7 @@
 #include "techniques/heuristic_rt/object_observations.h"
 #include "techniques/heuristic_rt/selection_graph.h"
 #include "techniques/rt_only/rt_only_technique.h"
+#include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/raster_stages.h"
@@ -54,11 +55,12 @@ TechniqueInfo HeuristicRtTechnique::info() {
                           "shadows of pixels not ray traced: shadow maps, or none (as the paper's P-buffer)"),
         ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"),
         GBufferSource::parameterSpec(),
+        raysParameterSpec(),
     };
     for (ParamSpec& s : tracerParameterSpecs()) specs.push_back(std::move(s));
     return {"heuristic_rt",
-            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, Embree secondary "
-            "rays for the selected objects' pixels, blending",
+            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, secondary rays "
+            "(Embree or the Vulkan device) for the selected objects' pixels, blending",
             std::move(specs), [](const ParameterSet& p) { return std::make_unique<HeuristicRtTechnique>(p); },
             /*relativeCost=*/0.4};  // 0.30-0.40 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
 }
@@ -72,7 +74,11 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
       visiblePixelsByQueries_(p.getChoice("visible_pixels") == "queries"),
       rasterShadows_(p.getChoice("raster_shadows") == "map"),
       debugImages_(p.getBool("debug_images")),
+      onDevice_(tracesOnDevice(p)),
       gbuffer_(p) {
+    if (onDevice_ && gbuffer_.rays())
+        throw InputError("heuristic_rt: rays = \"vulkan\" reads the rasterizer's G-buffer on the device (gbuffer = \"raster\"); "
+                         "gbuffer = \"rays\" casts it with Embree");
     if (gbuffer_.rays() && visiblePixelsByQueries_)
         throw InputError("heuristic_rt: visible_pixels = \"queries\" needs the rasterizer's G-buffer (gbuffer = \"raster\"); "
                          "with gbuffer = \"rays\" the visible pixels come from the object ids");
@@ -80,15 +86,35 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
 }
 
 void HeuristicRtTechnique::prepare(SceneContext& context) {
-    context.rayScene(0.0);
     // Object-space bounds once per scene: finding them scans every vertex.
     const Scene& scene = context.scene();
     localBounds_.clear();
     for (std::size_t o = 0; o < scene.objects.size(); ++o) localBounds_.push_back(scene.objectLocalBounds(o));
-    // Lavapipe compiles shaders at the first draw.
-    RasterRequest warmUp = RasterWarmUp::preparing(scene).rasterRequest();
-    warmUp.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
-    context.rasterizer().render(warmUp, raster_);
+    // Lavapipe compiles shaders at the first draw (and the ray-tracing pipeline at its creation).
+    const FrameRequest warmUp = RasterWarmUp::preparing(scene);
+    if (onDevice_) {
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen");
+        pixelCounts_ = std::make_unique<ObjectPixelCountPass>(VulkanDevice::shared({.rayTracing = true}), scene.objects.size());
+        renderOnDevice(context, warmUp);
+        selectedLastFrame_.clear();
+        if (frameTimeBudget_) frameTimeBudget_.emplace(frameTimeBudget_->targetMilliseconds());
+        return;
+    }
+    context.rayScene(0.0);
+    RasterRequest request = warmUp.rasterRequest();
+    request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
+    context.rasterizer().render(request, raster_);
+}
+
+RasterRequest HeuristicRtTechnique::rasterRequest(const FrameRequest& frame) const {
+    RasterRequest request = frame.rasterRequest();
+    request.readback = onDevice_ ? 0 : kGBufferSurfaceTargets;
+    request.lighting = true;
+    request.lightingReadback = !onDevice_;
+    request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
+    request.occlusionQueries = visiblePixelsByQueries_;
+    if (onDevice_ && !visiblePixelsByQueries_) request.passes = {pixelCounts_.get()};
+    return request;
 }
 
 HeuristicRtTechnique::Selection HeuristicRtTechnique::selectObjects(const Scene& scene, const FrameRequest& frame,
@@ -141,17 +167,14 @@ HeuristicRtTechnique::Selection HeuristicRtTechnique::selectObjects(const Scene&
 }
 
 FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    if (onDevice_) return renderOnDevice(context, frame);
     const Scene& scene = context.scene();
     FrameResult result;
     StageClock clock(result);
 
-    // The G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays (stage
-    // gbuffer.rays, after the BVH update it needs).
-    RasterRequest request = frame.rasterRequest();
-    request.readback = kGBufferSurfaceTargets;
-    request.lighting = true;
-    request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
-    request.occlusionQueries = visiblePixelsByQueries_;
+    // The G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays
+    // (stage gbuffer.rays, after the BVH update it needs).
+    const RasterRequest request = rasterRequest(frame);
     const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
     RayStats primaryStats;
     const GBuffer& g = gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
@@ -204,21 +227,8 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     }
     clock.lap("blend");
 
-    double rayTracingMs = 0.0, otherMs = 0.0;
-    for (const StageTime& s : result.stages) (s.name == "trace" ? rayTracingMs : otherMs) += s.milliseconds;
-    if (frameTimeBudget_) {
-        result.counters["target_ms"] = frameTimeBudget_->targetMilliseconds();
-        result.counters["predicted_ms"] = frameTimeBudget_->predictedMilliseconds(selection.costSelected);
-        frameTimeBudget_->observe(selection.costSelected, rayTracingMs, otherMs);
-    }
     stats += primaryStats;
-    recordRayCounters(stats, static_cast<double>(masked), result);
-    recordRasterWork(raster_, result);
-    result.counters["objects_visible"] = static_cast<double>(selection.objectsVisible);
-    result.counters["objects_selected"] = static_cast<double>(selection.objectsSelected);
-    result.counters["cost_visible"] = selection.costVisible;
-    result.counters["cost_selected"] = selection.costSelected;
-    if (selection.budget < std::numeric_limits<double>::infinity()) result.counters["budget"] = selection.budget;
+    recordFrame(selection, stats, masked, result);
 
     if (debugImages_) {
         Image mask(frame.width, frame.height), shadows(frame.width, frame.height), reflections(frame.width, frame.height),
@@ -235,6 +245,62 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         result.debugImages["shadows"] = std::move(shadows);
         result.debugImages["reflections"] = std::move(reflections);
         result.debugImages["refractions"] = std::move(refractions);
+    }
+    return result;
+}
+
+void HeuristicRtTechnique::recordFrame(const Selection& selection, const RayStats& stats, std::size_t masked, FrameResult& result) {
+    double rayTracingMs = 0.0, otherMs = 0.0;
+    for (const StageTime& s : result.stages) (s.name == "trace" ? rayTracingMs : otherMs) += s.milliseconds;
+    if (frameTimeBudget_) {
+        result.counters["target_ms"] = frameTimeBudget_->targetMilliseconds();
+        result.counters["predicted_ms"] = frameTimeBudget_->predictedMilliseconds(selection.costSelected);
+        frameTimeBudget_->observe(selection.costSelected, rayTracingMs, otherMs);
+    }
+    recordRayCounters(stats, static_cast<double>(masked), result);
+    recordRasterWork(raster_, result);
+    result.counters["objects_visible"] = static_cast<double>(selection.objectsVisible);
+    result.counters["objects_selected"] = static_cast<double>(selection.objectsSelected);
+    result.counters["cost_visible"] = selection.costVisible;
+    result.counters["cost_selected"] = selection.costSelected;
+    if (selection.budget < std::numeric_limits<double>::infinity()) result.counters["budget"] = selection.budget;
+}
+
+FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const FrameRequest& frame) {
+    FrameResult result;
+    StageClock clock(result);
+    // The G-buffer, the P-buffer and the visible pixels per object, on the ray-tracing device; only
+    // the counts come back.
+    Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
+    rasterizer.render(rasterRequest(frame), raster_);
+    lapRasterFrame(clock, raster_);
+
+    // heuristic: the selection, sent down as the effect bits of each object (the shader makes the mask).
+    const Selection selection = selectObjects(context.scene(), frame,
+                                              visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : pixelCounts_->counts());
+    deviceTracer_->setObjectData(std::vector<std::uint32_t>(selection.effectsByObject.begin(), selection.effectsByObject.end()));
+    clock.lap("heuristic");
+
+    updateDeviceRayScene(context, frame.time, clock, result);
+
+    // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
+    // then the image comes back.
+    const DeviceGBufferTrace traced = deviceTracer_->trace(rasterizer.targets(), tracer_, debugImages_ ? 1u : 0u);
+    clock.lap("trace");
+    readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
+    clock.lap("readback");
+
+    recordFrame(selection, traced.rays, traced.techniqueCounts[0], result);
+    recordGpuStages(traced.gpuStages, result);
+    if (debugImages_) {
+        // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
+        const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());
+        const char* names[DeviceGBufferTracer::kTexelRecords] = {"heuristic_mask", "shadows", "reflections", "refractions"};
+        for (std::uint32_t k = 0; k < DeviceGBufferTracer::kTexelRecords; ++k) {
+            Image image(frame.width, frame.height);
+            for (std::size_t i = 0; i < image.pixelCount(); ++i) image.data()[i] = records[DeviceGBufferTracer::kTexelRecords * i + k];
+            result.debugImages[names[k]] = std::move(image);
+        }
     }
     return result;
 }

@@ -14,13 +14,21 @@
 // `heuristic = false` selects every visible object (the paper's "no heuristic" run). Beyond the
 // paper (§5-6): `target_ms` sets T each frame from a learned cost-to-time rate, and `per_effect`
 // selects shadows, reflections and refractions separately per object.
+// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer runs there, the
+// visible pixels are counted there (object_pixel_count_pass.h) and read back as one count an
+// object, the selection goes down as one word an object, and the trace and blend run in one
+// ray-generation shader over the G-buffer where it lies (shaders/device_heuristic_rt.rgen); the
+// host reads back the final image (and the debug images, outside the timed stages).
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/whitted_tracer.h"
+#include "common/device_rays/device_gbuffer_tracer.h"
 #include "techniques/heuristic_rt/frame_time_budget.h"
+#include "techniques/heuristic_rt/object_pixel_count_pass.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/technique.h"
 
@@ -42,6 +50,10 @@ private:
         double costVisible = 0.0, costSelected = 0.0, budget = 0.0;
     };
     Selection selectObjects(const Scene& scene, const FrameRequest& frame, const std::vector<std::uint64_t>& visiblePixels);
+    RasterRequest rasterRequest(const FrameRequest& frame) const;
+    FrameResult renderOnDevice(SceneContext& context, const FrameRequest& frame);
+    // The counters both paths record after the trace (and the frame-time budget's observation).
+    void recordFrame(const Selection& selection, const RayStats& stats, std::size_t masked, FrameResult& result);
 
     WhittedSettings tracer_;
     double budget_ = 0.0;                   // T; 0: unlimited
@@ -51,6 +63,7 @@ private:
     bool visiblePixelsByQueries_ = false;
     bool rasterShadows_ = true;
     bool debugImages_ = true;
+    bool onDevice_ = false;                 // rays = "vulkan"
     std::optional<FrameTimeBudget> frameTimeBudget_;  // when target_ms > 0
 
     std::vector<Aabb> localBounds_;          // per object, object space (for P and D)
@@ -59,6 +72,8 @@ private:
     std::vector<ShadingParts> parts_;        // per pixel, for masked pixels
     std::vector<std::uint8_t> pixelEffects_; // per pixel: the heuristic mask (effect bits)
     std::vector<bool> selectedLastFrame_;    // S, per object
+    std::unique_ptr<DeviceGBufferTracer> deviceTracer_;  // rays = "vulkan"
+    std::unique_ptr<ObjectPixelCountPass> pixelCounts_;  // rays = "vulkan", visible_pixels = "ids"
 };
 
 }  // namespace hybridlab

@@ -1,5 +1,7 @@
 #include "techniques/shared/device_rays.h"
 
+#include <algorithm>
+
 #include "common/core/input_error.h"
 #include "common/raster/vulkan_error.h"
 #include "techniques/shared/ray_counters.h"
@@ -19,6 +21,28 @@ std::unique_ptr<DeviceWhittedTracer> prepareDeviceRays(SceneContext& context) {
     } catch (const VulkanUnavailable& e) {
         throw InputError(std::string("rays = \"vulkan\": ") + e.what());
     }
+}
+
+std::unique_ptr<DeviceGBufferTracer> prepareDeviceGBufferRays(SceneContext& context, const std::string& raygenShader) {
+    try {
+        auto tracer = std::make_unique<DeviceGBufferTracer>(context.deviceRayScene(0.0), raygenShader);
+        rayTracingDeviceRasterizer(context);
+        return tracer;
+    } catch (const VulkanUnavailable& e) {
+        throw InputError(std::string("rays = \"vulkan\": ") + e.what());
+    }
+}
+
+Rasterizer& rayTracingDeviceRasterizer(SceneContext& context) { return context.rasterizer({.rayTracing = true}); }
+
+void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& image) {
+    image = Image(width, height);
+    const auto* p = static_cast<const glm::vec4*>(pixels.mapped());
+    std::copy(p, p + static_cast<std::size_t>(width) * height, image.data());
+}
+
+void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result) {
+    for (const GpuStageTime& g : stages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
 }
 
 const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, StageClock& clock, FrameResult& result) {
@@ -45,7 +69,7 @@ void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame,
     }
     clock.lap("trace");
     recordRayCounters(traced.rays, static_cast<double>(frame.width) * frame.height, result);
-    for (const GpuStageTime& g : traced.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
+    recordGpuStages(traced.gpuStages, result);
 }
 
 }  // namespace hybridlab

@@ -3,6 +3,7 @@
 // ray-tracing Vulkan device, DeviceRayScene), declared once for every technique that traces.
 #include <memory>
 
+#include "common/device_rays/device_gbuffer_tracer.h"
 #include "common/device_rays/device_whitted_tracer.h"
 #include "techniques/stage_clock.h"
 #include "techniques/technique.h"
@@ -17,6 +18,11 @@ bool tracesOnDevice(const ParameterSet& params);
 // tracing (a missing extension, say) is bad input for rays = "vulkan": InputError naming the
 // device and what it lacks, before anything renders.
 std::unique_ptr<DeviceWhittedTracer> prepareDeviceRays(SceneContext& context);
+// The same for a hybrid whose ray stage reads the G-buffer on the device (`raygenShader`, see
+// device_gbuffer_tracer.h): the tracer, and the scene's rasterizer on the ray-tracing device.
+std::unique_ptr<DeviceGBufferTracer> prepareDeviceGBufferRays(SceneContext& context, const std::string& raygenShader);
+// The rasterizer on the ray-tracing device, whose targets the G-buffer tracer reads.
+Rasterizer& rayTracingDeviceRasterizer(SceneContext& context);
 
 // The `bvh_update` stage on the device (DeviceRayScene::setTime), with the counters
 // updateRayScene() reports for Embree's scene.
@@ -25,6 +31,12 @@ const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, S
 // Whitted ray tracing of the frame on the device, n x n supersampled (the sub-pixel centres are
 // the pixel centres of an n times larger image, averaged): the image, ray counters and the
 // trace's GPU time (`gpu_trace_ms`).
+// Copies the device's image (vec4 per texel, row-major) of a width x height frame into `image`.
+void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& image);
+
+// The GPU stages of a device launch as counters gpu_<stage>_ms.
+void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result);
+
 void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame, const WhittedSettings& settings, int supersample,
                          StageClock& clock, FrameResult& result);
 

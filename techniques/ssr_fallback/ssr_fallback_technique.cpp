@@ -4,6 +4,8 @@
 #include <atomic>
 #include <optional>
 
+#include "common/core/input_error.h"
+#include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/raster_stages.h"
@@ -81,6 +83,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
                         "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
                         "smears thin reflected detail)"),
         GBufferSource::parameterSpec(),
+        raysParameterSpec(),
     };
     for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
@@ -109,6 +112,10 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettin
     ssrSettings_.maxDistance = static_cast<float>(p.getFloat("max_distance"));
     ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
     shadowSettings_ = shadowMapSettings(p);
+    onDevice_ = tracesOnDevice(p);
+    if (onDevice_ && gbuffer_.rays())
+        throw InputError("ssr_fallback: rays = \"vulkan\" reads the rasterizer's G-buffer on the device (gbuffer = \"raster\"); "
+                         "gbuffer = \"rays\" casts it with Embree");
 }
 
 RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
@@ -120,6 +127,11 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
     r.lightingOptions.shadows = true;
     r.lightingOptions.walewskiBlend = tracerSettings_.blend == BlendRule::Walewski2019;
     r.shadowSettings = shadowSettings_;
+    if (onDevice_) {
+        // Nothing comes back: the ray-traced stage reads the targets on the device.
+        r.readback = 0;
+        r.lightingReadback = false;
+    }
     if (ssrOn_) {
         ssr_->setSettings(ssrSettings_);
         r.passes = {ssr_.get()};
@@ -128,6 +140,14 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 }
 
 void SsrFallbackTechnique::prepare(SceneContext& context) {
+    if (onDevice_) {
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen");
+        deviceComposite_ = std::make_unique<DeviceSeamComposite>(deviceTracer_->device());
+        ssr_ = std::make_unique<SsrPass>(VulkanDevice::shared({.rayTracing = true}));
+        ssr_->setReadback(false);
+        renderOnDevice(context, {context.scene().camera, 0.0, 64, 36});
+        return;
+    }
     const RayScene& rays = context.rayScene(0.0);
     if (!ssr_) ssr_ = std::make_unique<SsrPass>();
     RayStats unused;
@@ -135,6 +155,7 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
 }
 
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
+    if (onDevice_) return renderOnDevice(context, frame);
     Rasterizer& rasterizer = context.rasterizer();
     warmUp_.atSizeOf(frame, [&](const FrameRequest& f) {
         RayStats unused;
@@ -240,7 +261,25 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     }
     clock.lap("blend");
 
-    Image sourceImage(frame.width, frame.height), failures(frame.width, frame.height), confidence(frame.width, frame.height);
+    stats += primaryStats;
+    recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
+    recordRasterWork(raster_, result);
+    result.counters["reflective_pixels"] = static_cast<double>(reflective);
+    result.counters["ssr_hits"] = static_cast<double>(ssrHits);
+    result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
+    result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
+    result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
+    result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
+    recordSsrStatistics(source, refractive, result);
+    return result;
+}
+
+void SsrFallbackTechnique::recordSsrStatistics(const std::vector<ReflectionSource>& source, const std::vector<std::uint8_t>& refractive,
+                                               FrameResult& result) const {
+    const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
+    const int width = result.image.width(), height = result.image.height();
+    const std::size_t n = source.size();
+    Image sourceImage(width, height), failures(width, height), confidence(width, height);
     std::map<std::uint32_t, std::size_t> failuresByReason;
     std::uint64_t marchSteps = 0, marched = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -262,15 +301,6 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
         result.debugImages["ssr_confidence"] = std::move(confidence);
     }
 
-    stats += primaryStats;
-    recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
-    recordRasterWork(raster_, result);
-    result.counters["reflective_pixels"] = static_cast<double>(reflective);
-    result.counters["ssr_hits"] = static_cast<double>(ssrHits);
-    result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
-    result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
-    result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
-    result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
     // SSR's work: march steps in all and per texel marched (the reflective texels SSR traced).
     result.counters["ssr_march_steps"] = static_cast<double>(marchSteps);
     result.counters["ssr_steps_per_reflective_pixel"] = marched > 0 ? static_cast<double>(marchSteps) / static_cast<double>(marched) : 0.0;
@@ -279,6 +309,59 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     result.counters["ssr_fail_out_of_steps"] = static_cast<double>(failuresByReason[kSsrOutOfSteps]);
     result.counters["ssr_fail_back_face"] = static_cast<double>(failuresByReason[kSsrBackFace]);
     result.counters["ssr_fail_max_distance"] = static_cast<double>(failuresByReason[kSsrMaxDistance]);
+}
+
+FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const FrameRequest& frame) {
+    Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
+    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) { rasterizer.render(rasterRequest(f), raster_); });
+    FrameResult result;
+    StageClock clock(result);
+    // The SSR pass runs inside the rasterizer's command buffer: its GPU time is its stage.
+    rasterizer.render(rasterRequest(frame), raster_);
+    lapRasterFrame(clock, raster_);
+
+    updateDeviceRayScene(context, frame.time, clock, result);
+
+    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU time
+    // together is the counter gpu_trace_ms); then the image comes back.
+    deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
+    // device_ssr_fallback.rgen's options (frame.rules.y).
+    const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
+                                  (recursion_ == Recursion::Single ? 8u : 0u) | (ssrSettings_.refractive ? 16u : 0u) | (ssrOn_ ? 0u : 32u);
+    const bool walewski = tracerSettings_.blend == BlendRule::Walewski2019;
+    const DeviceGBufferTrace traced = deviceTracer_->trace(
+        rasterizer.targets(), tracerSettings_, options,
+        [&](VkCommandBuffer cb) {
+            deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->image(), frame.width, frame.height, blurRadius_, blurRange_,
+                                     walewski);
+        });
+    clock.lap("trace");
+    readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
+    clock.lap("readback");
+
+    const auto& counts = traced.techniqueCounts;
+    recordRayCounters(traced.rays, counts[0], result);
+    recordRasterWork(raster_, result);
+    recordGpuStages(traced.gpuStages, result);
+    result.counters["reflective_pixels"] = counts[3];
+    result.counters["ssr_hits"] = counts[4];
+    result.counters["ssr_hit_rate"] = counts[3] > 0 ? static_cast<double>(counts[4]) / static_cast<double>(counts[3]) : 0.0;
+    result.counters["fallback_rays"] = counts[1];
+    result.counters["ssr_recursion_rays"] = counts[2];
+    result.counters["seam_blurred_pixels"] = deviceComposite_->blurredTexels();
+
+    // After the timed stages: SSR's outputs and the texels' reflection sources, for SSR's
+    // statistics and the debug images.
+    if (ssrOn_) ssr_->readBack();
+    const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
+    std::vector<ReflectionSource> source(n);
+    std::vector<std::uint8_t> refractive(n);
+    const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());
+    for (std::size_t i = 0; i < n; ++i) {
+        source[i] = static_cast<ReflectionSource>(static_cast<int>(records[DeviceGBufferTracer::kTexelRecords * i].w));
+        refractive[i] = records[DeviceGBufferTracer::kTexelRecords * i + 3].y != 0.0f;
+    }
+    recordSsrStatistics(source, refractive, result);
     return result;
 }
 

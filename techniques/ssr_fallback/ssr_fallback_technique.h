@@ -5,11 +5,18 @@
 // Embree rays for the texels SSR failed on, from the G-buffer position, recursive like the
 // reference, and for every refractive texel; the two reflection images merged and their seam
 // blurred (seam_blur.h); the composition of the shading model (DESIGN.md).
+// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer and SSR run there,
+// the ray-traced stage reads the G-buffer, the lit image and SSR's outputs where they lie
+// (shaders/device_ssr_fallback.rgen), the seam blur and composite follow as a compute pass
+// (device_seam_composite.h), and the host reads back the final image (SSR's outputs and the
+// per-texel terms only for the debug images and SSR's statistics, after the timed stages).
 #include <memory>
 #include <vector>
 
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/whitted_tracer.h"
+#include "common/device_rays/device_gbuffer_tracer.h"
+#include "techniques/ssr_fallback/device_seam_composite.h"
 #include "techniques/ssr_fallback/seam_blur.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/shared/raster_warm_up.h"
@@ -33,7 +40,11 @@ public:
 
 private:
     RasterRequest rasterRequest(const FrameRequest& frame);
+    FrameResult renderOnDevice(SceneContext& context, const FrameRequest& frame);
+    // SSR's work and the debug images of SSR's outputs (the same for both backends).
+    void recordSsrStatistics(const std::vector<ReflectionSource>& source, const std::vector<std::uint8_t>& refractive, FrameResult& result) const;
 
+    bool onDevice_ = false;  // rays = "vulkan"
     bool ssrOn_ = true;
     bool rayTracedShadows_ = false;
     Fallback fallback_ = Fallback::RayTraced;
@@ -47,6 +58,8 @@ private:
     RasterFrame raster_;  // reused between frames
     GBufferSource gbuffer_;
     RasterWarmUp warmUp_;
+    std::unique_ptr<DeviceGBufferTracer> deviceTracer_;  // rays = "vulkan"
+    std::unique_ptr<DeviceSeamComposite> deviceComposite_;
 };
 
 }  // namespace hybridlab

@@ -26,7 +26,7 @@ void computeToComputeBarrier(VkCommandBuffer cb) {
 
 }  // namespace
 
-SsrPass::SsrPass() : device_(VulkanDevice::shared()) {
+SsrPass::SsrPass(std::shared_ptr<VulkanDevice> onDevice) : device_(std::move(onDevice)) {
     const VulkanDevice& device = *device_;
     device.requireFormat(kOutputFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT, "the SSR pass's outputs");
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -49,7 +49,9 @@ SsrPass::SsrPass() : device_(VulkanDevice::shared()) {
 void SsrPass::resize(std::uint32_t width, std::uint32_t height) {
     if (color_.valid() && color_.desc().width == width && color_.desc().height == height) return;
     const VulkanDevice& device = *device_;
-    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    // Sampled too: with rays = "vulkan" the ray-traced stage reads them where they lie.
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     color_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, usage});
     hit_ = GpuImage(device, {kOutputFormat, width, height, 1, 1, usage});
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4);
@@ -153,7 +155,10 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
     vkCmdDispatchIndirect(cb, marchList_.buffer(), 0);
+    if (readback_) recordReadback(cb);
+}
 
+void SsrPass::recordReadback(VkCommandBuffer cb) {
     for (const GpuImage* image : {&color_, &hit_})
         transitionImage(cb, image->image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -163,7 +168,16 @@ void SsrPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     recordHostReadBarrier(cb);
 }
 
+void SsrPass::readBack() {
+    device_->submitAndWait([&](VkCommandBuffer cb) { recordReadback(cb); });
+    unpack();
+}
+
 void SsrPass::finish() {
+    if (readback_) unpack();  // else readBack() does, when asked
+}
+
+void SsrPass::unpack() {
     result_.width = static_cast<int>(color_.desc().width);
     result_.height = static_cast<int>(color_.desc().height);
     const std::size_t n = static_cast<std::size_t>(result_.width) * result_.height;

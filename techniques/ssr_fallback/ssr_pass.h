@@ -55,7 +55,18 @@ struct SsrResult {
 
 class SsrPass : public RasterFramePass {
 public:
-    SsrPass();
+    // On `device`: the rasterizer's (the ray-tracing device's when the ray stage reads the outputs there).
+    explicit SsrPass(std::shared_ptr<VulkanDevice> device = VulkanDevice::shared());
+
+    // false: the frame records no copy of the outputs; they stay on the device (colorView(),
+    // hitView()) until readBack() is asked for.
+    void setReadback(bool readback) { readback_ = readback; }
+    // The outputs on the device: rgb the lit image at the hit, a confidence; xy hit pixel, z flags, w steps.
+    VkImageView colorView() const { return color_.view(); }
+    VkImageView hitView() const { return hit_.view(); }
+    // After a frame recorded without read-back: copies the outputs to the host in a submission of
+    // its own and unpacks them into result().
+    void readBack();
 
     void setSettings(const SsrSettings& settings) { settings_ = settings; }
     const SsrSettings& settings() const { return settings_; }
@@ -70,9 +81,12 @@ public:
 private:
     void resize(std::uint32_t width, std::uint32_t height);
     void recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& targets);
+    void recordReadback(VkCommandBuffer cb);
+    void unpack();
 
     std::shared_ptr<VulkanDevice> device_;
     SsrSettings settings_;
+    bool readback_ = true;
     DescriptorSet descriptors_;
     UniquePipelineLayout layout_;
     std::array<UniquePipeline, 2> pipelines_;  // by traversal

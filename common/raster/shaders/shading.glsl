@@ -100,4 +100,12 @@ vec3 compose(float om, float orr, vec3 M, vec3 R, vec3 C, bool walewski) {
     return 0.5 * (cm + cr);
 }
 
+// As uncomposeLocal(): the C that composes with M and R into `composite`; `fallback` where C's
+// weight vanishes. Recovers the rasterizer's shadow-mapped C from its composed pixel.
+vec3 uncomposeLocal(float om, float orr, vec3 M, vec3 R, vec3 composite, vec3 fallback, bool walewski) {
+    float slope = (1.0 - om) * (1.0 - orr);
+    if (slope < 1e-4) return fallback;
+    return (composite - compose(om, orr, M, R, vec3(0.0), walewski)) / slope;
+}
+
 #endif

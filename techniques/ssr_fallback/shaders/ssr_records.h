@@ -1,4 +1,4 @@
-// What the SSR shaders (ssr_depth_pyramid.comp, ssr_trace.comp) and SsrPass exchange, declared once
+// What the SSR shaders (ssr_depth_pyramid.comp, ssr_trace.comp, ssr_composite.comp) and the C++ exchange, declared once
 // for C++ and GLSL (as common/raster/shaders/device_ray_records.h): the C++ sees glm types in
 // namespace hybridlab::ssr_records and static_asserts their layout. The uniform blocks hold only
 // mat4 and vec4 members and the march list's header four uints, so std140, std430 and C++ agree
@@ -12,6 +12,7 @@
 #include <glm/vec4.hpp>
 namespace hybridlab::ssr_records {
 using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
 using uint = std::uint32_t;
 #define SSR_CONSTANT inline constexpr
@@ -36,6 +37,12 @@ struct SsrUniforms {
     vec4 hiz;             // x the pyramid's top level
 };
 
+// The uniforms of ssr_composite.comp (the seam blur and composite after the device's ray tracing).
+struct CompositeUniforms {
+    ivec4 size;     // x width, y height, z blur radius (0: off)
+    vec4 settings;  // x bilateral range sigma (0: plain Gaussian), y Walewski blend (1 or 0)
+};
+
 // The head of the march list (a storage buffer; the texels, packed x | y << 16, follow it): the
 // indirect dispatch's group counts, then the number of texels listed.
 struct MarchListHeader {
@@ -50,6 +57,7 @@ SSR_CONSTANT uint kSsrMarchGroupSize = 64u;
 
 #ifdef __cplusplus
 static_assert(sizeof(PyramidUniforms) == 80 && sizeof(SsrUniforms) == 208 && sizeof(MarchListHeader) == 16);
+static_assert(sizeof(CompositeUniforms) == 32);
 }  // namespace hybridlab::ssr_records
 namespace hybridlab {
 #endif

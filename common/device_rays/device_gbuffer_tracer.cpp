@@ -1,0 +1,88 @@
+#include "common/device_rays/device_gbuffer_tracer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/device_rays/device_whitted_tracer.h"
+#include "common/raster/vulkan_error.h"
+
+namespace hybridlab {
+
+using namespace device_rays;
+
+namespace {
+
+constexpr std::uint32_t kTechniqueCounters = 16;
+
+// Set 1 of device_gbuffer_rays.glsl: the G-buffer's eight targets and the lit image (0-8), the
+// per-object data (9), SSR's outputs (10, 11), the per-texel records (12), the technique's counters (13).
+std::vector<VkDescriptorSetLayoutBinding> inputBindings() {
+    const VkShaderStageFlags raygen = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+    std::vector<VkDescriptorSetLayoutBinding> b;
+    for (std::uint32_t i = 0; i <= 8; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, raygen, nullptr});
+    b.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
+    b.push_back({10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, raygen, nullptr});
+    b.push_back({11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, raygen, nullptr});
+    b.push_back({12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
+    b.push_back({13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
+    return b;
+}
+
+}  // namespace
+
+DeviceGBufferTracer::DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader)
+    : scene_(scene), pipeline_(scene, raygenShader, inputBindings()) {
+    const VulkanDevice& dev = pipeline_.device();
+    nearest_ = createNearestSampler(dev, "the G-buffer tracer's sampler");
+    counts_ = GpuBuffer(dev, kTechniqueCounters * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    pipeline_.inputs().writeBuffer(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counts_.buffer());
+    setObjectData({0u});
+}
+
+void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) {
+    const VkDeviceSize bytes = std::max<std::size_t>(1, data.size()) * sizeof(std::uint32_t);
+    if (!objectData_.valid() || objectData_.size() != bytes) {
+        objectData_ = GpuBuffer(pipeline_.device(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        pipeline_.inputs().writeBuffer(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, objectData_.buffer());
+    }
+    if (!data.empty()) objectData_.write(data.data(), data.size() * sizeof(std::uint32_t));
+}
+
+DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
+                                              const std::function<void(VkCommandBuffer)>& after) {
+    if (targets.lighting == VK_NULL_HANDLE) throw VulkanError("the G-buffer tracer needs the lit image: ask the rasterizer for lighting");
+    const VulkanDevice& dev = pipeline_.device();
+    const int width = static_cast<int>(targets.width), height = static_cast<int>(targets.height);
+    const std::size_t texelCount = static_cast<std::size_t>(width) * height;
+    DeviceFrame f = deviceFrame(scene_, targets.camera, width, height, settings);
+    f.rules.y = flags;
+    pipeline_.setFrame(f);
+    image_ = &pipeline_.output(texelCount * sizeof(glm::vec4));
+    const VkDeviceSize texelBytes = texelCount * kTexelRecords * sizeof(glm::vec4);
+    if (!texels_.valid() || texels_.size() != texelBytes) {
+        texels_ = GpuBuffer(dev, texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        pipeline_.inputs().writeBuffer(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texels_.buffer());
+    }
+    // Rewritten every frame: the rasterizer recreates its targets when the frame size changes.
+    DescriptorSet& in = pipeline_.inputs();
+    const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    for (int i = 0; i < GBufferPass::kColorTargets; ++i) in.writeImage(i, sampled, targets.gbuffer[i], nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    in.writeImage(8, sampled, targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    // Without SSR the bindings still need valid images: the lit image stands in, unread.
+    in.writeImage(10, sampled, ssrColor_ ? ssrColor_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    in.writeImage(11, sampled, ssrHit_ ? ssrHit_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
+    std::memset(counts_.mapped(), 0, kTechniqueCounters * sizeof(std::uint32_t));
+
+    const auto counts = pipeline_.launch(targets.width, targets.height, "trace", after);
+    DeviceGBufferTrace result;
+    result.rays.primary = counts[0];
+    result.rays.shadow = counts[1];
+    result.rays.reflection = counts[2];
+    result.rays.refraction = counts[3];
+    result.rays.mediumErrors = counts[4];
+    std::memcpy(result.techniqueCounts.data(), counts_.mapped(), sizeof(result.techniqueCounts));
+    result.gpuStages = pipeline_.gpuStages();
+    return result;
+}
+
+}  // namespace hybridlab

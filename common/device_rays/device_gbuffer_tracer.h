@@ -1,0 +1,64 @@
+#pragma once
+// The hybrids' ray stage on the raster's device: a ray-generation shader over the rasterizer's
+// G-buffer and lit image where they lie (shaders/device_gbuffer_rays.glsl), tracing only the
+// secondary rays its technique asks for from the texels' surfaces, as GBufferSurface and
+// WhittedTracer::shadeParts do on the CPU. The rasterizer must run on the ray-tracing device
+// (Rasterizer with DeviceFeatures::rayTracing): no target is copied between devices or to the host.
+// The technique's shader writes the frame's image (and per-texel terms for its later passes); the
+// host reads back the image, the counters, and what the technique asks for.
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/device_rays/device_ray_pipeline.h"
+#include "common/raster/frame_pass.h"
+#include "common/raytrace/ray_stats.h"
+#include "common/raytrace/whitted_tracer.h"
+
+namespace hybridlab {
+
+struct DeviceGBufferTrace {
+    RayStats rays;                                   // counted on the device
+    std::array<std::uint32_t, 16> techniqueCounts{};  // the shader's own counters (techniqueCounts)
+    std::vector<GpuStageTime> gpuStages;             // "trace" (with the technique's pass after it)
+};
+
+class DeviceGBufferTracer {
+public:
+    static constexpr std::uint32_t kTexelRecords = 4;  // vec4 per texel in texels() (device_gbuffer_rays.glsl)
+
+    // `raygenShader` includes device_gbuffer_rays.glsl.
+    DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader);
+
+    const VulkanDevice& device() const { return pipeline_.device(); }
+
+    // Per object, the technique's data (objectData in the shader); uploaded, a few bytes an object.
+    void setObjectData(const std::vector<std::uint32_t>& data);
+    // SSR's outputs (ssrColor, ssrHit), or none.
+    void setSsr(VkImageView color, VkImageView hit) {
+        ssrColor_ = color;
+        ssrHit_ = hit;
+    }
+
+    // One launch over `targets` (the rasterizer's last frame, on this device; lighting included) with
+    // `settings`; `flags` reach the shader as frame.rules.y. `after` records the technique's pass
+    // that reads the output, in the same command buffer and GPU stage ("trace"). Waits.
+    DeviceGBufferTrace trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
+                             const std::function<void(VkCommandBuffer)>& after = {});
+
+    // After trace(): the frame's image (vec4 per texel, row-major; host-visible) and the per-texel
+    // records (kTexelRecords vec4 each; device memory the host can map on every device it runs on).
+    const GpuBuffer& image() const { return *image_; }
+    const GpuBuffer& texels() const { return texels_; }
+
+private:
+    const DeviceRayScene& scene_;
+    DeviceRayPipeline pipeline_;
+    UniqueSampler nearest_;
+    GpuBuffer objectData_, texels_, counts_;
+    const GpuBuffer* image_ = nullptr;
+    VkImageView ssrColor_ = VK_NULL_HANDLE, ssrHit_ = VK_NULL_HANDLE;
+};
+
+}  // namespace hybridlab

@@ -1,0 +1,109 @@
+// Secondary rays from the G-buffer where it lies (the hybrids' ray stage on the raster's device):
+// the rasterizer's targets read as images of set 1, a texel taken as the surface a camera ray
+// would have hit there (as GBufferSurface, techniques/shared/gbuffer_surface.h), and its
+// ray tree (device_whitted_tree.glsl) split into the terms the hybrids blend (ShadingParts).
+#ifndef DEVICE_GBUFFER_RAYS_GLSL
+#define DEVICE_GBUFFER_RAYS_GLSL
+
+#include "device_whitted_tree.glsl"
+
+// The set-1 bindings: the layout of DeviceGBufferTracer (common/device_rays/device_gbuffer_tracer.h).
+layout(set = 1, binding = 0) uniform sampler2D gPosition;
+layout(set = 1, binding = 1) uniform sampler2D gNormal;
+layout(set = 1, binding = 2) uniform sampler2D gEmission;
+layout(set = 1, binding = 3) uniform sampler2D gAmbient;
+layout(set = 1, binding = 4) uniform sampler2D gDiffuse;
+layout(set = 1, binding = 5) uniform sampler2D gSpecular;
+layout(set = 1, binding = 6) uniform sampler2D gOptical;
+layout(set = 1, binding = 7) uniform usampler2D gObjectId;
+layout(set = 1, binding = 8) uniform sampler2D litImage;  // the deferred lighting's image (the P-buffer)
+// Per object, the technique's own data (heuristic_rt: the selected effects' bits).
+layout(std430, set = 1, binding = 9) readonly buffer ObjectData { uint objectData[]; };
+layout(set = 1, binding = 10) uniform sampler2D ssrColor;  // ssr_trace.comp's outputs
+layout(set = 1, binding = 11) uniform sampler2D ssrHit;
+// Per texel, kTexelRecords vec4 of terms for the technique's later passes (composite, debug images).
+layout(std430, set = 1, binding = 12) buffer Texels { vec4 texels[]; };
+// The technique's own counters (work that is not a ray).
+layout(std430, set = 1, binding = 13) buffer TechniqueCounts { uint techniqueCounts[]; };
+
+const int kTexelRecords = 4;
+
+// The inverse of octahedralEncode in gbuffer.frag (octahedralDecode in gbuffer.cpp).
+vec3 octahedralDecode(float u, float v) {
+    vec3 n = vec3(u, v, 1.0 - abs(u) - abs(v));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
+// The object seen at a texel, or -1 for the sky.
+int gbufferObject(ivec2 texel) { return int(texelFetch(gObjectId, texel, 0).r) - 1; }
+
+// As GBufferSurface and GBuffer::materialAt: the material targets hold textured colours (no
+// texture lookup), and no shadow or absorption properties.
+Surface gbufferSurface(ivec2 texel, out DeviceMaterial m) {
+    vec4 emission = texelFetch(gEmission, texel, 0), ambient = texelFetch(gAmbient, texel, 0);
+    vec4 optical = texelFetch(gOptical, texel, 0);
+    m.emission = vec4(emission.rgb, 0.0);
+    m.ambient = vec4(ambient.rgb, 0.0);
+    m.diffuse = vec4(texelFetch(gDiffuse, texel, 0).rgb, 0.0);
+    m.specular = texelFetch(gSpecular, texel, 0);
+    m.optical = vec4(optical.xyz, optical.w > 0.5 ? 1.0 : 0.0);
+    m.absorption = vec4(0.0);
+    m.tilingOffset = vec4(1.0, 1.0, 0.0, 0.0);
+    m.textures = ivec4(-1);
+    Surface s;
+    s.position = texelFetch(gPosition, texel, 0).xyz;
+    s.geometricNormal = octahedralDecode(emission.w, ambient.w);
+    s.shadingNormal = texelFetch(gNormal, texel, 0).xyz;
+    s.uv = vec2(0.0);
+    s.uvDensityLod = -1.0 / 0.0;
+    s.material = 0u;
+    s.object = uint(gbufferObject(texel));
+    return s;
+}
+
+// The unit direction of the camera ray to `p` (GBufferSurface::incoming).
+vec3 cameraIncoming(vec3 p) { return frame.cameraPosition.w != 0.0 ? normalize(p - frame.cameraPosition.xyz) : frame.cameraForward.xyz; }
+
+// The camera ray's cone width at `p` (GBufferSurface::footprint); 0 without ray cones.
+float cameraFootprint(vec3 p) { return frame.settings.w != 0.0 ? frame.cone.x + frame.cone.y * distance(frame.cameraPosition.xyz, p) : 0.0; }
+
+// As ShadingParts.
+struct Parts {
+    vec3 local, reflected, refracted;
+    float reflectivity, transparency;
+    bool composes;
+    vec3 skyReflected, skyRefracted;  // EnvironmentTerms
+};
+
+vec3 composed(Parts p) { return p.composes ? compose(p.reflectivity, p.transparency, p.reflected, p.refracted, p.local, frame.settings.y != 0.0) : p.local; }
+
+// As WhittedTracer::shadeParts() in the ambient medium: the hit's terms, its secondary rays
+// traced with the ray tree.
+Parts shadeParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects, bool localGiven,
+                 vec3 givenLocal) {
+    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal);
+    Parts p;
+    p.local = h.local;
+    p.reflectivity = h.reflectivity;
+    p.transparency = h.transparency;
+    p.composes = h.composes;
+    p.skyReflected = h.skyReflected;
+    p.skyRefracted = h.skyRefracted;
+    // M, then R (under total internal reflection, M again), from one call site of the tree: lavapipe
+    // compiles each inlined copy of the loop anew.
+    for (int k = 0; k < 2; ++k) {
+        HitTerm term = k == 0 ? h.reflected : h.refracted;
+        vec3 v = k == 1 && h.tir ? p.reflected : term.value;
+        if (term.traced) {
+            if (k == 0) ++countReflection;
+            else ++countRefraction;
+            v = traceTree(term.ray);
+        }
+        if (k == 0) p.reflected = v;
+        else p.refracted = v;
+    }
+    return p;
+}
+
+#endif
