@@ -18,7 +18,7 @@ layout(set = 1, binding = 6) uniform sampler2D gOptical;
 layout(set = 1, binding = 7) uniform usampler2D gObjectId;
 layout(set = 1, binding = 8) uniform sampler2D litImage;  // the deferred lighting's image (the P-buffer)
 // Per object, the technique's own data (heuristic_rt: the selected effects' bits).
-layout(std430, set = 1, binding = 9) readonly buffer ObjectData { uint objectData[]; };
+layout(std430, set = 1, binding = 9) readonly buffer TechniqueObjectData { uint objectData[]; };
 layout(set = 1, binding = 10) uniform sampler2D ssrColor;  // ssr_trace.comp's outputs
 layout(set = 1, binding = 11) uniform sampler2D ssrHit;
 // Per texel, kTexelRecords vec4 of terms for the technique's later passes (composite, debug images).
