@@ -1,7 +1,5 @@
 #include "techniques/technique.h"
 
-#include "common/core/input_error.h"
-
 namespace hybridlab {
 
 double FrameResult::totalMilliseconds() const {
@@ -26,21 +24,6 @@ Rasterizer& SceneContext::rasterizer(DeviceFeatures features) {
     std::unique_ptr<Rasterizer>& r = features.rayTracing ? rayTracingRasterizer_ : rasterizer_;
     if (!r) r = std::make_unique<Rasterizer>(scene_, &deformedMeshes_, features);
     return *r;
-}
-
-const TechniqueInfo& findTechnique(const std::string& name) {
-    std::string known;
-    for (const auto& t : registeredTechniques()) {
-        if (t.name == name) return t;
-        known += (known.empty() ? "" : ", ") + t.name;
-    }
-    throw InputError("unknown technique '" + name + "' (techniques: " + known + ")");
-}
-
-std::unique_ptr<Technique> createTechnique(const std::string& name,
-                                           const std::vector<std::pair<std::string, ParamValue>>& parameters) {
-    const TechniqueInfo& info = findTechnique(name);
-    return info.create(resolveParameters(info.parameters, parameters, "technique " + name));
 }
 
 }  // namespace hybridlab

@@ -112,6 +112,26 @@ void RayScene::deformObject(std::size_t object, double time) {
     }
 }
 
+std::vector<RayScene::StaticTriangle> RayScene::worldTriangles(const Mesh& m, const glm::mat4& toWorld, const glm::mat3& normalToWorld) {
+    std::vector<glm::vec3> positions, normals;
+    for (const auto& p : m.positions) positions.push_back(glm::vec3(toWorld * glm::vec4(p, 1.0f)));
+    for (const auto& nrm : m.normals) normals.push_back(normalToWorld * nrm);
+    std::vector<StaticTriangle> triangles(m.triangles.size());
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        StaticTriangle& t = triangles[i];
+        t.vertices = m.triangles[i];
+        for (int k = 0; k < 3; ++k) {
+            t.position[k] = positions[t.vertices[k]];
+            t.normal[k] = normals[t.vertices[k]];
+            t.uv[k] = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t.vertices[k]];
+        }
+        const TriangleTerms terms = triangleTerms(t.position[0], t.position[1], t.position[2], m.uvs.empty() ? nullptr : t.uv);
+        t.geometricNormal = terms.geometricNormal;
+        t.uvDensityLod = terms.uvDensityLod;
+    }
+    return triangles;
+}
+
 RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedMeshes) : scene_(scene), time_(time) {
     auto start = WallClock::now();
     if (!deformedMeshes) ownDeformedMeshes_ = std::make_unique<DeformedMeshCache>(scene);
@@ -141,23 +161,7 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
         if (scene.objects[o].isDynamic()) continue;
         for (std::uint32_t mesh : scene.objects[o].meshes) {
             const Mesh& m = scene.meshes[mesh];
-            std::vector<glm::vec3> positions, normals;
-            for (const auto& p : m.positions) positions.push_back(glm::vec3(toWorld_[o] * glm::vec4(p, 1.0f)));
-            for (const auto& nrm : m.normals) normals.push_back(normalToWorld_[o] * nrm);
-            std::vector<StaticTriangle>& triangles = staticTriangles_[mesh];
-            triangles.resize(m.triangles.size());
-            for (std::size_t i = 0; i < m.triangles.size(); ++i) {
-                StaticTriangle& t = triangles[i];
-                t.vertices = m.triangles[i];
-                for (int k = 0; k < 3; ++k) {
-                    t.position[k] = positions[t.vertices[k]];
-                    t.normal[k] = normals[t.vertices[k]];
-                    t.uv[k] = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t.vertices[k]];
-                }
-                const TriangleTerms terms = triangleTerms(t.position[0], t.position[1], t.position[2], m.uvs.empty() ? nullptr : t.uv);
-                t.geometricNormal = terms.geometricNormal;
-                t.uvDensityLod = terms.uvDensityLod;
-            }
+            staticTriangles_[mesh] = worldTriangles(m, toWorld_[o], normalToWorld_[o]);
             RTCGeometry g = makeTriangleGeometry(m, m.positions, &toWorld_[o], false);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);

@@ -147,6 +147,8 @@ private:
     };
     // Static meshes only (by mesh index; empty for animated ones).
     std::vector<std::vector<StaticTriangle>> staticTriangles_;
+    // A static mesh's triangles placed in the world by its object's matrices.
+    static std::vector<StaticTriangle> worldTriangles(const Mesh& mesh, const glm::mat4& toWorld, const glm::mat3& normalToWorld);
     std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
     DeformedMeshCache* deformedMeshes_ = nullptr;
     std::vector<DeformedVertices> deformed_;           // by mesh: vertices at time_ (deforming objects only)

@@ -460,6 +460,44 @@ std::vector<std::string> recordedIds(const fs::path& dir) {
     return ids;
 }
 
+// Writes the merged result set of shards mergeShards has checked: their records, images and
+// references, experiment.json as one unsharded run's, and each shard's time.
+void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<json>& metas, const fs::path& outDir,
+                    const std::map<std::string, std::size_t>& shardOfId, std::vector<MergedShard>& shards) {
+    const ResultsStore out(outDir);
+    out.createLayout();
+    for (const auto& d : shardDirs) {
+        for (const char* sub : {"runs", "images", "maps", "references"}) {
+            if (fs::exists(d / sub))
+                fs::copy(d / sub, outDir / sub, fs::copy_options::recursive | fs::copy_options::skip_existing);
+        }
+    }
+    fs::copy_file(shardDirs.front() / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
+    json meta = metas.front();
+    meta["shard"] = {{"index", 0}, {"count", 1}, {"partition", kPartition}};
+    std::vector<json> records = out.loadRecords();
+    for (const json& r : records) {
+        MergedShard& s = shards.at(shardOfId.at(r.at("id").get<std::string>()));
+        s.seconds += r.value("run_seconds", 0.0);
+    }
+    // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
+    bool mixed = false;
+    for (const json& m : metas) mixed |= !sameDevice(m.value("device", json()), metas.front().value("device", json()));
+    if (mixed) {
+        json devices = json::array();
+        for (const json& m : metas)
+            if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, m.value("device", json())); }))
+                devices.push_back(m.value("device", json()));
+        meta["devices"] = devices;
+        for (json& r : records) {
+            r["device"] = metas.at(shardOfId.at(r.at("id").get<std::string>())).value("device", json());
+            out.writeRecord(r);
+        }
+    }
+    out.writeResults(out.finalRecords(meta));
+    writeFileAtomically(outDir / "experiment.json", meta.dump(1) + "\n");
+}
+
 }  // namespace
 
 std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir, bool allowMixedDevices) {
@@ -529,38 +567,7 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
         throw InputError(outDir.string() + ": exists and is not empty; choose another --out");
     }
 
-    const ResultsStore out(outDir);
-    out.createLayout();
-    for (const auto& d : shardDirs) {
-        for (const char* sub : {"runs", "images", "maps", "references"}) {
-            if (fs::exists(d / sub))
-                fs::copy(d / sub, outDir / sub, fs::copy_options::recursive | fs::copy_options::skip_existing);
-        }
-    }
-    fs::copy_file(firstDir / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
-    json meta = first;
-    meta["shard"] = {{"index", 0}, {"count", 1}, {"partition", kPartition}};
-    std::vector<json> records = out.loadRecords();
-    for (const json& r : records) {
-        MergedShard& s = shards.at(shardOfId.at(r.at("id").get<std::string>()));
-        s.seconds += r.value("run_seconds", 0.0);
-    }
-    // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
-    bool mixed = false;
-    for (const json& m : metas) mixed |= !sameDevice(m.value("device", json()), first.value("device", json()));
-    if (mixed) {
-        json devices = json::array();
-        for (const json& m : metas)
-            if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, m.value("device", json())); }))
-                devices.push_back(m.value("device", json()));
-        meta["devices"] = devices;
-        for (json& r : records) {
-            r["device"] = metas.at(shardOfId.at(r.at("id").get<std::string>())).value("device", json());
-            out.writeRecord(r);
-        }
-    }
-    out.writeResults(out.finalRecords(meta));
-    writeFileAtomically(outDir / "experiment.json", meta.dump(1) + "\n");
+    writeMergedSet(shardDirs, metas, outDir, shardOfId, shards);
     std::sort(shards.begin(), shards.end(), [](const MergedShard& a, const MergedShard& b) { return a.index < b.index; });
     return shards;
 }
