@@ -40,10 +40,8 @@ TEST(DeviceRecord, HasEveryKeyAndVersionPrintsIt) {
     EXPECT_EQ(json::parse(r.out.substr(first.size() + 1)), d);
 }
 
-TEST(DeviceRecord, MergeRefusesShardsFromTwoDevicesUnlessAllowed) {
-    test::TempDir dir;
-    const fs::path config = dir.path() / "two.toml";
-    test::writeTextFile(config, R"(
+// Two tiny whitted runs: enough for a shard or a resumed run on each side.
+const char* kTwoRuns = R"(
 [experiment]
 name = "two"
 warmup_frames = 0
@@ -55,7 +53,12 @@ resolutions = [[32, 18]]
 [[techniques]]
 name = "whitted"
 params = { max_depth = [0, 1] }
-)");
+)";
+
+TEST(DeviceRecord, MergeRefusesShardsFromTwoDevicesUnlessAllowed) {
+    test::TempDir dir;
+    const fs::path config = dir.path() / "two.toml";
+    test::writeTextFile(config, kTwoRuns);
     std::vector<fs::path> shards;
     for (int i = 0; i < 2; ++i) {
         RunnerOptions o = test::quietRunnerOptions(dir.path() / ("shard" + std::to_string(i)), dir.path() / "cache");
@@ -122,19 +125,7 @@ params = { max_depth = [0, 1] }
 TEST(DeviceRecord, ResumeRefusesAResultSetFromAnotherDeviceUnlessAllowed) {
     test::TempDir dir;
     const fs::path config = dir.path() / "two.toml";
-    test::writeTextFile(config, R"(
-[experiment]
-name = "two"
-warmup_frames = 0
-repeats = 1
-metrics = ["ssim"]
-[[scenes]]
-scene = "whitted-classic"
-resolutions = [[32, 18]]
-[[techniques]]
-name = "whitted"
-params = { max_depth = [0, 1] }
-)");
+    test::writeTextFile(config, kTwoRuns);
     RunnerOptions o = test::quietRunnerOptions(dir.path() / "set", dir.path() / "cache");
     o.maxRuns = 1;
     ASSERT_FALSE(runExperiment(loadExperimentConfig(config), o).complete);

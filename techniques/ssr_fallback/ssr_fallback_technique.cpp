@@ -145,7 +145,7 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
         deviceComposite_ = std::make_unique<DeviceSeamComposite>(deviceTracer_->device());
         ssr_ = std::make_unique<SsrPass>(VulkanDevice::shared({.rayTracing = true}));
         ssr_->setReadback(false);
-        renderOnDevice(context, {context.scene().camera, 0.0, 64, 36});
+        renderOnDevice(context, RasterWarmUp::preparing(context.scene()));
         return;
     }
     const RayScene& rays = context.rayScene(0.0);
