@@ -44,13 +44,13 @@ PACKAGES=(
   python3-skimage python3-numpy
   # reports and paper figures (Debian's /usr/bin/python3)
   python3-matplotlib
-  # the viewer's browser test only (tests/browser: headless Chromium driven by playwright-core
+  # the viewer's browser test only (tests/viewer: headless Chromium driven by playwright-core
   # from npm); the hybridlab program needs neither
   chromium nodejs
   # layered-EM inference (sparse least squares by conjugate gradient)
   libeigen3-dev
-  # the Slurm end-to-end test only (tests/slurm_end_to_end.sh starts its own munged, slurmctld and
-  # slurmd in a temporary folder); the hybridlab program needs neither
+  # the Slurm end-to-end test only (tests/runner/slurm_end_to_end.sh starts its own munged,
+  # slurmctld and slurmd in a temporary folder); the hybridlab program needs neither
   slurm-wlm munge
 )
 
@@ -100,11 +100,11 @@ if ! dpkg --compare-versions "${mesa_version:-0}" ge 25; then
   "${SUDO[@]}" apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 fi
 
-# The browser test's npm packages, as locked in tests/browser/package-lock.json, for the tests only;
-# npm ci deletes and reinstalls them, so only when the lock file is newer than what is installed.
-# A failing npm (no network, a broken registry) costs only that one test, which then says why.
-if ((TESTS)) && [ ! tests/browser/node_modules/.package-lock.json -nt tests/browser/package-lock.json ]; then
-  if ! timeout 600 npm ci --prefix tests/browser --prefer-offline --no-audit --no-fund --loglevel=error; then
+# The browser test's npm packages, as locked in tests/viewer/package-lock.json,
+# for the tests only; npm ci deletes and reinstalls them, so only when the lock file is newer than
+# what is installed. A failing npm (no network, a broken registry) costs only that one test, which then says why.
+if ((TESTS)) && [ ! tests/viewer/node_modules/.package-lock.json -nt tests/viewer/package-lock.json ]; then
+  if ! timeout 600 npm ci --prefix tests/viewer --prefer-offline --no-audit --no-fund --loglevel=error; then
     echo "setup: npm ci failed; the viewer's browser test (ViewerInBrowser) will be skipped" >&2
   fi
 fi

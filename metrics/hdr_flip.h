@@ -7,7 +7,7 @@
 // exposures are spaced at most one stop apart (at least 2; 1 when start = stop). The procedure and
 // its constants are those of NVIDIA's reference implementation (github.com/NVlabs/flip,
 // python/flip_api.py compute_exposure_params, tone_map and compute_hdrflip; flip.py's exposure
-// count), against whose values tests/test_metrics_hdr_flip.cpp checks it.
+// count), against whose values tests/metrics/test_metrics_hdr_flip.cpp checks it.
 #include <opencv2/core.hpp>
 
 #include "metrics/flip.h"

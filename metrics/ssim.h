@@ -5,7 +5,7 @@
 // dynamic range L = 1, population (not sample) variances and covariance, and the mean of the map
 // (their eq. 17, MSSIM). The numbers agree with scikit-image's
 // structural_similarity(gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
-// data_range=1.0), which tests/test_metrics_skimage.cpp checks.
+// data_range=1.0), which tests/metrics/test_metrics_skimage.cpp checks.
 #include <opencv2/core.hpp>
 
 namespace hybridlab {

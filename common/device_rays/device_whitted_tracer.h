@@ -1,6 +1,6 @@
 #pragma once
 // Whitted ray tracing on a ray-tracing Vulkan device: WhittedTracer's algorithm on the device
-// (held to its images by DeviceRays.WhittedAgreesWithEmbree*, tests/test_device_rays.cpp), a
+// (held to its images by DeviceRays.WhittedAgreesWithEmbree*, tests/device_rays/test_device_rays.cpp), a
 // ray-tracing pipeline (ray generation, radiance closest-hit and miss, shadow any-hit and miss;
 // shaders/device_whitted.rgen and friends) over a DeviceRayScene. One invocation per pixel centre;
 // rays counted by kind on the device; the trace timed with GPU timestamps.

@@ -1,7 +1,7 @@
 #pragma once
 // The deferred lighting pass (Walewski 2019 §3.1, Listing 5): a full-screen pass that evaluates
 // the shading model's local term from the G-buffer (shaders/deferred_lighting.frag, the functions
-// of common/raytrace/shading in GLSL, held equal by RasterLighting in tests/test_raster_lighting.cpp) into an RGBA32F image, Walewski's P-buffer; the sky where nothing
+// of common/raytrace/shading in GLSL, held equal by RasterLighting in tests/raster/test_raster_lighting.cpp) into an RGBA32F image, Walewski's P-buffer; the sky where nothing
 // was hit; optionally shadow-map visibility, and environment-mapped reflection and refraction.
 #include <array>
 

@@ -1,7 +1,7 @@
 #pragma once
 // The one shading model (DESIGN.md "The shading model"). Every technique and the reference call
 // these functions; shaders/shading.glsl (common/raster) computes
-// the same in GLSL, held equal by RasterLighting (tests/test_raster_lighting.cpp). All colours are linear.
+// the same in GLSL, held equal by RasterLighting (tests/raster/test_raster_lighting.cpp). All colours are linear.
 //
 // Local colour at a surface point P with shading normal N, view direction V (towards the eye):
 //   C = emission + ambient * sceneAmbient * T

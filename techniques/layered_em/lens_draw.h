@@ -51,7 +51,7 @@ glm::vec3 compositeLensTerms(const std::array<std::vector<glm::vec4>, kPathTerms
                              const std::array<glm::vec3, kPathTerms>& weights, const std::array<glm::vec3, kPathTerms>& skyWeights);
 
 // The GPU lens pass computed on the CPU, held equal to it by LayeredEmPass.GpuCompositesLayersSkyAndViewpointsAsTheCpu
-// (tests/test_layered_em.cpp) (no occlusion by the rest of the scene): per pixel the lens
+// (tests/techniques/layered_em/test_layered_em.cpp) (no occlusion by the rest of the scene): per pixel the lens
 // radiance, alpha 1 where the lens covers the pixel, 0 elsewhere.
 std::vector<glm::vec4> drawLensOnCpu(const LensDrawGeometry& geometry, const LayeredEm& em, const ViewpointBlend& blend,
                                      const Camera& camera, int width, int height);

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 
 #include "common/scene/scene_catalog.h"
-#include "tests/cli_runner.h"
-#include "tests/gltf_builder.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -13,9 +13,9 @@
 #include "common/image/image_io.h"
 #include "metrics/heatmap.h"
 #include "metrics/metrics.h"
-#include "tests/cli_runner.h"
-#include "tests/metric_test_images.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/metric_test_images.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -10,18 +10,18 @@
 
 #include <glm/geometric.hpp>
 
-#include "cli_runner.h"
 #include "common/core/input_error.h"
 #include "common/device_rays/device_whitted_tracer.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "lens_test_scenes.h"
 #include "metrics/metrics.h"
-#include "scene_fixtures.h"
-#include "technique_test_support.h"
-#include "test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/lens_test_scenes.h"
+#include "tests/support/scene_fixtures.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -16,7 +16,7 @@
 #include "common/image/image.h"
 #include "common/image/image_io.h"
 #include "common/image/mip_chain.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -1,4 +1,4 @@
-"""Independent reference numbers for tests/test_metrics_skimage.cpp.
+"""Independent reference numbers for tests/metrics/test_metrics_skimage.cpp.
 
 Usage: python3 metrics_reference.py DIR
 

@@ -12,7 +12,7 @@
 
 #include "metrics/flip.h"
 #include "metrics/metric_input.h"
-#include "tests/metric_test_images.h"
+#include "tests/support/metric_test_images.h"
 
 namespace hybridlab {
 namespace {

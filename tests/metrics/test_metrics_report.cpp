@@ -12,7 +12,7 @@
 #include "metrics/heatmap.h"
 #include "metrics/metrics.h"
 #include "metrics/report_files.h"
-#include "tests/metric_test_images.h"
+#include "tests/support/metric_test_images.h"
 
 namespace hybridlab {
 namespace {

@@ -1,6 +1,6 @@
 // SSIM, RMSE and PSNR against independent implementations: scikit-image's structural_similarity
 // (gaussian_weights=True, sigma=1.5, use_sample_covariance=False, data_range=1.0) and numpy, run
-// by tests/metrics_reference.py on six image pairs this test writes: noise, blur, JPEG-like
+// by tests/metrics/metrics_reference.py on six image pairs this test writes: noise, blur, JPEG-like
 // blocking, brightness shift, contrast change, and a rendered pair. No reference number is
 // stored here; scikit-image computes them every time.
 #include <sys/wait.h>
@@ -28,8 +28,8 @@
 #include "common/scene/scene_file.h"
 #include "metrics/metrics.h"
 #include "techniques/technique.h"
-#include "tests/metric_test_images.h"
-#include "tests/test_support.h"
+#include "tests/support/metric_test_images.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {
@@ -169,7 +169,7 @@ TEST(MetricsAgainstScikitImage, SsimRmseAndPsnrAgreeOnSixPairs) {
         EXPECT_EQ(luma.whole.error.rmse, error.rmse);
     }
 
-    const fs::path script = test::fixturesDir().parent_path() / "metrics_reference.py";
+    const fs::path script = test::sourceDir() / "tests" / "metrics" / "metrics_reference.py";
     const std::optional<std::string> numbers = referenceNumbers(script, dir.path());
     if (!numbers) {
         GTEST_SKIP() << "no python3 with scikit-image and numpy (Debian: apt-get install python3-skimage python3-numpy; "

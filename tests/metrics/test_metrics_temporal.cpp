@@ -8,7 +8,7 @@
 
 #include "common/core/input_error.h"
 #include "metrics/temporal.h"
-#include "tests/metric_test_images.h"
+#include "tests/support/metric_test_images.h"
 
 namespace hybridlab {
 namespace {

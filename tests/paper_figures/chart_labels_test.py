@@ -15,7 +15,7 @@ import sys
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "paper_figures"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "paper_figures"))
 
 import figure_files  # noqa: E402,F401  (selects matplotlib's file backend first)
 import matplotlib.pyplot as plt  # noqa: E402
@@ -24,7 +24,7 @@ import report  # noqa: E402
 import results as rs  # noqa: E402
 import verdict  # noqa: E402
 
-QUICK = os.path.join(HERE, "..", "experiments", "configs", "quick.toml")
+QUICK = os.path.join(HERE, "..", "..", "experiments", "configs", "quick.toml")
 
 
 def toml_value(v):

@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "cli_runner.h"
 #include "experiments/runner/experiment_runner.h"
-#include "report_checks.h"
-#include "runner_checks.h"
-#include "test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/report_checks.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

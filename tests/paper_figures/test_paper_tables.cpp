@@ -16,9 +16,9 @@
 
 #include "experiments/runner/device_record.h"
 #include "experiments/runner/experiment_runner.h"
-#include "report_checks.h"
-#include "runner_checks.h"
-#include "test_support.h"
+#include "tests/support/report_checks.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

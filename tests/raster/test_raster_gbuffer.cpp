@@ -22,8 +22,8 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "techniques/shared/ray_cast_gbuffer.h"
-#include "tests/raster_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -15,9 +15,9 @@
 #include "common/scene/primitives.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "tests/raster_test_support.h"
-#include "tests/scene_fixtures.h"
-#include "tests/test_support.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/scene_fixtures.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

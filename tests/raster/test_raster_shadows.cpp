@@ -9,8 +9,8 @@
 
 #include "common/scene/primitives.h"
 #include "techniques/technique.h"
-#include "tests/raster_test_support.h"
-#include "tests/scene_fixtures.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/scene_fixtures.h"
 
 namespace hybridlab {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "common/raytrace/medium_stack.h"
 #include "common/raytrace/whitted_tracer.h"
-#include "lens_test_scenes.h"
-#include "scene_fixtures.h"
+#include "tests/support/lens_test_scenes.h"
+#include "tests/support/scene_fixtures.h"
 
 namespace hybridlab {
 namespace {

@@ -21,8 +21,8 @@
 #include "common/image/color.h"
 #include "common/image/image.h"
 #include "common/image/image_io.h"
-#include "tests/cli_runner.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab::test {
 namespace {

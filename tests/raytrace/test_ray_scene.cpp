@@ -7,8 +7,8 @@
 #include "common/raytrace/ray_scene.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "scene_fixtures.h"
 #include "techniques/technique.h"
+#include "tests/support/scene_fixtures.h"
 
 namespace hybridlab {
 namespace {

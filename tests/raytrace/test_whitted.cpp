@@ -11,9 +11,9 @@
 #include "common/raytrace/whitted_tracer.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "scene_fixtures.h"
-#include "technique_test_support.h"
 #include "techniques/technique.h"
+#include "tests/support/scene_fixtures.h"
+#include "tests/support/technique_test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "common/image/image_io.h"
-#include "tests/cli_runner.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -17,7 +17,7 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "paper_figures"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "paper_figures"))
 import results  # noqa: E402
 import results_schema  # noqa: E402
 

@@ -13,9 +13,9 @@
 
 #include "common/image/image_io.h"
 #include "experiments/runner/portable_bundle.h"
-#include "tests/cli_runner.h"
-#include "tests/shell_command.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/shell_command.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

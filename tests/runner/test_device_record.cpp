@@ -4,11 +4,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "cli_runner.h"
-#include "runner_checks.h"
 #include "experiments/runner/device_record.h"
 #include "experiments/runner/experiment_runner.h"
-#include "test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -12,16 +12,16 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "cli_runner.h"
-#include "report_checks.h"
-#include "runner_checks.h"
-#include "experiments/runner/shard_partition.h"
-#include "shell_command.h"
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/results_store.h"
+#include "experiments/runner/shard_partition.h"
 #include "techniques/technique.h"
-#include "test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/report_checks.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/shell_command.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {
@@ -223,7 +223,7 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     }
     EXPECT_EQ(summarised, 5u);
     EXPECT_GE(paretoRows, 1u);
-    // Every run opens in the viewer from the table (the viewer itself: tests/browser).
+    // Every run opens in the viewer from the table (the viewer itself: tests/viewer).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
     EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
     EXPECT_TRUE(fs::exists(report / "viewer" / "manifest.js"));

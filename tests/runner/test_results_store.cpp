@@ -15,8 +15,8 @@
 #include "common/core/input_error.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/results_store.h"
-#include "runner_checks.h"
-#include "test_support.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

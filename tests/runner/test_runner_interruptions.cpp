@@ -21,9 +21,9 @@
 #include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
 #include "common/image/image_io.h"
-#include "tests/cli_runner.h"
-#include "tests/runner_checks.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/runner_checks.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

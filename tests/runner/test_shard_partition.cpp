@@ -9,7 +9,7 @@
 
 #include "experiments/runner/experiment_config.h"
 #include "experiments/runner/shard_partition.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "common/scene/camera.h"
 #include "common/scene/transform.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

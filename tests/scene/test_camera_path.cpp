@@ -11,7 +11,7 @@
 #include "common/scene/keyframes.h"
 #include "common/scene/rigid_animation.h"
 #include "common/scene/transform.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -13,7 +13,7 @@
 #include "common/scene/deformation.h"
 #include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene_file.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -14,8 +14,8 @@
 #include "common/core/input_error.h"
 #include "common/scene/gltf_loader.h"
 #include "common/scene/transform.h"
-#include "tests/gltf_builder.h"
-#include "tests/test_support.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -19,8 +19,8 @@
 #include "common/scene/gltf_loader.h"
 #include "common/scene/scene_file.h"
 #include "experiments/runner/experiment_config.h"
-#include "tests/gltf_builder.h"
-#include "tests/test_support.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "common/scene/mesh.h"
 #include "common/scene/primitives.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

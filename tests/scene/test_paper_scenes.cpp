@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "common/scene/scene_file.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

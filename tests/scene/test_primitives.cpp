@@ -11,7 +11,7 @@
 
 #include "common/scene/mesh.h"
 #include "common/scene/primitives.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

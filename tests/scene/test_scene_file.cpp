@@ -18,8 +18,8 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/transform.h"
-#include "tests/gltf_builder.h"
-#include "tests/test_support.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

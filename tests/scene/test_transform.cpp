@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/scene/transform.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

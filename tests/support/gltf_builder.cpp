@@ -1,8 +1,8 @@
-#include "tests/gltf_builder.h"
+#include "tests/support/gltf_builder.h"
 
 #include <cstring>
 
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab::test {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "common/scene/camera.h"
-#include "tests/scene_fixtures.h"
+#include "tests/support/scene_fixtures.h"
 
 namespace hybridlab::test {
 

@@ -1,4 +1,4 @@
-#include "tests/metric_test_images.h"
+#include "tests/support/metric_test_images.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
-#include "report_checks.h"
-#include "test_support.h"
+#include "tests/support/report_checks.h"
+#include "tests/support/test_support.h"
 
 #include <cstdio>
 #include <fstream>

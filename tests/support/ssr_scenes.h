@@ -3,7 +3,7 @@
 // the camera sees, and a mirror wall reflecting an object behind the camera. Matte objects without
 // specular highlights, so that the colour SSR reads from the lit image is the colour the reflected
 // ray sees; one directional light, ambient light so that nothing is black, a blue sky.
-#include "tests/scene_fixtures.h"
+#include "tests/support/scene_fixtures.h"
 
 namespace hybridlab::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // A technique folder as a new technique starts: copied into techniques/ by
-// tests/technique_folder_check.py, which proves that one folder and one registry line are all it
+// tests/techniques/technique_folder_check.py, which proves that one folder and one registry line are all it
 // takes. Fills the frame with one colour on the Vulkan device.
 #include "common/raster/pipelines.h"
 #include "techniques/technique.h"

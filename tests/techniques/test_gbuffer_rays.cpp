@@ -12,9 +12,9 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "metrics/metrics.h"
-#include "tests/raster_test_support.h"
-#include "tests/ssr_scenes.h"
-#include "tests/technique_test_support.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/ssr_scenes.h"
+#include "tests/support/technique_test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -14,8 +14,8 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "techniques/stage_names.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

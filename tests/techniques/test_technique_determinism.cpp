@@ -21,8 +21,8 @@
 #include "common/raster/vulkan_error.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -7,10 +7,10 @@
 
 #include "common/raster/rasterizer.h"
 #include "common/scene/scene_file.h"
-#include "tests/raster_test_support.h"
-#include "tests/ssr_scenes.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/ssr_scenes.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -35,7 +35,7 @@ try {
   ({ chromium } = await import('playwright-core'));
 } catch {
   const here = path.dirname(fileURLToPath(import.meta.url));
-  // A skip, as GoogleTest prints one (tests/skip_summary.py reads it): the npm packages come only
+  // A skip, as GoogleTest prints one (tests/support/skip_summary.py reads it): the npm packages come only
   // with `./setup.sh --tests`, whose npm step may fail without stopping the build.
   console.log(`Skipped\nplaywright-core is missing (npm ci in ${here} failed or did not run: ./setup.sh --tests)\n[  SKIPPED ] ViewerInBrowser`);
   process.exit(77);

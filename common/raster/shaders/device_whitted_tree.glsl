@@ -2,7 +2,7 @@
 // with the one shading model (shading.glsl): what every ray-generation shader that shades hits
 // shares. device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at
 // G-buffer texels (the hybrids' secondary rays). Each function below computes what the C++
-// function it names computes; the DeviceRays tests (tests/test_device_rays.cpp) hold the images
+// function it names computes; the DeviceRays tests (tests/device_rays/test_device_rays.cpp) hold the images
 // and ray counts of both backends equal.
 //
 // The ray tree is iterated with an explicit stack rather than recursed through closest-hit

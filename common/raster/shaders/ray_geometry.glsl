@@ -1,5 +1,5 @@
 // common/raytrace/ray_offset.h and ray_cone.h in GLSL, for the device ray tracer (held to the
-// Embree tracer's images by DeviceRays.WhittedAgrees*, tests/test_device_rays.cpp).
+// Embree tracer's images by DeviceRays.WhittedAgrees*, tests/device_rays/test_device_rays.cpp).
 #ifndef RAY_GEOMETRY_GLSL
 #define RAY_GEOMETRY_GLSL
 

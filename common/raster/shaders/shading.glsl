@@ -1,5 +1,5 @@
 // common/raytrace/shading.h and shading.cpp in GLSL (DESIGN.md "The shading model"): the same
-// functions, in the same order of operations; RasterLighting (tests/test_raster_lighting.cpp)
+// functions, in the same order of operations; RasterLighting (tests/raster/test_raster_lighting.cpp)
 // holds the lighting pass and the C++ to the same numbers. Change one, change the other.
 #ifndef SHADING_GLSL
 #define SHADING_GLSL

@@ -14,10 +14,10 @@
 #include "common/scene/scene_file.h"
 #include "metrics/metrics.h"
 #include "techniques/heuristic_rt/frame_time_budget.h"
-#include "tests/cli_runner.h"
-#include "tests/raster_test_support.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

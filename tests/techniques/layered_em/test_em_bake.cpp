@@ -15,9 +15,9 @@
 #include "common/scene/scene_file.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_system.h"
-#include "tests/cli_runner.h"
-#include "tests/scene_fixtures.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/scene_fixtures.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "techniques/layered_em/em_inference.h"
 #include "techniques/layered_em/outgoing_records.h"
-#include "tests/lens_test_scenes.h"
-#include "tests/test_support.h"
+#include "tests/support/lens_test_scenes.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

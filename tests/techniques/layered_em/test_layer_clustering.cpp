@@ -13,7 +13,7 @@
 #include "common/scene/surface_samples.h"
 #include "techniques/layered_em/layer_clustering.h"
 #include "techniques/layered_em/layer_shells.h"
-#include "tests/test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

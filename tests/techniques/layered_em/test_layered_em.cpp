@@ -10,10 +10,10 @@
 #include "metrics/metrics.h"
 #include "techniques/layered_em/em_inference.h"
 #include "techniques/layered_em/layered_em_pass.h"
-#include "tests/lens_test_scenes.h"
-#include "tests/raster_test_support.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/lens_test_scenes.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

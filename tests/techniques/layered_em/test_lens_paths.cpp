@@ -7,8 +7,8 @@
 
 #include "techniques/layered_em/lens_paths.h"
 #include "techniques/layered_em/lens_system.h"
-#include "tests/lens_test_scenes.h"
-#include "tests/test_support.h"
+#include "tests/support/lens_test_scenes.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

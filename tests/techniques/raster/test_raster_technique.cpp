@@ -15,10 +15,10 @@
 #include "common/scene/scene_file.h"
 #include "metrics/metrics.h"
 #include "techniques/technique.h"
-#include "tests/cli_runner.h"
-#include "tests/raster_test_support.h"
-#include "tests/technique_test_support.h"
-#include "tests/test_support.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/technique_test_support.h"
+#include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {

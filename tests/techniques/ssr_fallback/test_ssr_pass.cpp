@@ -13,8 +13,8 @@
 #include "common/raytrace/ray_offset.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "techniques/ssr_fallback/ssr_pass.h"
-#include "tests/raster_test_support.h"
-#include "tests/ssr_scenes.h"
+#include "tests/support/raster_test_support.h"
+#include "tests/support/ssr_scenes.h"
 
 namespace hybridlab {
 namespace {
