@@ -30,14 +30,16 @@ if (!fs.existsSync(CHROMIUM)) {
   console.error(`${CHROMIUM} is missing: ./setup.sh installs Debian's chromium for this test`);
   process.exit(1);
 }
-let chromium;
+let chromium, resultsSchema;
 try {
   ({ chromium } = await import('playwright-core'));
-} catch {
+  resultsSchema = await import('./results_schema.mjs');  // imports ajv
+} catch (error) {
+  if (error.code !== 'ERR_MODULE_NOT_FOUND') throw error;
   const here = path.dirname(fileURLToPath(import.meta.url));
-  // A skip, as GoogleTest prints one (tests/support/skip_summary.py reads it): the npm packages come only
-  // with `./setup.sh --tests`, whose npm step may fail without stopping the build.
-  console.log(`Skipped\nplaywright-core is missing (npm ci in ${here} failed or did not run: ./setup.sh --tests)\n[  SKIPPED ] ViewerInBrowser`);
+  // A skip, as GoogleTest prints one (tests/support/skip_summary.py reads it): the npm packages come
+  // only with `./setup.sh --tests`, whose npm step may fail without stopping the build.
+  console.log(`Skipped\nplaywright-core or ajv is missing (npm ci in ${here} failed or did not run: ./setup.sh --tests)\n[  SKIPPED ] ViewerInBrowser`);
   process.exit(77);
 }
 
@@ -96,12 +98,31 @@ const resultDir = path.join(work, 'results');
 const reportDir = path.join(resultDir, 'report');
 hybridlabRun(['run', path.join(work, 'viewer-test.toml'), '--out', resultDir, '--cache', path.join(work, 'cache')]);
 ensureDebugImages(resultDir);
-// The records the viewer reads hold to the results schema (experiments/results.schema.json), checked
-// by the validator the other readers' tests use.
+// The records the viewer reads hold to the results schema, validated on this side by Ajv against
+// experiments/results.schema.json (the file the C++ writer's tests and results.py validate
+// against), and records broken in known ways are refused, each with the one problem naming its
+// field (a validator that accepts anything fails).
 {
-  const validator = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'paper_figures', 'results_schema.py');
-  const v = spawnSync('/usr/bin/python3', [validator, resultDir], { encoding: 'utf8' });
-  assert.equal(v.status, 0, `results.json breaks experiments/results.schema.json:\n${v.stdout}${v.stderr}`);
+  const validateRecord = resultsSchema.recordValidator();
+  const records = JSON.parse(fs.readFileSync(path.join(resultDir, 'results.json'), 'utf8'));
+  const problems = resultsSchema.resultsProblems(records, validateRecord);
+  assert.deepEqual(problems, [], `results.json breaks experiments/results.schema.json:\n${problems.join('\n')}`);
+  const broken = [
+    [(r) => delete r.id, "$: missing required 'id'"],
+    [(r) => { r.width = '64'; }, '$.width: must be integer'],
+    [(r) => { r.frame = -2; }, '$.frame: must be >= -1'],
+    [(r) => delete r.frame_ms.median, "$.frame_ms: missing required 'median'"],
+    [(r) => { r.colour = 1; }, "$: unexpected 'colour'"],
+    [(r) => { r.images.png = 7; }, '$.images.png: must be string'],
+    [(r) => { r.metrics.whole.rmse = -1; }, '$.metrics.whole.rmse: must be >= 0'],
+  ];
+  for (const [breakIt, expected] of broken) {
+    const record = structuredClone(records[0]);
+    breakIt(record);
+    assert.deepEqual(validateRecord(record), [expected]);
+  }
+  assert.deepEqual(resultsSchema.resultsProblems({}), ['results.json: expected an array of records']);
+  console.log(`ok - ${records.length} records of results.json validate against the schema (Ajv); ${broken.length} broken ones are refused`);
 }
 hybridlabRun(['report', resultDir, '--out', reportDir]);
 const manifest = JSON.parse(fs.readFileSync(path.join(reportDir, 'viewer', 'manifest.json'), 'utf8'));
