@@ -356,9 +356,9 @@ TEST(ExperimentRunner, ScenePathsResolveAgainstTheConfigAndResumeExplainsAChange
     EXPECT_EQ(config.scenes[0].file, dir.path() / "my-scenes" / "copy.toml");
     const fs::path out = dir.path() / "out", cache = dir.path() / "cache";
     ASSERT_TRUE(runExperiment(config, test::quietRunnerOptions(out, cache)).complete);
-    const json record = ResultsStore(out).loadRecords().at(0);
-    EXPECT_EQ(record.at("scene"), "whitted-classic");
-    EXPECT_NE(record.at("id").get<std::string>().find("-whitted-classic-"), std::string::npos) << record.at("id");
+    const RunRecord record = ResultsStore(out).loadRecords().at(0);
+    EXPECT_EQ(record.scene, "whitted-classic");
+    EXPECT_NE(record.id.find("-whitted-classic-"), std::string::npos) << record.id;
 
     // The same experiment with a second technique: one run the folder does not hold.
     const ExperimentConfig changed =
