@@ -85,77 +85,100 @@ AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& 
 DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, DeformedMeshCache& deformedMeshes, double time)
     : device_(std::move(device)), scene_(scene), deformedMeshes_(deformedMeshes), textures_(*device_, scene) {
     const auto start = WallClock::now();
-    const VulkanDevice& dev = *device_;
-    const std::size_t n = scene.objects.size();
+    uploadSceneBuffers(gatherBottomLevels(time));
+    const StructureBytes bytes = structureSizes();
+    requireDeviceMemory(bytes);
+    createStructures(bytes.scratch);
+    writeInstances(time);
+    std::vector<std::size_t> all(bottomLevels_.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    build(all, false);
+    buildMs_ = millisecondsSince(start);
+}
 
-    // Bottom levels: every mesh once, in object space; deforming objects' meshes each their own.
-    std::vector<DeviceVertex> vertices;
-    std::vector<std::uint32_t> indices;
-    std::vector<std::int32_t> sharedLevel(scene.meshes.size(), -1);
+// Bottom levels: every mesh once, in object space; deforming objects' meshes each their own.
+DeviceRayScene::PackedGeometry DeviceRayScene::gatherBottomLevels(double time) {
+    const std::size_t n = scene_.objects.size();
+    PackedGeometry packed;
+    std::vector<std::int32_t> sharedLevel(scene_.meshes.size(), -1);
     objectBottomLevels_.resize(n);
-    auto addLevel = [&](std::uint32_t mesh, std::int32_t object, const std::vector<glm::vec3>& positions) {
-        const Mesh& m = scene.meshes[mesh];
-        const Material& mat = scene.materials[m.material];
-        BottomLevel b;
-        b.mesh = mesh;
-        b.object = object;
-        b.deforming = object >= 0;
-        // Opaque geometry skips the shadow any-hit; the others are RayScene's filtered geometry.
-        b.opaque = !(mat.isRefractive() || !mat.castsShadows);
-        b.firstVertex = static_cast<std::uint32_t>(vertices.size());
-        b.vertexCount = static_cast<std::uint32_t>(positions.size());
-        b.firstIndex = static_cast<std::uint32_t>(indices.size());
-        b.triangleCount = static_cast<std::uint32_t>(m.triangles.size());
-        for (std::size_t i = 0; i < positions.size(); ++i) {
-            vertices.push_back(deviceVertex(positions[i], m.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i],
-                                            m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i]));
-        }
-        for (const glm::uvec3& t : m.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
-        bottomLevels_.push_back(std::move(b));
-        return bottomLevels_.size() - 1;
-    };
     for (std::size_t o = 0; o < n; ++o) {
-        const SceneObject& object = scene.objects[o];
-        triangles_ += scene.objectTriangleCount(o);
+        const SceneObject& object = scene_.objects[o];
+        triangles_ += scene_.objectTriangleCount(o);
         anyDynamic_ |= object.isDynamic();
         if (object.isDeforming()) {
-            deformingTriangles_ += scene.objectTriangleCount(o);
+            deformingTriangles_ += scene_.objectTriangleCount(o);
             const std::vector<DeformedVertices>& deformed = deformedMeshes_.vertices(o, time, DeformedMeshCache::kDeviceRays);
             for (std::size_t k = 0; k < object.meshes.size(); ++k) {
-                const std::size_t level = addLevel(object.meshes[k], static_cast<std::int32_t>(o), deformed[k].positions);
+                const std::size_t level = addBottomLevel(packed, object.meshes[k], static_cast<std::int32_t>(o), deformed[k].positions);
                 objectBottomLevels_[o].push_back(level);
                 instanceRefs_.push_back({static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(level)});
             }
             continue;
         }
-        if (object.isAnimated()) rigidMovingTriangles_ += scene.objectTriangleCount(o);
+        if (object.isAnimated()) rigidMovingTriangles_ += scene_.objectTriangleCount(o);
         for (std::uint32_t mesh : object.meshes) {
-            if (sharedLevel[mesh] < 0) sharedLevel[mesh] = static_cast<std::int32_t>(addLevel(mesh, -1, scene.meshes[mesh].positions));
+            if (sharedLevel[mesh] < 0)
+                sharedLevel[mesh] = static_cast<std::int32_t>(addBottomLevel(packed, mesh, -1, scene_.meshes[mesh].positions));
             instanceRefs_.push_back({static_cast<std::uint32_t>(o), static_cast<std::uint32_t>(sharedLevel[mesh])});
         }
     }
+    return packed;
+}
 
+// One bottom level of `mesh` at `positions` (the deforming `object`'s, or -1: the mesh's own),
+// its vertices and indices appended to `packed`; returns its index.
+std::size_t DeviceRayScene::addBottomLevel(PackedGeometry& packed, std::uint32_t mesh, std::int32_t object,
+                                           const std::vector<glm::vec3>& positions) {
+    const Mesh& m = scene_.meshes[mesh];
+    const Material& mat = scene_.materials[m.material];
+    BottomLevel b;
+    b.mesh = mesh;
+    b.object = object;
+    b.deforming = object >= 0;
+    // Opaque geometry skips the shadow any-hit; the others are RayScene's filtered geometry.
+    b.opaque = !(mat.isRefractive() || !mat.castsShadows);
+    b.firstVertex = static_cast<std::uint32_t>(packed.vertices.size());
+    b.vertexCount = static_cast<std::uint32_t>(positions.size());
+    b.firstIndex = static_cast<std::uint32_t>(packed.indices.size());
+    b.triangleCount = static_cast<std::uint32_t>(m.triangles.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        packed.vertices.push_back(deviceVertex(positions[i], m.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i],
+                                               m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i]));
+    }
+    for (const glm::uvec3& t : m.triangles) packed.indices.insert(packed.indices.end(), {t.x, t.y, t.z});
+    bottomLevels_.push_back(std::move(b));
+    return bottomLevels_.size() - 1;
+}
+
+void DeviceRayScene::uploadSceneBuffers(const PackedGeometry& packed) {
+    const VulkanDevice& dev = *device_;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     using Memory = GpuBuffer::Memory;
+    const auto& vertices = packed.vertices;
+    const auto& indices = packed.indices;
     // Host-visible: deforming objects' vertices and the instances are rewritten each frame.
     vertices_ = GpuBuffer(dev, vertices.size() * sizeof(DeviceVertex), storage | kBuildInput, Memory::HostVisible);
     vertices_.write(vertices.data(), vertices.size() * sizeof(DeviceVertex));
     indices_ = GpuBuffer::withData(dev, indices.data(), indices.size() * sizeof(std::uint32_t), storage | kBuildInput);
     std::vector<DeviceMaterial> materials;
-    for (const Material& m : scene.materials) materials.push_back(deviceMaterial(m));
+    for (const Material& m : scene_.materials) materials.push_back(deviceMaterial(m));
     materials_ = GpuBuffer::withData(dev, materials.data(), materials.size() * sizeof(DeviceMaterial), storage);
     std::vector<DeviceLight> lights;
-    for (const Light& l : scene.lights) lights.push_back(deviceLight(l));
+    for (const Light& l : scene_.lights) lights.push_back(deviceLight(l));
     lights_ = GpuBuffer::withData(dev, lights.data(), lights.size() * sizeof(DeviceLight), storage);
     instances_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(DeviceInstance), storage, Memory::HostVisible);
     instanceDescriptors_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(VkAccelerationStructureInstanceKHR), kBuildInput, Memory::HostVisible);
+}
 
-    // Sizes: every bottom level, the top level, one scratch buffer for the largest build.
+// Sizes: every bottom level, the top level, one scratch buffer for the largest build.
+DeviceRayScene::StructureBytes DeviceRayScene::structureSizes() {
+    const VulkanDevice& dev = *device_;
     VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
     VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &asProps};
     vkGetPhysicalDeviceProperties2(dev.physicalDevice(), &p2);
     const VkDeviceSize scratchAlign = std::max<VkDeviceSize>(asProps.minAccelerationStructureScratchOffsetAlignment, 16);
-    VkDeviceSize structureBytes = 0, scratchBytes = 0;
+    StructureBytes bytes;
     for (BottomLevel& b : bottomLevels_) {
         b.sizes.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR;
         VkAccelerationStructureGeometryKHR g = triangleGeometry(b);
@@ -167,8 +190,8 @@ DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene
         info.pGeometries = &g;
         dev.rayTracing().getAccelerationStructureBuildSizes(dev.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info,
                                                            &b.triangleCount, &b.sizes);
-        structureBytes += b.sizes.accelerationStructureSize;
-        scratchBytes += alignUp(std::max(b.sizes.buildScratchSize, b.sizes.updateScratchSize), scratchAlign);
+        bytes.structures += b.sizes.accelerationStructureSize;
+        bytes.scratch += alignUp(std::max(b.sizes.buildScratchSize, b.sizes.updateScratchSize), scratchAlign);
     }
     {
         VkAccelerationStructureGeometryKHR g{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
@@ -183,31 +206,35 @@ DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene
         topSizes_.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR;
         dev.rayTracing().getAccelerationStructureBuildSizes(dev.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &info, &count,
                                                            &topSizes_);
-        structureBytes += topSizes_.accelerationStructureSize;
-        scratchBytes = std::max(scratchBytes, alignUp(topSizes_.buildScratchSize, scratchAlign));
+        bytes.structures += topSizes_.accelerationStructureSize;
+        bytes.scratch = std::max(bytes.scratch, alignUp(topSizes_.buildScratchSize, scratchAlign));
     }
-    deviceBytes_ = structureBytes + scratchBytes + vertices_.size() + indices_.size() + materials_.size() + instances_.size();
+    return bytes;
+}
+
+// Refuses a scene whose structures and buffers do not fit in the device's memory (InputError).
+void DeviceRayScene::requireDeviceMemory(const StructureBytes& bytes) {
+    const VulkanDevice& dev = *device_;
+    deviceBytes_ = bytes.structures + bytes.scratch + vertices_.size() + indices_.size() + materials_.size() + instances_.size();
     if (deviceBytes_ > dev.deviceLocalBytes()) {
-        auto mib = [](VkDeviceSize bytes) {
+        auto mib = [](VkDeviceSize count) {
             char text[32];
-            std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1 << 20));
+            std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(count) / (1 << 20));
             return std::string(text);
         };
-        throw InputError("scene " + scene.name + " (" + std::to_string(triangles_) + " triangles) needs " + mib(deviceBytes_) +
+        throw InputError("scene " + scene_.name + " (" + std::to_string(triangles_) + " triangles) needs " + mib(deviceBytes_) +
                          " of device memory for its acceleration structures and buffers; " + dev.name() + " has " +
                          mib(dev.deviceLocalBytes()));
     }
-    scratch_ = GpuBuffer(dev, scratchBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, Memory::DeviceLocal);
+}
+
+void DeviceRayScene::createStructures(VkDeviceSize scratchBytes) {
+    const VulkanDevice& dev = *device_;
+    scratch_ = GpuBuffer(dev, scratchBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, GpuBuffer::Memory::DeviceLocal);
     for (BottomLevel& b : bottomLevels_) {
         b.structure = AccelerationStructure(dev, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, b.sizes.accelerationStructureSize);
     }
     topLevel_ = AccelerationStructure(dev, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR, topSizes_.accelerationStructureSize);
-
-    writeInstances(time);
-    std::vector<std::size_t> all(bottomLevels_.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-    build(all, false);
-    buildMs_ = millisecondsSince(start);
 }
 
 DeviceRayScene::~DeviceRayScene() = default;

@@ -86,6 +86,24 @@ private:
         std::uint32_t bottomLevel;
     };
 
+    // The vertices and indices of every bottom level, one after another, as the device reads them.
+    struct PackedGeometry {
+        std::vector<device_rays::DeviceVertex> vertices;
+        std::vector<std::uint32_t> indices;
+    };
+    // What the acceleration structures need: their storage, and scratch for the builds.
+    struct StructureBytes {
+        VkDeviceSize structures = 0, scratch = 0;
+    };
+
+    // The constructor's steps, in order.
+    PackedGeometry gatherBottomLevels(double time);
+    std::size_t addBottomLevel(PackedGeometry& packed, std::uint32_t mesh, std::int32_t object, const std::vector<glm::vec3>& positions);
+    void uploadSceneBuffers(const PackedGeometry& packed);
+    StructureBytes structureSizes();
+    void requireDeviceMemory(const StructureBytes& bytes);
+    void createStructures(VkDeviceSize scratchBytes);
+
     VkAccelerationStructureGeometryKHR triangleGeometry(const BottomLevel& b) const;
     void writeDeformedVertices(std::size_t object, double time);
     void writeInstances(double time);

@@ -142,6 +142,15 @@ VkDeviceSize VulkanDevice::deviceLocalBytes() const {
 }
 
 void VulkanDevice::create() {
+    createInstance();
+    choosePhysicalDevice();
+    createLogicalDevice(rayTracingExtensionsToEnable());
+    if (features_.rayTracing) loadRayTracingFunctions();
+    createCommandPoolAndFence();
+}
+
+// The instance, with the validation layer and its messenger when wanted and installed.
+void VulkanDevice::createInstance() {
     const bool validation = validationWanted() && layerInstalled(kValidationLayer);
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "hybridlab";
@@ -170,7 +179,9 @@ void VulkanDevice::create() {
         mci.pfnUserCallback = debugMessage;
         if (create) create(instance_, &mci, nullptr, &messenger_);
     }
+}
 
+void VulkanDevice::choosePhysicalDevice() {
     std::uint32_t count = 0;
     vkEnumeratePhysicalDevices(instance_, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
@@ -213,7 +224,10 @@ void VulkanDevice::create() {
     }
     vkGetPhysicalDeviceProperties(physical_, &properties_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
-    std::vector<const char*> deviceExtensions;
+}
+
+// The device extensions ray tracing needs, when it was asked for; refuses a device without them.
+std::vector<const char*> VulkanDevice::rayTracingExtensionsToEnable() {
     if (features_.rayTracing) {
         if (auto missing = missingExtensions(physical_, features_); !missing.empty()) {
             std::string list;
@@ -229,9 +243,12 @@ void VulkanDevice::create() {
         if (rayTracingProperties_.maxRayRecursionDepth < 1) {
             throw VulkanUnavailable("Vulkan device " + name() + " reports maxRayRecursionDepth 0; ray tracing needs 1");
         }
-        deviceExtensions = kRayTracingExtensions;
+        return kRayTracingExtensions;
     }
+    return {};
+}
 
+void VulkanDevice::createLogicalDevice(const std::vector<const char*>& extensions) {
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     qci.queueFamilyIndex = queueFamily_;
@@ -260,27 +277,30 @@ void VulkanDevice::create() {
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
-    dci.enabledExtensionCount = static_cast<std::uint32_t>(deviceExtensions.size());
-    dci.ppEnabledExtensionNames = deviceExtensions.data();
+    dci.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    dci.ppEnabledExtensionNames = extensions.data();
     if (VkResult r = vkCreateDevice(physical_, &dci, nullptr, &device_); r != VK_SUCCESS) {
         throw VulkanUnavailable(std::string("cannot create a Vulkan device on ") + properties_.deviceName + ": " + vkResultName(r));
     }
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-    if (features_.rayTracing) {
-        auto load = [&](auto& fn, const char* name) {
-            fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
-            if (!fn) throw VulkanUnavailable("Vulkan device " + this->name() + " has no entry point " + name);
-        };
-        load(rayTracing_.createAccelerationStructure, "vkCreateAccelerationStructureKHR");
-        load(rayTracing_.destroyAccelerationStructure, "vkDestroyAccelerationStructureKHR");
-        load(rayTracing_.getAccelerationStructureBuildSizes, "vkGetAccelerationStructureBuildSizesKHR");
-        load(rayTracing_.getAccelerationStructureDeviceAddress, "vkGetAccelerationStructureDeviceAddressKHR");
-        load(rayTracing_.cmdBuildAccelerationStructures, "vkCmdBuildAccelerationStructuresKHR");
-        load(rayTracing_.createRayTracingPipelines, "vkCreateRayTracingPipelinesKHR");
-        load(rayTracing_.getRayTracingShaderGroupHandles, "vkGetRayTracingShaderGroupHandlesKHR");
-        load(rayTracing_.cmdTraceRays, "vkCmdTraceRaysKHR");
-    }
+}
 
+void VulkanDevice::loadRayTracingFunctions() {
+    auto load = [&](auto& fn, const char* name) {
+        fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
+        if (!fn) throw VulkanUnavailable("Vulkan device " + this->name() + " has no entry point " + name);
+    };
+    load(rayTracing_.createAccelerationStructure, "vkCreateAccelerationStructureKHR");
+    load(rayTracing_.destroyAccelerationStructure, "vkDestroyAccelerationStructureKHR");
+    load(rayTracing_.getAccelerationStructureBuildSizes, "vkGetAccelerationStructureBuildSizesKHR");
+    load(rayTracing_.getAccelerationStructureDeviceAddress, "vkGetAccelerationStructureDeviceAddressKHR");
+    load(rayTracing_.cmdBuildAccelerationStructures, "vkCmdBuildAccelerationStructuresKHR");
+    load(rayTracing_.createRayTracingPipelines, "vkCreateRayTracingPipelinesKHR");
+    load(rayTracing_.getRayTracingShaderGroupHandles, "vkGetRayTracingShaderGroupHandlesKHR");
+    load(rayTracing_.cmdTraceRays, "vkCmdTraceRaysKHR");
+}
+
+void VulkanDevice::createCommandPoolAndFence() {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pci.queueFamilyIndex = queueFamily_;

@@ -94,7 +94,14 @@ public:
 
 private:
     explicit VulkanDevice(DeviceFeatures features) : features_(features) {}
+    // create() runs these in order; each throws VulkanUnavailable saying what is missing.
     void create();
+    void createInstance();
+    void choosePhysicalDevice();
+    std::vector<const char*> rayTracingExtensionsToEnable();
+    void createLogicalDevice(const std::vector<const char*>& extensions);
+    void loadRayTracingFunctions();
+    void createCommandPoolAndFence();
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -19,11 +19,11 @@
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
 #include "common/core/wall_clock.h"
-#include "experiments/runner/parameter_json.h"
 #include "experiments/runner/device_record.h"
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
+#include "experiments/runner/run_record.h"
 #include "experiments/runner/shard_partition.h"
 #include "metrics/metrics.h"
 #include "metrics/report_files.h"
@@ -34,18 +34,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-struct Spread {
-    double median = 0.0, min = 0.0, max = 0.0;
-};
-
-Spread spread(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
-}
-
-json toJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
 
 // 1 where the camera ray's first hit is a reflective or refractive material: the region of the
 // masked metrics ("on the reflective/refractive pixels").
@@ -188,9 +176,9 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
     json m = experimentJson(config, runsTotal, o, runsInShard, estimatedCost);
     if (mixed) {
         // The runs recorded before the set was mixed were measured on its one device.
-        for (json& r : store.loadRecords()) {
-            if (r.contains("device")) continue;
-            r["device"] = mixed->first;
+        for (RunRecord& r : store.loadRecords()) {
+            if (r.device) continue;
+            r.device = mixed->first;
             store.writeRecord(r);
         }
         m["device"] = mixed->first;
@@ -218,7 +206,7 @@ struct ActiveScene {
     std::unique_ptr<Scene> scene;
     std::unique_ptr<SceneContext> context;
     std::map<std::string, std::unique_ptr<Technique>> techniques;
-    json stats;  // the scene's size, for tables that list it (Sabino 2012 Table 3)
+    SceneStats stats;  // the scene's size, for tables that list it (Sabino 2012 Table 3)
 
     void load(const ExperimentConfig& config, std::size_t i) {
         if (i == index) return;
@@ -226,9 +214,7 @@ struct ActiveScene {
         context.reset();
         scene = std::make_unique<Scene>(loadSceneFile(config.scenes[i].file));
         context = std::make_unique<SceneContext>(*scene);
-        const SceneStats s = scene->stats();
-        stats = {{"objects", s.objects}, {"vertices", s.vertices}, {"triangles", s.triangles},
-                 {"lights", s.lights}, {"reflective", s.reflectiveObjects}, {"refractive", s.refractiveObjects}};
+        stats = scene->stats();
         index = i;
     }
 
@@ -277,38 +263,35 @@ TimedFrame timeTechnique(const ExperimentConfig& config, Technique& technique, S
     return timed;
 }
 
-// The results record of one run (experiments/README.md): what ran, its times, counters and scores,
-// and the paths of its images beside the reference's.
-json runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const json& sceneStats, const View& view, const TechniqueSpec& techSpec,
-               const TimedFrame& timed, const MetricReport& report, const ReportSources& sources, const CachedReference& ref, bool masked,
-               const std::string& image, const json& maps) {
-    const std::string& key = ref.key;
-    json record;
-    record["index"] = run.index;
-    record["id"] = run.id;
-    record["scene"] = sceneSpec.label;
-    record["scene_stats"] = sceneStats;
-    record["view"] = run.cameraPath.empty() ? "camera" : run.cameraPath;
-    record["frame"] = run.frame;
-    record["time"] = view.time;
-    record["width"] = run.width;
-    record["height"] = run.height;
-    record["technique"] = techSpec.name;
-    record["label"] = techSpec.label;
-    record["parameters"] = json::object();
-    for (const auto& [k, v] : run.parameters) record["parameters"][k] = parameterJson(v);
-    record["parameters_text"] = run.parametersText;
-    record["sequence"] = run.sequenceKey;
-    record["frame_ms"] = toJson(spread(timed.frameTimes));
-    record["stages"] = json::object();
-    for (const auto& [name, times] : timed.stageTimes) record["stages"][name] = toJson(spread(times));
-    record["counters"] = timed.result.counters;
-    record["metrics"] = reportJson(report, sources);
-    record["reference"] = {{"key", key}, {"exr", "references/" + key + ".exr"}, {"png", "references/" + key + ".png"},
-                           {"frame_ms", ref.frameMilliseconds}, {"cache_hit", ref.cacheHit}};
-    if (masked) record["reference"]["mask"] = "references/" + key + ".mask.png";
-    record["images"] = {{"exr", image + ".exr"}, {"png", image + ".png"}, {"maps", maps}};
-    return record;
+// The results record of one run (run_record.h): what ran, its times, counters and scores, and the
+// paths of its images beside the reference's.
+RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneStats& sceneStats, const View& view,
+                    const TechniqueSpec& techSpec, const TimedFrame& timed, const MetricReport& report, const ReportSources& sources,
+                    const CachedReference& ref, bool masked, const std::string& image, std::optional<std::string> maps) {
+    RunRecord r;
+    r.index = run.index;
+    r.id = run.id;
+    r.scene = sceneSpec.label;
+    r.sceneStats = sceneStats;
+    r.view = run.cameraPath.empty() ? "camera" : run.cameraPath;
+    r.frame = run.frame;
+    r.time = view.time;
+    r.width = run.width;
+    r.height = run.height;
+    r.technique = techSpec.name;
+    r.label = techSpec.label;
+    r.parameters = run.parameters;
+    r.parametersText = run.parametersText;
+    r.sequence = run.sequenceKey;
+    r.frameMilliseconds = spreadOf(timed.frameTimes);
+    for (const auto& [name, times] : timed.stageTimes) r.stages[name] = spreadOf(times);
+    r.counters = timed.result.counters;
+    r.metrics = reportJson(report, sources);
+    const std::string reference = "references/" + ref.key;
+    r.reference = {ref.key, reference + ".exr", reference + ".png",
+                   masked ? std::optional<std::string>(reference + ".mask.png") : std::nullopt, ref.frameMilliseconds, ref.cacheHit};
+    r.images = {image + ".exr", image + ".png", std::move(maps), {}};
+    return r;
 }
 
 void checkShard(const RunnerOptions& o) {
@@ -368,22 +351,22 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         writeImageAtomically(o.outDir / (image + ".png"), result.image);
         const ReportSources sources{image + ".exr", "references/" + key + ".exr",
                                     mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
-        json maps = nullptr;
+        std::optional<std::string> maps;
         if (config.keepErrorMaps) {
             writeReportFiles(store.mapsDir() / run->id, report, sources);
             maps = "maps/" + run->id;
         }
 
-        json record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
+        RunRecord record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
         // The run's time so far (scene load, reference, warm-up, repeats, scoring, error maps): what
         // `merge` sums per shard beside the shard's estimated cost.
-        record["run_seconds"] = millisecondsSince(runStart) / 1000.0;
-        if (mixed) record["device"] = mixed->here;
+        record.runSeconds = millisecondsSince(runStart) / 1000.0;
+        if (mixed) record.device = mixed->here;
         if (config.keepDebugImages) {
             for (const auto& [name, dbg] : result.debugImages) {
                 const std::string p = image + "." + name + ".png";
                 writeImageAtomically(o.outDir / p, dbg);
-                record["images"]["debug"][name] = p;
+                record.images.debug[name] = p;
             }
         }
         store.recordRun(record);
@@ -475,11 +458,8 @@ void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<js
     fs::copy_file(shardDirs.front() / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
     json meta = metas.front();
     meta["shard"] = {{"index", 0}, {"count", 1}, {"partition", kPartition}};
-    std::vector<json> records = out.loadRecords();
-    for (const json& r : records) {
-        MergedShard& s = shards.at(shardOfId.at(r.at("id").get<std::string>()));
-        s.seconds += r.value("run_seconds", 0.0);
-    }
+    std::vector<RunRecord> records = out.loadRecords();
+    for (const RunRecord& r : records) shards.at(shardOfId.at(r.id)).seconds += r.runSeconds.value_or(0.0);
     // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
     bool mixed = false;
     for (const json& m : metas) mixed |= !sameDevice(m.value("device", json()), metas.front().value("device", json()));
@@ -489,8 +469,8 @@ void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<js
             if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, m.value("device", json())); }))
                 devices.push_back(m.value("device", json()));
         meta["devices"] = devices;
-        for (json& r : records) {
-            r["device"] = metas.at(shardOfId.at(r.at("id").get<std::string>())).value("device", json());
+        for (RunRecord& r : records) {
+            r.device = metas.at(shardOfId.at(r.id)).value("device", json());
             out.writeRecord(r);
         }
     }

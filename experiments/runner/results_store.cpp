@@ -10,6 +10,7 @@
 
 #include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
+#include "common/core/input_error.h"
 #include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "metrics/temporal.h"
@@ -26,22 +27,26 @@ void ResultsStore::createLayout() const {
 
 bool ResultsStore::hasRecord(const std::string& id) const { return fs::exists(runsDir() / (id + ".json")); }
 
-void ResultsStore::writeRecord(const json& record) const {
-    writeFileAtomically(runsDir() / (record.at("id").get<std::string>() + ".json"), record.dump(1) + "\n");
+void ResultsStore::writeRecord(const RunRecord& record) const {
+    writeFileAtomically(runsDir() / (record.id + ".json"), toJson(record).dump(1) + "\n");
 }
 
-void ResultsStore::recordRun(const json& record) const { writeRecord(record); }
+void ResultsStore::recordRun(const RunRecord& record) const { writeRecord(record); }
 
-std::vector<json> ResultsStore::loadRecords() const {
-    std::vector<json> records;
+std::vector<RunRecord> ResultsStore::loadRecords() const {
+    std::vector<RunRecord> records;
     if (!fs::exists(runsDir())) return records;
     for (const auto& e : fs::directory_iterator(runsDir())) {
         // Temporary files of an interrupted write start with a dot: not records.
         if (e.path().extension() != ".json" || e.path().filename().string().front() == '.') continue;
         std::ifstream in(e.path());
-        records.push_back(json::parse(in));
+        try {
+            records.push_back(fromJson(json::parse(in)));
+        } catch (const std::exception& error) {  // not JSON, or not a record
+            throw InputError(e.path().string() + ": " + error.what());
+        }
     }
-    std::sort(records.begin(), records.end(), [](const json& a, const json& b) { return a.at("index") < b.at("index"); });
+    std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) { return a.index < b.index; });
     return records;
 }
 
@@ -68,12 +73,12 @@ std::string csvField(const std::string& s) {
 
 }  // namespace
 
-std::string resultsCsv(const std::vector<json>& records) {
+std::string resultsCsv(const std::vector<RunRecord>& records) {
     std::vector<std::map<std::string, std::string>> rows;
     std::set<std::string> columns;
     for (const auto& r : records) {
         std::map<std::string, std::string> row;
-        flatten(r, "", row);
+        flatten(toJson(r), "", row);
         for (const auto& [k, v] : row) columns.insert(k);
         rows.push_back(std::move(row));
     }
@@ -107,8 +112,8 @@ void ResultsStore::removeResults() const {
     }
 }
 
-std::vector<json> ResultsStore::finalRecords(const json& experiment) const {
-    std::vector<json> records = loadRecords();
+std::vector<RunRecord> ResultsStore::finalRecords(const json& experiment) const {
+    std::vector<RunRecord> records = loadRecords();
     // Result sets older than the config's metric list all had the temporal error.
     const json metrics = experiment.value("metrics", json::array({"temporal"}));
     const bool temporal = std::find(metrics.begin(), metrics.end(), "temporal") != metrics.end();
@@ -117,9 +122,11 @@ std::vector<json> ResultsStore::finalRecords(const json& experiment) const {
     return records;
 }
 
-void ResultsStore::writeResults(const std::vector<json>& records) const {
+void ResultsStore::writeResults(const std::vector<RunRecord>& records) const {
     writeFileAtomically(dir_ / "results.csv", resultsCsv(records));
-    writeFileAtomically(dir_ / "results.json", json(records).dump(1) + "\n");
+    json all = json::array();
+    for (const RunRecord& r : records) all.push_back(toJson(r));
+    writeFileAtomically(dir_ / "results.json", all.dump(1) + "\n");
 }
 
 std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
@@ -129,36 +136,35 @@ std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
     const DirectoryLock lock(dir);
     if (store.hasResults()) return std::nullopt;  // a runner finished in between
     std::ifstream in(meta);
-    const std::vector<json> records = store.finalRecords(json::parse(in));
+    const std::vector<RunRecord> records = store.finalRecords(json::parse(in));
     store.writeResults(records);
     return records.size();
 }
 
-void addTemporalErrors(std::vector<json>& records, const fs::path& dir) {
+void addTemporalErrors(std::vector<RunRecord>& records, const fs::path& dir) {
     std::map<std::string, std::vector<std::size_t>> sequences;
     for (std::size_t i = 0; i < records.size(); ++i)
-        if (records[i].at("frame").get<int>() >= 0) sequences[records[i].at("sequence").get<std::string>()].push_back(i);
+        if (records[i].frame >= 0) sequences[records[i].sequence].push_back(i);
     for (auto& [key, members] : sequences) {
-        std::sort(members.begin(), members.end(),
-                  [&](std::size_t a, std::size_t b) { return records[a].at("frame").get<int>() < records[b].at("frame").get<int>(); });
+        std::sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return records[a].frame < records[b].frame; });
         for (std::size_t k = 1; k < members.size(); ++k) {
-            const json& prev = records[members[k - 1]];
-            json& cur = records[members[k]];
-            auto load = [&](const json& r, const char* which) { return readImage(dir / r.at(which).at("exr").get<std::string>()); };
-            std::vector<Image> test = {load(prev, "images"), load(cur, "images")};
-            std::vector<Image> ref = {load(prev, "reference"), load(cur, "reference")};
-            cur["temporal_error"] = temporalError(test, ref).perFrame.at(0);
-            cur["temporal_previous_frame"] = prev.at("frame");
+            const RunRecord& prev = records[members[k - 1]];
+            RunRecord& cur = records[members[k]];
+            const auto load = [&](const std::string& file) { return readImage(dir / file); };
+            std::vector<Image> test = {load(prev.images.exr), load(cur.images.exr)};
+            std::vector<Image> ref = {load(prev.reference.exr), load(cur.reference.exr)};
+            cur.temporalError = temporalError(test, ref).perFrame.at(0);
+            cur.temporalPreviousFrame = prev.frame;
             // Also on the masked pixels of either frame (the reflective and refractive ones), where
             // a technique's own popping is not diluted by the rest of the image.
-            if (prev.at("reference").contains("mask") && cur.at("reference").contains("mask")) {
-                Image region = readImage(dir / prev.at("reference").at("mask").get<std::string>());
-                const Image other = readImage(dir / cur.at("reference").at("mask").get<std::string>());
+            if (prev.reference.mask && cur.reference.mask) {
+                Image region = readImage(dir / *prev.reference.mask);
+                const Image other = readImage(dir / *cur.reference.mask);
                 requireSameSize(region, "the previous frame's mask", other, "the frame's mask");
                 for (int y = 0; y < region.height(); ++y)
                     for (int x = 0; x < region.width(); ++x) region.at(x, y) = glm::max(region.at(x, y), other.at(x, y));
                 const PixelMask mask = PixelMask::fromImage(region);
-                if (mask.count() > 0) cur["temporal_error_masked"] = temporalError(test, ref, &mask).perFrame.at(0);
+                if (mask.count() > 0) cur.temporalErrorMasked = temporalError(test, ref, &mask).perFrame.at(0);
             }
         }
     }

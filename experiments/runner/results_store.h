@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiments/runner/run_record.h"
+
 namespace hybridlab {
 
 class ResultsStore {
@@ -30,11 +32,12 @@ public:
 
     void createLayout() const;
     bool hasRecord(const std::string& id) const;
-    void writeRecord(const nlohmann::json& record) const;
+    void writeRecord(const RunRecord& record) const;
     // What the runner does when a run finishes: its record written, nothing else (O(1) a run).
-    void recordRun(const nlohmann::json& record) const;
-    // Every record, ordered by run index.
-    std::vector<nlohmann::json> loadRecords() const;
+    void recordRun(const RunRecord& record) const;
+    // Every record, ordered by run index. Throws InputError naming the file of one that is not a
+    // record (run_record.h).
+    std::vector<RunRecord> loadRecords() const;
 
     // Whether results.json exists (then results.csv does too, and both list every record).
     bool hasResults() const;
@@ -42,12 +45,12 @@ public:
     void removeResults() const;
     // results.json (an array of records) and results.csv (one row per record, nested fields
     // flattened to dotted column names).
-    void writeResults(const std::vector<nlohmann::json>& records) const;
+    void writeResults(const std::vector<RunRecord>& records) const;
     // The records as results.json holds them, for the set described by `experiment` (its
     // experiment.json): every record, with temporal errors when the set is complete and unsharded
     // and its metrics hold "temporal" (they need each frame's predecessor, which another shard may
     // hold).
-    std::vector<nlohmann::json> finalRecords(const nlohmann::json& experiment) const;
+    std::vector<RunRecord> finalRecords(const nlohmann::json& experiment) const;
 
 private:
     std::filesystem::path dir_;
@@ -59,14 +62,14 @@ private:
 // of records written, or nothing when `dir` has results.json or is not an experiment folder.
 std::optional<std::size_t> writeMissingResults(const std::filesystem::path& dir);
 
-// Adds "temporal_error" to every record on a camera path whose previous frame (in the same
+// Adds the temporal error to every record on a camera path whose previous frame (in the same
 // sequence: scene, path, resolution, technique label and parameters) is also recorded:
 // mean |(T_k - T_(k-1)) - (R_k - R_(k-1))| over the display image, from the saved frames; and
-// "temporal_error_masked", the same over the pixels either frame's reference mask selects (the
+// the masked temporal error, the same over the pixels either frame's reference mask selects (the
 // reflective and refractive pixels), when both have one.
-void addTemporalErrors(std::vector<nlohmann::json>& records, const std::filesystem::path& dir);
+void addTemporalErrors(std::vector<RunRecord>& records, const std::filesystem::path& dir);
 
 // results.csv's text for `records`.
-std::string resultsCsv(const std::vector<nlohmann::json>& records);
+std::string resultsCsv(const std::vector<RunRecord>& records);
 
 }  // namespace hybridlab

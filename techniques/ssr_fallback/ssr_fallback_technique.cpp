@@ -154,6 +154,125 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
     gbuffer_.render(context.rasterizer(), &rays, rasterRequest(RasterWarmUp::preparing(context.scene())), raster_, unused);
 }
 
+namespace {
+
+// What the ray-traced stage does at texels the G-buffer and SSR leave to it.
+struct TexelPolicy {
+    bool rayTracedShadows = false;
+    bool ssrRefracts = false;  // glass = "ssr": SSR reflects off refractive texels, their refraction is traced
+    SsrFallbackTechnique::Fallback fallback = SsrFallbackTechnique::Fallback::RayTraced;
+    SsrFallbackTechnique::Recursion recursion = SsrFallbackTechnique::Recursion::RayTraced;
+};
+
+// The ray-traced stage's output per texel, for the reflection composer and SSR's statistics.
+struct TracedTexels {
+    std::vector<ReflectiveTexel> texels;
+    std::vector<glm::vec3> reflection;  // M: SSR's and the fallback's, weighted by SSR's confidence
+    std::vector<ReflectionSource> source;
+    std::vector<std::uint8_t> refractive;
+    RayStats stats;
+    std::uint64_t fallbackRays = 0, recursionRays = 0, pixelsTraced = 0;
+};
+
+ReflectionSource reflectionSource(float confidence, SsrFallbackTechnique::Fallback fallback) {
+    using Fallback = SsrFallbackTechnique::Fallback;
+    return confidence >= 0.5f                ? ReflectionSource::Ssr
+           : fallback == Fallback::RayTraced ? ReflectionSource::RayTraced
+           : fallback == Fallback::Sky       ? ReflectionSource::Sky
+                                             : ReflectionSource::Missing;
+}
+
+// The ray-traced stage (de Macedo & Rodrigues §III): fallback rays where SSR failed, refractive
+// texels, ray-traced shadows, and recursion past SSR hits that reflect or refract. Writes the
+// texels it finishes (the sky, matte and refractive ones) into `image`.
+TracedTexels traceTexels(const GBuffer& g, const Image& lit, const SsrResult* ssr, const WhittedTracer& tracer, const WhittedSettings& settings,
+                         const TexelPolicy& policy, const Camera& camera, Image& image) {
+    using Fallback = SsrFallbackTechnique::Fallback;
+    const std::size_t n = g.pixelCount();
+    TracedTexels out{std::vector<ReflectiveTexel>(n), std::vector<glm::vec3>(n, glm::vec3(0.0f)),
+                     std::vector<ReflectionSource>(n, ReflectionSource::None), std::vector<std::uint8_t>(n, 0), {}, 0, 0, 0};
+    std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
+    out.stats = forEachPixelInParallel(image.width(), image.height(), [&](int x, int y, RayStats& st) {
+        const std::size_t i = g.index(x, y);
+        if (g.object(i) < 0) {
+            image.at(x, y) = lit.at(x, y);  // the sky
+            return;
+        }
+        const glm::vec4& optical = g.optical[i];
+        const bool opaqueMatte = !reflectsOrRefracts(optical);
+        if (opaqueMatte && !policy.rayTracedShadows) {
+            image.at(x, y) = lit.at(x, y);
+            return;
+        }
+        const GBufferSurface surface(g, i, camera);
+        // The lit image's colour is C with shadows from the maps; with ray-traced shadows C is shaded again.
+        const std::optional<glm::vec3> rasterLocal =
+            policy.rayTracedShadows ? std::nullopt : std::optional<glm::vec3>(glm::vec3(lit.at(x, y)));
+        out.refractive[i] = optical.z < 1.0f;
+        if (out.refractive[i] && !policy.ssrRefracts) {
+            // Refractive: ray traced whole, as SSR does not refract.
+            ++pixelsTraced;
+            const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
+                                                         {policy.rayTracedShadows, true, true}, surface.footprint(), rasterLocal);
+            image.at(x, y) = glm::vec4(parts.composed(settings.blend), 1.0f);
+            return;
+        }
+        const SsrPixel* sp = ssr ? &ssr->pixels[i] : nullptr;
+        const float confidence = sp && sp->resolved() ? sp->confidence : 0.0f;
+        const bool traceFallback = !opaqueMatte && confidence < 1.0f && policy.fallback == Fallback::RayTraced;
+        if (traceFallback || policy.rayTracedShadows || out.refractive[i]) ++pixelsTraced;
+        if (traceFallback) ++fallbackRays;
+        // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
+        const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
+                                                     {policy.rayTracedShadows, traceFallback, out.refractive[i] != 0},
+                                                     surface.footprint(), rasterLocal);
+        if (!parts.composes) {
+            image.at(x, y) = glm::vec4(parts.local, 1.0f);
+            return;
+        }
+        // The fallback's M: the traced ray, or (not traced) the sky in the reflected direction.
+        const glm::vec3 fallbackM = policy.fallback == Fallback::None ? glm::vec3(0.0f) : parts.reflected;
+        glm::vec3 ssrM(0.0f);
+        if (confidence > 0.0f) {
+            ssrM = sp->color;
+            const std::size_t j = g.index(sp->hit.x, sp->hit.y);
+            if (policy.recursion == SsrFallbackTechnique::Recursion::RayTraced && reflectsOrRefracts(g.optical[j])) {
+                // The SSR hit reflects or refracts: its next bounce is ray traced, seen along the mirror ray.
+                ++recursionRays;
+                const GBufferSurface hitSurface(g, j, camera);
+                const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
+                // The camera ray's cone continued along the mirror ray to the hit.
+                const RayCone cone = surface.footprint().at(glm::distance(surface.hit().position, hitSurface.hit().position));
+                ssrM = tracer.shadeParts(hitSurface.hit(), mirror, 1, parts.reflectivity, st, {}, cone).composed(settings.blend);
+            }
+        }
+        out.reflection[i] = confidence * ssrM + (1.0f - confidence) * fallbackM;
+        out.source[i] = reflectionSource(confidence, policy.fallback);
+        out.texels[i] = {parts, true};
+    });
+    out.fallbackRays = fallbackRays.load();
+    out.recursionRays = recursionRays.load();
+    out.pixelsTraced = pixelsTraced.load();
+    return out;
+}
+
+// The reflection composer: each reflective texel composed with its (seam-blurred) merged M.
+// Returns the number of reflective texels and of those whose reflection is SSR's.
+std::pair<std::size_t, std::size_t> composeReflections(TracedTexels& traced, BlendRule blend, Image& image) {
+    std::size_t reflective = 0, ssrHits = 0;
+    for (std::size_t i = 0; i < traced.texels.size(); ++i) {
+        if (!traced.texels[i].composed) continue;
+        ++reflective;
+        ssrHits += traced.source[i] == ReflectionSource::Ssr;
+        ShadingParts& parts = traced.texels[i].parts;
+        parts.reflected = traced.reflection[i];
+        image.data()[i] = glm::vec4(parts.composed(blend), 1.0f);
+    }
+    return {reflective, ssrHits};
+}
+
+}  // namespace
+
 FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameRequest& frame) {
     if (onDevice_) return renderOnDevice(context, frame);
     Rasterizer& rasterizer = context.rasterizer();
@@ -172,105 +291,28 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
     lapRasterFrame(clock, raster_);
 
     const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
-
-    // Ray-traced stage: fallback rays, refractive texels, ray-traced shadows, recursion past SSR hits.
-    const Image& lit = raster_.lighting;
-    const std::size_t n = g.pixelCount();
-    const SsrResult* ssr = ssrOn_ ? &ssr_->result() : nullptr;
-    const WhittedTracer tracer(rays, tracerSettings_);
-    const Camera& camera = frame.camera;
     result.image = Image(frame.width, frame.height);
-    std::vector<ReflectiveTexel> texels(n);
-    std::vector<glm::vec3> reflection(n, glm::vec3(0.0f));
-    std::vector<ReflectionSource> source(n, ReflectionSource::None);
-    std::vector<std::uint8_t> refractive(n, 0);
-    std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
-    RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
-        const std::size_t i = g.index(x, y);
-        if (g.object(i) < 0) {
-            result.image.at(x, y) = lit.at(x, y);  // the sky
-            return;
-        }
-        const glm::vec4& optical = g.optical[i];
-        const bool opaqueMatte = !reflectsOrRefracts(optical);
-        if (opaqueMatte && !rayTracedShadows_) {
-            result.image.at(x, y) = lit.at(x, y);
-            return;
-        }
-        const GBufferSurface surface(g, i, camera);
-        // The lit image's colour is C with shadows from the maps; with ray-traced shadows C is shaded again.
-        const std::optional<glm::vec3> rasterLocal =
-            rayTracedShadows_ ? std::nullopt : std::optional<glm::vec3>(glm::vec3(lit.at(x, y)));
-        refractive[i] = optical.z < 1.0f;
-        if (refractive[i] && !ssrSettings_.refractive) {
-            // Refractive: ray traced whole, as SSR does not refract.
-            ++pixelsTraced;
-            const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
-                                                         {rayTracedShadows_, true, true}, surface.footprint(), rasterLocal);
-            result.image.at(x, y) = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
-            return;
-        }
-        const SsrPixel* sp = ssr ? &ssr->pixels[i] : nullptr;
-        const float confidence = sp && sp->resolved() ? sp->confidence : 0.0f;
-        const bool traceFallback = !opaqueMatte && confidence < 1.0f && fallback_ == Fallback::RayTraced;
-        if (traceFallback || rayTracedShadows_ || refractive[i]) ++pixelsTraced;
-        if (traceFallback) ++fallbackRays;
-        // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
-        const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
-                                                     {rayTracedShadows_, traceFallback, refractive[i] != 0}, surface.footprint(), rasterLocal);
-        if (!parts.composes) {
-            result.image.at(x, y) = glm::vec4(parts.local, 1.0f);
-            return;
-        }
-        // The fallback's M: the traced ray, or (not traced) the sky in the reflected direction.
-        const glm::vec3 fallbackM = fallback_ == Fallback::None ? glm::vec3(0.0f) : parts.reflected;
-        glm::vec3 ssrM(0.0f);
-        if (confidence > 0.0f) {
-            ssrM = sp->color;
-            const std::size_t j = g.index(sp->hit.x, sp->hit.y);
-            if (recursion_ == Recursion::RayTraced && reflectsOrRefracts(g.optical[j])) {
-                // The SSR hit reflects or refracts: its next bounce is ray traced, seen along the mirror ray.
-                ++recursionRays;
-                const GBufferSurface hitSurface(g, j, camera);
-                const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
-                // The camera ray's cone continued along the mirror ray to the hit.
-                const RayCone cone = surface.footprint().at(glm::distance(surface.hit().position, hitSurface.hit().position));
-                ssrM = tracer.shadeParts(hitSurface.hit(), mirror, 1, parts.reflectivity, st, {}, cone).composed(tracerSettings_.blend);
-            }
-        }
-        reflection[i] = confidence * ssrM + (1.0f - confidence) * fallbackM;
-        source[i] = confidence >= 0.5f                    ? ReflectionSource::Ssr
-                    : fallback_ == Fallback::RayTraced ? ReflectionSource::RayTraced
-                    : fallback_ == Fallback::Sky       ? ReflectionSource::Sky
-                                                        : ReflectionSource::Missing;
-        texels[i] = {parts, true};
-    });
+    const TexelPolicy policy{rayTracedShadows_, ssrSettings_.refractive, fallback_, recursion_};
+    TracedTexels traced = traceTexels(g, raster_.lighting, ssrOn_ ? &ssr_->result() : nullptr, WhittedTracer(rays, tracerSettings_),
+                                      tracerSettings_, policy, frame.camera, result.image);
     clock.lap("trace");
 
-    const std::size_t blurred = blurReflectionSeams(reflection, source, frame.width, frame.height, blurRadius_, blurRange_);
+    const std::size_t blurred = blurReflectionSeams(traced.reflection, traced.source, frame.width, frame.height, blurRadius_, blurRange_);
     clock.lap("blend.seam_blur");
 
-    std::size_t reflective = 0, ssrHits = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!texels[i].composed) continue;
-        ++reflective;
-        ssrHits += source[i] == ReflectionSource::Ssr;
-        ShadingParts& parts = texels[i].parts;
-        parts.reflected = reflection[i];
-        result.image.data()[i] = glm::vec4(parts.composed(tracerSettings_.blend), 1.0f);
-    }
+    const auto [reflective, ssrHits] = composeReflections(traced, tracerSettings_.blend, result.image);
     clock.lap("blend");
 
-    stats += primaryStats;
-    recordRayCounters(stats, static_cast<double>(pixelsTraced.load()), result);
+    traced.stats += primaryStats;
+    recordRayCounters(traced.stats, static_cast<double>(traced.pixelsTraced), result);
     recordRasterWork(raster_, result);
     result.counters["reflective_pixels"] = static_cast<double>(reflective);
     result.counters["ssr_hits"] = static_cast<double>(ssrHits);
     result.counters["ssr_hit_rate"] = reflective > 0 ? static_cast<double>(ssrHits) / static_cast<double>(reflective) : 0.0;
-    result.counters["fallback_rays"] = static_cast<double>(fallbackRays.load());
-    result.counters["ssr_recursion_rays"] = static_cast<double>(recursionRays.load());
+    result.counters["fallback_rays"] = static_cast<double>(traced.fallbackRays);
+    result.counters["ssr_recursion_rays"] = static_cast<double>(traced.recursionRays);
     result.counters["seam_blurred_pixels"] = static_cast<double>(blurred);
-    recordSsrStatistics(source, refractive, result);
+    recordSsrStatistics(traced.source, traced.refractive, result);
     return result;
 }
 

@@ -158,8 +158,8 @@ TEST(DeviceRays, AbsorptionThroughASlabOfKnownThickness) {
 
 // An opaque emissive sphere of radius r inside an absorbing glass ball of radius R: the centre ray
 // enters the glass at normal incidence (Fresnel transmittance 0.96) and runs R - r inside it to a
-// surface that is not the ball's back face: 0.96 E exp(-a (R - r)) (the old device rule, absorption
-// only on a segment ending on a back face, gave 0.96 E).
+// surface that is not the ball's back face: 0.96 E exp(-a (R - r)) (absorption taken only on a
+// segment ending on a back face would give 0.96 E).
 TEST(DeviceRays, OpaqueSphereInsideAnAbsorbingBallAlongTheCentreRay) {
     REQUIRE_RAY_TRACING_DEVICE();
     const float R = 1.0f, r = 0.4f;

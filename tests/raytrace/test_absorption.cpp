@@ -43,8 +43,8 @@ TEST(MediumStack, EntersLeavesInAnyOrderAndRefusesWhatItCannotTrack) {
 // An opaque emissive sphere of radius r inside an absorbing glass ball of radius R, both centred
 // at the origin, no lights, black sky: the ray along a diameter enters the glass at normal
 // incidence (Fresnel transmittance 1 - 0.04), runs R - r inside it, and sees the emission E:
-// 0.96 E exp(-a (R - r)). The old rule (absorption only on leaving through a back face) gave
-// 0.96 E.
+// 0.96 E exp(-a (R - r)). Absorption taken only on leaving through a back face would give 0.96 E,
+// which this case tells apart.
 TEST(Absorption, OpaqueSphereInsideAnAbsorbingBallAlongTheCentreRay) {
     const float R = 1.0f, r = 0.4f;
     const glm::vec3 a(0.5f, 1.0f, 2.0f), E(0.8f, 0.6f, 0.4f);

@@ -6,10 +6,9 @@ A small brace parser, no compiler: comments, string and character literals are b
 ';', '{' or '}') has a parameter list and is not a namespace, class, struct, union, enum or an
 initializer. Lambdas and local classes count in the function that holds them.
 
-usage: function_length_check.py [--limit N] [--allow FILE] ROOT [DIR...]
+usage: function_length_check.py [--limit N] ROOT [DIR...]
   DIRs relative to ROOT (default: common techniques metrics experiments tests). Exit status 1 when
-  a function over the limit is not in the allow-list (lines "path:Name", '#' comments), or when an
-  allow-list entry no longer names a long function (so the list only shrinks).
+  any function is over the limit.
 """
 import argparse
 import os
@@ -155,17 +154,10 @@ def main():
     self_test()  # the parser first, on lengths known in advance
     parser = argparse.ArgumentParser()
     parser.add_argument("--limit", type=int, default=100)
-    parser.add_argument("--allow", help="allow-list file: path:Name per line")
     parser.add_argument("root")
     parser.add_argument("dirs", nargs="*", default=["common", "techniques", "metrics", "experiments", "tests"])
     args = parser.parse_args()
-    allowed = set()
-    if args.allow:
-        for line in open(args.allow):
-            line = line.split("#")[0].strip()
-            if line:
-                allowed.add(line)
-    over, seen_allowed = [], set()
+    over = []
     for d in args.dirs:
         for folder, _, files in os.walk(os.path.join(args.root, d)):
             for f in sorted(files):
@@ -174,22 +166,13 @@ def main():
                 path = os.path.join(folder, f)
                 rel = os.path.relpath(path, args.root)
                 for line, length, name in long_functions(path, args.limit):
-                    key = f"{rel}:{name}"
-                    status = "allowed" if key in allowed else "TOO LONG"
-                    if key in allowed:
-                        seen_allowed.add(key)
-                    else:
-                        over.append(key)
-                    print(f"{rel}:{line}: {name}: {length} lines ({status})")
-    stale = sorted(allowed - seen_allowed)
-    for key in stale:
-        print(f"{key}: in the allow-list but no longer over {args.limit} lines: remove it")
-    if over or stale:
-        print(f"{len(over)} function(s) over {args.limit} lines not allowed, {len(stale)} stale allow-list entr(ies)")
+                    over.append(f"{rel}:{name}")
+                    print(f"{rel}:{line}: {name}: {length} lines")
+    if over:
+        print(f"{len(over)} function(s) over {args.limit} lines: split each into functions named for what they do")
         return 1
-    print(f"no function over {args.limit} lines outside the allow-list ({len(seen_allowed)} allowed)")
+    print(f"no function over {args.limit} lines")
     return 0
-
 
 if __name__ == "__main__":
     sys.exit(main())

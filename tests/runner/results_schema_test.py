@@ -2,9 +2,11 @@
 """The results record's schema (experiments/results.schema.json) against its writer and a reader.
 
 1. The validator (paper_figures/results_schema.py) refuses records broken in known ways.
-2. The C++ writer: `hybridlab run` on a small experiment (a camera path's two frames, so that
-   temporal errors are added; debug images and error maps kept; a technique that ray traces and
-   a hybrid with debug images) writes results.json and runs/<id>.json records that all validate.
+2. The C++ writer (experiments/runner/run_record.h's toJson): `hybridlab run` on a small
+   experiment (a camera path's two frames, so that temporal errors are added; debug images and
+   error maps kept; a technique that ray traces and a hybrid with debug images) writes results.json
+   and runs/<id>.json records that all validate; so do the same experiment's two shards, and their
+   merge as if measured on two devices (each record then holds its "device").
 3. paper_figures/results.py reads those records: every accessor the report scripts use works.
 
 usage: results_schema_test.py HYBRIDLAB_BINARY SCRATCH_DIR
@@ -81,6 +83,47 @@ def check_refusals(record):
     print(f"validator: {len(cases)} broken records refused, {len(allowed)} valid variants accepted")
 
 
+def validate_set(folder):
+    """The problems of a result set's results.json and runs/<id>.json records, and its records."""
+    records = results.load(folder)
+    problems = results_schema.validate_results(records)
+    for name in sorted(os.listdir(os.path.join(folder, "runs"))):
+        with open(os.path.join(folder, "runs", name)) as f:
+            problems += [f"runs/{name}: {p}" for p in results_schema.validate_record(json.load(f))]
+    return records, problems
+
+
+def check_sharded_and_mixed(binary, config, scratch, env, runs):
+    """The experiment as two shards, the second as if measured on another device, merged with
+    --allow-mixed-devices: the shards' records and the merged ones (each with its "device") validate."""
+    shards = []
+    for i in range(2):
+        shard = os.path.join(scratch, f"shard{i}")
+        done = subprocess.run([binary, "run", config, "--out", shard, "--shard", f"{i}/2", "--quiet"], env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+        check(done.returncode == 0, f"hybridlab run --shard {i}/2 failed:\n" + done.stdout)
+        records, problems = validate_set(shard)
+        check(not problems, f"shard {i}/2's records break the schema:\n  " + "\n  ".join(problems))
+        shards.append(shard)
+    meta_file = os.path.join(shards[1], "experiment.json")
+    with open(meta_file) as f:
+        meta = json.load(f)
+    meta["device"]["vulkan_device"] = "Imaginary GPU 9000"
+    with open(meta_file, "w") as f:
+        json.dump(meta, f, indent=1)
+    merged = os.path.join(scratch, "merged")
+    done = subprocess.run([binary, "merge", "--allow-mixed-devices", "--out", merged] + shards, env=env,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
+    check(done.returncode == 0, "hybridlab merge --allow-mixed-devices failed:\n" + done.stdout)
+    records, problems = validate_set(merged)
+    check(not problems, "the merged records break the schema:\n  " + "\n  ".join(problems))
+    check(len(records) == runs, f"expected {runs} merged records, got {len(records)}")
+    devices = {r["device"]["vulkan_device"] for r in records}
+    check(len(devices) == 2 and "Imaginary GPU 9000" in devices, f"expected each record's device, two in all: {devices}")
+    check(any("temporal_error" in r for r in records), "the merged set has no temporal error")
+    print(f"writer: 2 shards and their merge from two devices ({len(records)} records, each with its device) validate")
+
+
 def main():
     binary, scratch = sys.argv[1], os.path.abspath(sys.argv[2])
     shutil.rmtree(scratch, ignore_errors=True)
@@ -97,17 +140,14 @@ def main():
         sys.exit(77)
     check(done.returncode == 0, "hybridlab run failed:\n" + done.stdout)
 
-    records = results.load(out)
+    records, problems = validate_set(out)
     check(len(records) == 6, f"expected 6 records (2 frames x 3 settings), got {len(records)}")
-    problems = results_schema.validate_results(records)
-    for name in sorted(os.listdir(os.path.join(out, "runs"))):
-        with open(os.path.join(out, "runs", name)) as f:
-            problems += [f"runs/{name}: {p}" for p in results_schema.validate_record(json.load(f))]
     check(not problems, "records break the schema:\n  " + "\n  ".join(problems))
     check(any("temporal_error" in r for r in records), "no record has a temporal error (the path's second frame should)")
     check(any(r["images"].get("debug") for r in records), "no record lists debug images")
     print(f"writer: {len(records)} records of results.json and runs/ validate")
 
+    check_sharded_and_mixed(binary, config, scratch, env, len(records))
     check_refusals(records[-1])
 
     for r in records:

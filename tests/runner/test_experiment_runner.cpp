@@ -77,36 +77,18 @@ void expectSameResults(const fs::path& a, const fs::path& b) {
     for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_EQ(test::comparableRecord(ra[i]), test::comparableRecord(rb[i])) << ra[i].at("id");
 }
 
-TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
-    TempDir dir;
-    const ExperimentConfig config = loadExperimentConfig(writeConfig(dir, kConfig));
-    const fs::path cache = dir.path() / "cache";
-
-    // Rows: scenes x frames x techniques x parameter sets.
-    RunnerSummary first = runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache));
-    EXPECT_TRUE(first.complete);
-    EXPECT_EQ(first.runsRendered, 20u);
-    // One per distinct camera and size: orbit's frame 0 is the scene camera of whitted-classic,
-    // and the cache keys on the camera, not on the view's name.
-    EXPECT_EQ(first.referencesRendered, 3u);
-    auto rows = test::readResults(dir.path() / "a");
-    ASSERT_EQ(rows.size(), 20u);
-    std::string csv;
-    {
-        std::ifstream in(dir.path() / "a" / "results.csv");
-        csv.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);  // header + 20 rows
+// Every run's images, reference and error maps exist; the path's second frame has temporal errors.
+void expectEveryRunsFiles(const fs::path& out, const std::vector<json>& rows) {
     for (const auto& r : rows) {
-        for (const char* key : {"exr", "png"}) EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("images").at(key).get<std::string>()));
-        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("reference").at("exr").get<std::string>()));
-        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("images").at("maps").get<std::string>() / "flip.png"));
+        for (const char* key : {"exr", "png"}) EXPECT_TRUE(fs::exists(out / r.at("images").at(key).get<std::string>()));
+        EXPECT_TRUE(fs::exists(out / r.at("reference").at("exr").get<std::string>()));
+        EXPECT_TRUE(fs::exists(out / r.at("images").at("maps").get<std::string>() / "flip.png"));
         // Frame 30 of the path has a temporal error against frame 0; the camera views have none.
         EXPECT_EQ(r.contains("temporal_error"), r.at("frame").get<int>() == 30) << r.at("id");
         // The scene has reflective pixels: the reference's mask is saved, and the temporal error
         // is also taken on them alone.
         ASSERT_TRUE(r.at("reference").contains("mask")) << r.at("id");
-        EXPECT_TRUE(fs::exists(dir.path() / "a" / r.at("reference").at("mask").get<std::string>()));
+        EXPECT_TRUE(fs::exists(out / r.at("reference").at("mask").get<std::string>()));
         EXPECT_EQ(r.contains("temporal_error_masked"), r.contains("temporal_error")) << r.at("id");
         if (r.contains("temporal_error_masked")) {
             // A mean over other pixels than the whole image's.
@@ -114,30 +96,11 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
             EXPECT_NE(r.at("temporal_error_masked").get<double>(), r.at("temporal_error").get<double>());
         }
     }
-    // depth 0 is the local colour only: far from the reference on the reflective pixels.
-    EXPECT_LT(rows[0].at("metrics").at("masked").at("ssim").get<double>(), rows[2].at("metrics").at("masked").at("ssim").get<double>());
+}
 
-    // The same experiment again: every reference from the cache, identical metrics.
-    RunnerSummary second = runExperiment(config, test::quietRunnerOptions(dir.path() / "b", cache));
-    EXPECT_EQ(second.referencesRendered, 0u);
-    EXPECT_EQ(second.referenceCacheHits, 20u);
-    expectSameResults(dir.path() / "a", dir.path() / "b");
-
-    // Interrupted after 7 runs, then resumed: the same result set as the uninterrupted run.
-    RunnerOptions stop = test::quietRunnerOptions(dir.path() / "c", cache);
-    stop.maxRuns = 7;
-    RunnerSummary part = runExperiment(config, stop);
-    EXPECT_FALSE(part.complete);
-    EXPECT_EQ(test::readResults(dir.path() / "c").size(), 7u);
-    RunnerOptions resume = test::quietRunnerOptions(dir.path() / "c", cache);
-    resume.resume = true;
-    RunnerSummary rest = runExperiment(config, resume);
-    EXPECT_TRUE(rest.complete);
-    EXPECT_EQ(rest.runsSkipped, 7u);
-    EXPECT_EQ(rest.runsRendered, 13u);
-    expectSameResults(dir.path() / "a", dir.path() / "c");
-
-    // Three shards merged: the same result set as the unsharded run.
+// `config` run as three shards and merged: the same result set as the unsharded run in dir/a, and
+// each shard's estimated cost beside the time its runs took.
+void expectThreeShardsMergeToTheUnshardedSet(const ExperimentConfig& config, const TempDir& dir, const fs::path& cache) {
     std::vector<fs::path> shards;
     for (int i = 0; i < 3; ++i) {
         RunnerOptions s = test::quietRunnerOptions(dir.path() / ("shard" + std::to_string(i)), cache);
@@ -163,13 +126,12 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     EXPECT_EQ(mergedRuns, 20u);
     EXPECT_THROW(mergeShards({shards[0], shards[1]}, dir.path() / "merged2"), InputError);  // shard 2 missing
     EXPECT_FALSE(fs::exists(dir.path() / "merged2"));
+}
 
-    // An output folder is never overwritten without --resume.
-    EXPECT_THROW(runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache)), InputError);
-
-    // The report: every link and image of index.html resolves to a file, every figure has content.
-    const fs::path report = dir.path() / "report";
-    test::CliResult r = test::runHybridlab({"report", (dir.path() / "a").string(), "--out", report.string()});
+// The report of `results` in `report`: every link and image of index.html resolves, every figure
+// has content, and the summary, the Pareto table and each run's row give its scores.
+void expectReportShowsEveryRun(const fs::path& results, const fs::path& report, const std::vector<json>& rows) {
+    test::CliResult r = test::runHybridlab({"report", results.string(), "--out", report.string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_CONTAINS(r.out, "report: " + (report / "index.html").string() + "\n");
     EXPECT_CONTAINS(r.out, "viewer: " + (report / "viewer.html").string() + "\n");
@@ -227,6 +189,60 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
     EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
     EXPECT_TRUE(fs::exists(report / "viewer" / "manifest.js"));
+}
+
+TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
+    TempDir dir;
+    const ExperimentConfig config = loadExperimentConfig(writeConfig(dir, kConfig));
+    const fs::path cache = dir.path() / "cache";
+
+    // Rows: scenes x frames x techniques x parameter sets.
+    RunnerSummary first = runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache));
+    EXPECT_TRUE(first.complete);
+    EXPECT_EQ(first.runsRendered, 20u);
+    // One per distinct camera and size: orbit's frame 0 is the scene camera of whitted-classic,
+    // and the cache keys on the camera, not on the view's name.
+    EXPECT_EQ(first.referencesRendered, 3u);
+    auto rows = test::readResults(dir.path() / "a");
+    ASSERT_EQ(rows.size(), 20u);
+    std::string csv;
+    {
+        std::ifstream in(dir.path() / "a" / "results.csv");
+        csv.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);  // header + 20 rows
+    expectEveryRunsFiles(dir.path() / "a", rows);
+    // depth 0 is the local colour only: far from the reference on the reflective pixels.
+    EXPECT_LT(rows[0].at("metrics").at("masked").at("ssim").get<double>(), rows[2].at("metrics").at("masked").at("ssim").get<double>());
+
+    // The same experiment again: every reference from the cache, identical metrics.
+    RunnerSummary second = runExperiment(config, test::quietRunnerOptions(dir.path() / "b", cache));
+    EXPECT_EQ(second.referencesRendered, 0u);
+    EXPECT_EQ(second.referenceCacheHits, 20u);
+    expectSameResults(dir.path() / "a", dir.path() / "b");
+
+    // Interrupted after 7 runs, then resumed: the same result set as the uninterrupted run.
+    RunnerOptions stop = test::quietRunnerOptions(dir.path() / "c", cache);
+    stop.maxRuns = 7;
+    RunnerSummary part = runExperiment(config, stop);
+    EXPECT_FALSE(part.complete);
+    EXPECT_EQ(test::readResults(dir.path() / "c").size(), 7u);
+    RunnerOptions resume = test::quietRunnerOptions(dir.path() / "c", cache);
+    resume.resume = true;
+    RunnerSummary rest = runExperiment(config, resume);
+    EXPECT_TRUE(rest.complete);
+    EXPECT_EQ(rest.runsSkipped, 7u);
+    EXPECT_EQ(rest.runsRendered, 13u);
+    expectSameResults(dir.path() / "a", dir.path() / "c");
+
+    // Three shards merged: the same result set as the unsharded run.
+    expectThreeShardsMergeToTheUnshardedSet(config, dir, cache);
+
+    // An output folder is never overwritten without --resume.
+    EXPECT_THROW(runExperiment(config, test::quietRunnerOptions(dir.path() / "a", cache)), InputError);
+
+    // The report: every link and image of index.html resolves to a file, every figure has content.
+    expectReportShowsEveryRun(dir.path() / "a", dir.path() / "report", rows);
 }
 
 std::size_t recordCount(const fs::path& out) {
@@ -356,9 +372,9 @@ TEST(ExperimentRunner, ScenePathsResolveAgainstTheConfigAndResumeExplainsAChange
     EXPECT_EQ(config.scenes[0].file, dir.path() / "my-scenes" / "copy.toml");
     const fs::path out = dir.path() / "out", cache = dir.path() / "cache";
     ASSERT_TRUE(runExperiment(config, test::quietRunnerOptions(out, cache)).complete);
-    const json record = ResultsStore(out).loadRecords().at(0);
-    EXPECT_EQ(record.at("scene"), "whitted-classic");
-    EXPECT_NE(record.at("id").get<std::string>().find("-whitted-classic-"), std::string::npos) << record.at("id");
+    const RunRecord record = ResultsStore(out).loadRecords().at(0);
+    EXPECT_EQ(record.scene, "whitted-classic");
+    EXPECT_NE(record.id.find("-whitted-classic-"), std::string::npos) << record.id;
 
     // The same experiment with a second technique: one run the folder does not hold.
     const ExperimentConfig changed =

@@ -1,0 +1,233 @@
+#include "experiments/runner/run_record.h"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+#include "experiments/runner/parameter_json.h"
+
+namespace hybridlab {
+using nlohmann::json;
+
+Spread spreadOf(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
+}
+
+namespace {
+
+json spreadJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
+
+json sceneStatsJson(const SceneStats& s) {
+    return {{"objects", s.objects}, {"vertices", s.vertices}, {"triangles", s.triangles},
+            {"lights", s.lights}, {"reflective", s.reflectiveObjects}, {"refractive", s.refractiveObjects}};
+}
+
+json referenceJson(const ReferenceEntry& r) {
+    json j = {{"key", r.key}, {"exr", r.exr}, {"png", r.png}, {"frame_ms", r.frameMilliseconds}, {"cache_hit", r.cacheHit}};
+    if (r.mask) j["mask"] = *r.mask;
+    return j;
+}
+
+json imagesJson(const RunImages& i) {
+    json j = {{"exr", i.exr}, {"png", i.png}, {"maps", i.maps ? json(*i.maps) : json(nullptr)}};
+    if (!i.debug.empty()) j["debug"] = i.debug;
+    return j;
+}
+
+}  // namespace
+
+json toJson(const RunRecord& r) {
+    json j;
+    j["index"] = r.index;
+    j["id"] = r.id;
+    j["scene"] = r.scene;
+    j["scene_stats"] = sceneStatsJson(r.sceneStats);
+    j["view"] = r.view;
+    j["frame"] = r.frame;
+    j["time"] = r.time;
+    j["width"] = r.width;
+    j["height"] = r.height;
+    j["technique"] = r.technique;
+    j["label"] = r.label;
+    j["parameters"] = json::object();
+    for (const auto& [k, v] : r.parameters) j["parameters"][k] = parameterJson(v);
+    j["parameters_text"] = r.parametersText;
+    j["sequence"] = r.sequence;
+    j["frame_ms"] = spreadJson(r.frameMilliseconds);
+    j["stages"] = json::object();
+    for (const auto& [name, s] : r.stages) j["stages"][name] = spreadJson(s);
+    j["counters"] = json::object();
+    for (const auto& [name, value] : r.counters) j["counters"][name] = value;
+    j["metrics"] = r.metrics;
+    j["reference"] = referenceJson(r.reference);
+    j["images"] = imagesJson(r.images);
+    if (r.runSeconds) j["run_seconds"] = *r.runSeconds;
+    if (r.device) j["device"] = *r.device;
+    if (r.temporalError) j["temporal_error"] = *r.temporalError;
+    if (r.temporalErrorMasked) j["temporal_error_masked"] = *r.temporalErrorMasked;
+    if (r.temporalPreviousFrame) j["temporal_previous_frame"] = *r.temporalPreviousFrame;
+    return j;
+}
+
+namespace {
+
+// Reads the fields of one JSON object, each by name and type; `finish` refuses a field nobody read.
+class FieldReader {
+public:
+    FieldReader(const json& object, std::string where) : object_(object), where_(std::move(where)) {
+        if (!object_.is_object()) fail(where_, "expected an object");
+    }
+
+    const json& required(const std::string& key) {
+        read_.insert(key);
+        if (!object_.contains(key)) fail(where_, "missing '" + key + "'");
+        return object_.at(key);
+    }
+    const json* optional(const std::string& key) {
+        read_.insert(key);
+        return object_.contains(key) ? &object_.at(key) : nullptr;
+    }
+    std::string path(const std::string& key) const { return where_ + "." + key; }
+
+    template <typename T>
+    T get(const std::string& key) { return as<T>(required(key), path(key)); }
+    template <typename T>
+    std::optional<T> getOptional(const std::string& key) {
+        const json* v = optional(key);
+        return v ? std::optional<T>(as<T>(*v, path(key))) : std::nullopt;
+    }
+
+    void finish() const {
+        for (const auto& [key, value] : object_.items())
+            if (!read_.count(key)) fail(where_, "unexpected '" + key + "'");
+    }
+
+    [[noreturn]] static void fail(const std::string& where, const std::string& what) {
+        throw std::runtime_error("results record " + where + ": " + what);
+    }
+
+    template <typename T>
+    static T as(const json& v, const std::string& where) {
+        if constexpr (std::is_same_v<T, bool>) {
+            if (!v.is_boolean()) fail(where, "expected a boolean");
+        } else if constexpr (std::is_same_v<T, std::string>) {
+            if (!v.is_string()) fail(where, "expected a string");
+        } else if constexpr (std::is_unsigned_v<T>) {
+            if (!v.is_number_unsigned()) fail(where, "expected an integer >= 0");
+        } else if constexpr (std::is_integral_v<T>) {
+            if (!v.is_number_integer()) fail(where, "expected an integer");
+        } else {
+            if (!v.is_number()) fail(where, "expected a number");
+        }
+        return v.get<T>();
+    }
+
+private:
+    const json& object_;
+    std::string where_;
+    std::set<std::string> read_;
+};
+
+Spread spreadFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    Spread s{f.get<double>("median"), f.get<double>("min"), f.get<double>("max")};
+    f.finish();
+    return s;
+}
+
+SceneStats sceneStatsFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    SceneStats s;
+    s.objects = f.get<std::size_t>("objects");
+    s.vertices = f.get<std::size_t>("vertices");
+    s.triangles = f.get<std::size_t>("triangles");
+    s.lights = f.get<std::size_t>("lights");
+    s.reflectiveObjects = f.get<std::size_t>("reflective");
+    s.refractiveObjects = f.get<std::size_t>("refractive");
+    f.finish();
+    return s;
+}
+
+ParameterList parametersFrom(const json& j, const std::string& where) {
+    if (!j.is_object()) FieldReader::fail(where, "expected an object");
+    ParameterList list;
+    for (const auto& [k, v] : j.items()) {
+        if (v.is_boolean()) list.emplace_back(k, v.get<bool>());
+        else if (v.is_number_integer()) list.emplace_back(k, v.get<long long>());
+        else if (v.is_number_float()) list.emplace_back(k, v.get<double>());
+        else if (v.is_string()) list.emplace_back(k, v.get<std::string>());
+        else FieldReader::fail(where + "." + k, "expected a boolean, number or string");
+    }
+    return list;
+}
+
+ReferenceEntry referenceFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    ReferenceEntry r;
+    r.key = f.get<std::string>("key");
+    r.exr = f.get<std::string>("exr");
+    r.png = f.get<std::string>("png");
+    r.mask = f.getOptional<std::string>("mask");
+    r.frameMilliseconds = f.get<double>("frame_ms");
+    r.cacheHit = f.get<bool>("cache_hit");
+    f.finish();
+    return r;
+}
+
+RunImages imagesFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    RunImages i;
+    i.exr = f.get<std::string>("exr");
+    i.png = f.get<std::string>("png");
+    if (const json& maps = f.required("maps"); !maps.is_null()) i.maps = FieldReader::as<std::string>(maps, f.path("maps"));
+    if (const json* debug = f.optional("debug")) {
+        FieldReader d(*debug, f.path("debug"));
+        for (const auto& [name, file] : debug->items()) i.debug[name] = d.get<std::string>(name);
+        d.finish();
+    }
+    f.finish();
+    return i;
+}
+
+}  // namespace
+
+RunRecord fromJson(const json& j) {
+    FieldReader f(j, "$");
+    RunRecord r;
+    r.index = f.get<std::size_t>("index");
+    r.id = f.get<std::string>("id");
+    r.scene = f.get<std::string>("scene");
+    r.sceneStats = sceneStatsFrom(f.required("scene_stats"), f.path("scene_stats"));
+    r.view = f.get<std::string>("view");
+    r.frame = f.get<int>("frame");
+    r.time = f.get<double>("time");
+    r.width = f.get<int>("width");
+    r.height = f.get<int>("height");
+    r.technique = f.get<std::string>("technique");
+    r.label = f.get<std::string>("label");
+    r.parameters = parametersFrom(f.required("parameters"), f.path("parameters"));
+    r.parametersText = f.get<std::string>("parameters_text");
+    r.sequence = f.get<std::string>("sequence");
+    r.frameMilliseconds = spreadFrom(f.required("frame_ms"), f.path("frame_ms"));
+    const json& stages = f.required("stages");
+    FieldReader s(stages, f.path("stages"));
+    for (const auto& [name, spread] : stages.items()) r.stages[name] = spreadFrom(s.required(name), s.path(name));
+    const json& counters = f.required("counters");
+    FieldReader c(counters, f.path("counters"));
+    for (const auto& [name, value] : counters.items()) r.counters[name] = c.get<double>(name);
+    r.metrics = f.required("metrics");
+    if (!r.metrics.is_object()) FieldReader::fail(f.path("metrics"), "expected an object");
+    r.reference = referenceFrom(f.required("reference"), f.path("reference"));
+    r.images = imagesFrom(f.required("images"), f.path("images"));
+    r.runSeconds = f.getOptional<double>("run_seconds");
+    if (const json* device = f.optional("device")) r.device = *device;
+    r.temporalError = f.getOptional<double>("temporal_error");
+    r.temporalErrorMasked = f.getOptional<double>("temporal_error_masked");
+    r.temporalPreviousFrame = f.getOptional<int>("temporal_previous_frame");
+    f.finish();
+    return r;
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,76 @@
+#pragma once
+// The results record of one run (experiments/README.md "Results"): runs/<id>.json, and each element
+// of results.json. experiments/results.schema.json is its schema; toJson is its only writer, and
+// fromJson reads back what toJson wrote (merge, resume and the temporal errors change records).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/scene/scene.h"
+#include "experiments/runner/experiment_config.h"
+
+namespace hybridlab {
+
+// The median, minimum and maximum of a time over the timed repeats.
+struct Spread {
+    double median = 0.0, min = 0.0, max = 0.0;
+};
+Spread spreadOf(std::vector<double> values);  // values must not be empty
+
+// The reference image a run was scored against (paths relative to the result set's folder).
+struct ReferenceEntry {
+    std::string key;  // ReferenceCache::key
+    std::string exr, png;
+    std::optional<std::string> mask;  // the reflective and refractive pixels, when there are any
+    double frameMilliseconds = 0.0;   // the reference's own render time
+    bool cacheHit = false;
+};
+
+// The run's images (paths relative to the result set's folder).
+struct RunImages {
+    std::string exr, png;
+    std::optional<std::string> maps;          // the error maps' folder; none when the config keeps none
+    std::map<std::string, std::string> debug; // the technique's debug images by name, when kept
+};
+
+struct RunRecord {
+    // What ran.
+    std::size_t index = 0;  // the run's place in the plan
+    std::string id;
+    std::string scene;      // the scene's own name
+    SceneStats sceneStats;
+    std::string view;       // a camera path's name, or "camera"
+    int frame = -1;         // on the path; -1 for the scene camera
+    double time = 0.0;      // the scene time rendered
+    int width = 0, height = 0;
+    std::string technique, label;
+    ParameterList parameters;  // as the config gave them
+    std::string parametersText;
+    std::string sequence;      // the frames of one path in one setting (the temporal error's pairs)
+    // What it cost and produced.
+    Spread frameMilliseconds;
+    std::map<std::string, Spread> stages;
+    std::map<std::string, double> counters;
+    // The metric report as metrics/report_files.h's reportJson writes it: the same object is the
+    // error maps' metrics.json and `hybridlab compare`'s output, so that module owns its format.
+    nlohmann::json metrics;
+    ReferenceEntry reference;
+    RunImages images;
+    std::optional<double> runSeconds;     // the run's whole time; merge sums it per shard
+    std::optional<nlohmann::json> device; // in a set measured on several devices: this run's (device_record.h)
+    // Added to results.json when the path's previous frame is recorded too (results_store.h).
+    std::optional<double> temporalError, temporalErrorMasked;
+    std::optional<int> temporalPreviousFrame;
+};
+
+// The record as JSON: the one writer of runs/<id>.json and results.json.
+nlohmann::json toJson(const RunRecord& record);
+
+// The record toJson wrote. Throws std::runtime_error naming the field for anything else (a missing
+// or mistyped field, or one the record does not have), so that no field is dropped by a round trip.
+RunRecord fromJson(const nlohmann::json& record);
+
+}  // namespace hybridlab
