@@ -6,9 +6,10 @@ ssr_fallback runs).
 
 One line per scene, size, view and hybrid setting: its frame time (median over the repeats), the
 speed-up rt_only / setting measured in the same run, SSIM and FLIP against the reference, the rays
-per pixel (primary rays included where the G-buffer is ray cast) and the G-buffer's cost: the
+per pixel (primary rays included where the G-buffer is ray cast) and where the frame goes: the
 rasterizer's stages (results.raster_ms: the G-buffer pass, lighting and read-back, or lighting and
-the upload) and the primary rays' stage (gbuffer.rays)."""
+the upload; none with lighting = "cpu"), the primary rays' stage (gbuffer.rays), the lighting on
+the host (lighting.cpu), SSR's pass (ssr) and the rays traced for shading (trace)."""
 import sys
 
 import results
@@ -27,21 +28,23 @@ def frame(r):
 def table(rows):
     rt_only = {key(r): r for r in rows if r["technique"] == "rt_only"}
     out = ["**G-buffer from the rasterizer and from primary rays** (ms, medians over the repeats; speed-up = rt_only / setting)", "",
-           "| scene | size | view | technique | setting | ms | speed-up | SSIM | FLIP | rays / pixel | rasterizer | gbuffer.rays |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "| scene | size | view | technique | setting | ms | speed-up | SSIM | FLIP | rays / pixel | rasterizer | gbuffer.rays | lighting.cpu | ssr | trace |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k, base in sorted(rt_only.items()):
         pixels = base["width"] * base["height"]
-        out.append("| %s | %s | %s | rt_only | %s | %.1f | 1.00 | %s | %s | %.2f | | |" % (
+        out.append("| %s | %s | %s | rt_only | %s | %.1f | 1.00 | %s | %s | %.2f | | | | | %s |" % (
             k[0], k[1], k[2], base["parameters_text"] or "defaults", frame(base), results.fmt(results.metric(base, "whole", "ssim"), "%.4f"),
-            results.fmt(results.metric(base, "whole", "flip"), "%.4f"), base["counters"]["rays_total"] / pixels))
+            results.fmt(results.metric(base, "whole", "flip"), "%.4f"), base["counters"]["rays_total"] / pixels,
+            results.fmt(results.stage(base, "trace"), "%.0f")))
         for r in rows:
             if r["technique"] not in HYBRIDS or key(r) != k:
                 continue
-            out.append("| %s | %s | %s | %s | %s | %.1f | %.2f | %s | %s | %.2f | %.1f | %s |" % (
+            out.append("| %s | %s | %s | %s | %s | %.1f | %.2f | %s | %s | %.2f | %s | %s | %s | %s | %s |" % (
                 k[0], k[1], k[2], r["label"], r["parameters_text"] or "defaults", frame(r), frame(base) / frame(r),
                 results.fmt(results.metric(r, "whole", "ssim"), "%.4f"), results.fmt(results.metric(r, "whole", "flip"), "%.4f"),
-                r["counters"]["rays_total"] / pixels, results.raster_ms(r, 0.0),
-                results.fmt(results.stage(r, "gbuffer.rays"), "%.1f")))
+                r["counters"]["rays_total"] / pixels, results.fmt(results.raster_ms(r), "%.0f"),
+                results.fmt(results.stage(r, "gbuffer.rays"), "%.0f"), results.fmt(results.stage(r, "lighting.cpu"), "%.0f"),
+                results.fmt(results.stage(r, "ssr"), "%.0f"), results.fmt(results.stage(r, "trace"), "%.0f")))
     out.append("")
     return out
 

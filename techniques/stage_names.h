@@ -20,7 +20,7 @@ inline constexpr StageName kStageNames[] = {
     {"shadow_maps", "shadow-map passes (near 0 when the maps were kept)"},
     {"gbuffer", "primary visibility into the G-buffer: the raster pass, or primary rays (.rays) and their upload (.upload)"},
     {"heuristic", "choosing what to ray trace: object observations, selection, the pixel mask (.visible_pixels: occlusion queries)"},
-    {"lighting", "deferred shading of the G-buffer with shadow maps and environment mapping (the P-buffer)"},
+    {"lighting", "deferred shading of the G-buffer with shadow maps and environment mapping (the P-buffer; .cpu: on the host, shadow rays for maps)"},
     {"ssr", "screen-space reflections: depth pyramid and march"},
     {"lens", "layered-EM lens geometry: .tessellation, .texture_coordinates, .draw (the lens pass)"},
     {"trace", "rays traced for shading: Whitted trees, fallback rays, layered-EM lens vertices (.lens_vertices)"},

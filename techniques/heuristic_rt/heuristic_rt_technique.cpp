@@ -51,8 +51,12 @@ TechniqueInfo HeuristicRtTechnique::info() {
         ParamSpec::boolean("per_effect", false, "select shadows, reflections and refractions separately per object"),
         ParamSpec::choice("visible_pixels", "ids", {"ids", "queries"},
                           "A from the object-id target, or from precise occlusion queries (as the paper)"),
-        ParamSpec::choice("raster_shadows", "map", {"map", "off"},
-                          "shadows of pixels not ray traced: shadow maps, or none (as the paper's P-buffer)"),
+        ParamSpec::choice("raster_shadows", "map", {"map", "off", "rays"},
+                          "shadows of pixels not ray traced: shadow maps, none (as the paper's P-buffer), or shadow rays "
+                          "(lighting = \"cpu\", where there are no shadow maps)"),
+        ParamSpec::choice("lighting", "raster", {"raster", "cpu"},
+                          "the P-buffer: the rasterizer's deferred lighting pass, or the same shading model on the CPU from the "
+                          "ray-cast G-buffer (gbuffer = \"rays\"): the whole frame on Embree, no rasterizer"),
         ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"),
         GBufferSource::parameterSpec(),
         raysParameterSpec(),
@@ -73,6 +77,8 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
       perEffect_(p.getBool("per_effect")),
       visiblePixelsByQueries_(p.getChoice("visible_pixels") == "queries"),
       rasterShadows_(p.getChoice("raster_shadows") == "map"),
+      unselectedShadowRays_(p.getChoice("raster_shadows") == "rays"),
+      cpuLighting_(p.getChoice("lighting") == "cpu"),
       debugImages_(p.getBool("debug_images")),
       onDevice_(tracesOnDevice(p)),
       gbuffer_(p) {
@@ -82,6 +88,14 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
     if (gbuffer_.rays() && visiblePixelsByQueries_)
         throw InputError("heuristic_rt: visible_pixels = \"queries\" needs the rasterizer's G-buffer (gbuffer = \"raster\"); "
                          "with gbuffer = \"rays\" the visible pixels come from the object ids");
+    if (cpuLighting_ && !gbuffer_.rays())
+        throw InputError("heuristic_rt: lighting = \"cpu\" lights the ray-cast G-buffer (gbuffer = \"rays\"); "
+                         "the rasterizer's G-buffer is lit where it lies (lighting = \"raster\")");
+    if (cpuLighting_ && rasterShadows_)
+        throw InputError("heuristic_rt: lighting = \"cpu\" draws no shadow maps; raster_shadows = \"rays\" (shadow rays) or \"off\"");
+    if (!cpuLighting_ && unselectedShadowRays_)
+        throw InputError("heuristic_rt: raster_shadows = \"rays\" needs lighting = \"cpu\"; the rasterizer's lighting pass "
+                         "takes \"map\" or \"off\"");
     if (p.getFloat("target_ms") > 0.0) frameTimeBudget_.emplace(p.getFloat("target_ms"));
 }
 
@@ -101,6 +115,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
         return;
     }
     context.rayScene(0.0);
+    if (cpuLighting_) return;  // no rasterizer
     RasterRequest request = warmUp.rasterRequest();
     request.lightingOptions = {rasterShadows_, true, tracer_.blend == BlendRule::Walewski2019};
     context.rasterizer().render(request, raster_);
@@ -173,12 +188,14 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     StageClock clock(result);
 
     // The G-buffer and the P-buffer; with gbuffer = "rays" the G-buffer from primary rays
-    // (stage gbuffer.rays, after the BVH update it needs).
+    // (stage gbuffer.rays, after the BVH update it needs); with lighting = "cpu" the P-buffer
+    // after the selection, for the pixels not traced only.
     const RasterRequest request = rasterRequest(frame);
     const RayScene* primaryRays = gbuffer_.rays() ? &updateRayScene(context, frame.time, clock, result) : nullptr;
     RayStats primaryStats;
-    const GBuffer& g = gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
-    lapRasterFrame(clock, raster_);
+    const GBuffer& g = cpuLighting_ ? gbuffer_.cast(*primaryRays, request, kGBufferSurfaceTargets, primaryStats, &clock)
+                                    : gbuffer_.render(context.rasterizer(), primaryRays, request, raster_, primaryStats, &clock);
+    if (!cpuLighting_) lapRasterFrame(clock, raster_);
 
     // heuristic: the selection, then the heuristic mask.
     const Selection selection = selectObjects(
@@ -196,19 +213,28 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
 
     const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
 
+    RayStats stats;
+    if (cpuLighting_) {
+        stats += lightUnmaskedPixels(rays, g, frame, raster_.lighting);
+        clock.lap("lighting.cpu");
+    }
+
     // trace: Listings 8a-8d from the G-buffer, for masked pixels only.
     const WhittedTracer tracer(rays, tracer_);
     parts_.resize(pixels);
     const Image& lighting = raster_.lighting;
-    RayStats stats = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+    stats += forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
         const std::size_t i = g.index(x, y);
         if (pixelEffects_[i] == 0) return;
         const GBufferSurface surface(g, i, frame.camera);
-        const TracedEffects effects = tracedEffects(pixelEffects_[i]);
+        TracedEffects effects = tracedEffects(pixelEffects_[i]);
+        // With the P-buffer lit on the CPU, shadows not selected are shaded here as it shades them.
+        const bool localFromPBuffer = !effects.shadows && !cpuLighting_;
+        if (cpuLighting_) effects.shadows = effects.shadows || unselectedShadowRays_;
         EnvironmentTerms sky;
         ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects, surface.footprint(), std::nullopt,
-                                           effects.shadows ? nullptr : &sky);
-        if (!effects.shadows) {
+                                           localFromPBuffer ? &sky : nullptr);
+        if (localFromPBuffer) {
             // Shadows not selected: the P-buffer's (shadow-mapped) local colour, recovered from its
             // composition with the sky terms the rasterizer used.
             p.local = p.composes ? uncomposeLocal(p.reflectivity, p.transparency, sky.reflected, sky.refracted,
@@ -247,6 +273,32 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         result.debugImages["refractions"] = std::move(refractions);
     }
     return result;
+}
+
+RayStats HeuristicRtTechnique::lightUnmaskedPixels(const RayScene& rays, const GBuffer& g, const FrameRequest& frame, Image& pbuffer) const {
+    // deferred_lighting.frag's P-buffer by the C++ shading model it computes again (RasterLighting
+    // holds the two equal): the local colour, environment-mapped reflection and refraction (the
+    // tracer's terms for effects not traced), the sky where nothing was hit; shadows by shadow rays
+    // in place of the maps, or none. At least one bounce, so that max_depth = 0 keeps the sky terms
+    // as the rasterizer's pass does (no ray is traced for them).
+    WhittedSettings settings = tracer_;
+    settings.maxDepth = std::max(settings.maxDepth, 1);
+    const WhittedTracer tracer(rays, settings);
+    const Scene& scene = rays.scene();
+    const float aspect = frame.aspect();
+    if (pbuffer.width() != frame.width || pbuffer.height() != frame.height) pbuffer = Image(frame.width, frame.height);
+    return forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& st) {
+        const std::size_t i = g.index(x, y);
+        if (pixelEffects_[i] != 0) return;  // traced
+        if (g.object(i) < 0) {
+            pbuffer.at(x, y) = glm::vec4(skyRadiance(scene, frame.camera.rayThroughNdc(pixelCenterNdc(x, y, frame.width, frame.height), aspect).direction), 1.0f);
+            return;
+        }
+        const GBufferSurface surface(g, i, frame.camera);
+        const ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {unselectedShadowRays_, false, false},
+                                                 surface.footprint());
+        pbuffer.at(x, y) = glm::vec4(p.composed(tracer_.blend), 1.0f);
+    });
 }
 
 void HeuristicRtTechnique::recordFrame(const Selection& selection, const RayStats& stats, std::size_t masked, FrameResult& result) {

@@ -19,6 +19,10 @@
 // object, the selection goes down as one word an object, and the trace and blend run in one
 // ray-generation shader over the G-buffer where it lies (shaders/device_heuristic_rt.rgen); the
 // host reads back the final image (and the debug images, outside the timed stages).
+// With `gbuffer = "rays"` and `lighting = "cpu"` the frame stays on Embree instead: the P-buffer
+// of the pixels the mask leaves untraced is lit on the CPU (stage lighting.cpu) by the shading
+// model the rasterizer's lighting pass computes, with shadow rays (`raster_shadows = "rays"`) or
+// none in place of the maps; no rasterizer is created (README.md says why).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -52,6 +56,8 @@ private:
     Selection selectObjects(const Scene& scene, const FrameRequest& frame, const std::vector<std::uint64_t>& visiblePixels);
     RasterRequest rasterRequest(const FrameRequest& frame) const;
     FrameResult renderOnDevice(SceneContext& context, const FrameRequest& frame);
+    // lighting = "cpu": the P-buffer's pixels that the mask leaves untraced, into `pbuffer`.
+    RayStats lightUnmaskedPixels(const RayScene& rays, const GBuffer& g, const FrameRequest& frame, Image& pbuffer) const;
     // The counters both paths record after the trace (and the frame-time budget's observation).
     void recordFrame(const Selection& selection, const RayStats& stats, std::size_t masked, FrameResult& result);
 
@@ -61,7 +67,9 @@ private:
     bool heuristic_ = true;
     bool perEffect_ = false;
     bool visiblePixelsByQueries_ = false;
-    bool rasterShadows_ = true;
+    bool rasterShadows_ = true;             // raster_shadows = "map"
+    bool unselectedShadowRays_ = false;     // raster_shadows = "rays"
+    bool cpuLighting_ = false;              // lighting = "cpu"
     bool debugImages_ = true;
     bool onDevice_ = false;                 // rays = "vulkan"
     std::optional<FrameTimeBudget> frameTimeBudget_;  // when target_ms > 0

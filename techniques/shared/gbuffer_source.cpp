@@ -20,10 +20,15 @@ const GBuffer& GBufferSource::render(Rasterizer& rasterizer, const RayScene* ray
     }
     // Every colour target: the lighting pass reads them all; the depth target has no reader.
     constexpr GBufferTargets kUploaded = kGBufferPosition | kGBufferNormal | kGBufferMaterial | kGBufferObjectId;
-    rayCastGBuffer(*rays, request.camera, request.width, request.height, kUploaded | (request.readback & kGBufferDepth), cast_, stats);
-    if (clock) clock->lap("gbuffer.rays");
-    request.hostGBuffer = &cast_;
+    request.hostGBuffer = &cast(*rays, request, kUploaded | (request.readback & kGBufferDepth), stats, clock);
     rasterizer.render(request, frame);
+    return cast_;
+}
+
+const GBuffer& GBufferSource::cast(const RayScene& rays, const RasterRequest& request, GBufferTargets targets, RayStats& stats,
+                                   StageClock* clock) {
+    rayCastGBuffer(rays, request.camera, request.width, request.height, targets, cast_, stats);
+    if (clock) clock->lap("gbuffer.rays");
     return cast_;
 }
 

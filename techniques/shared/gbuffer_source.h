@@ -24,6 +24,10 @@ public:
     // the cast one, or frame.gbuffer (the request's read-back targets).
     const GBuffer& render(Rasterizer& rasterizer, const RayScene* rays, RasterRequest request, RasterFrame& frame, RayStats& stats,
                           StageClock* clock = nullptr);
+    // The G-buffer from primary rays alone, `targets` of it at the request's camera and size (for a
+    // frame that lights it on the host, without the rasterizer); counted and timed as render() does.
+    const GBuffer& cast(const RayScene& rays, const RasterRequest& request, GBufferTargets targets, RayStats& stats,
+                        StageClock* clock = nullptr);
 
 private:
     bool rays_ = false;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <glm/common.hpp>
+
 #include <gtest/gtest.h>
 
 #include "common/core/input_error.h"
@@ -65,6 +67,80 @@ TEST(GBufferRays, FramesMatchTheRasterizedGBuffersAndCastOnePrimaryRayAPixel) {
             EXPECT_GT(raster.counters.at("ssr_hits"), 0.0);
         }
     }
+}
+
+double maxDifference(const Image& a, const Image& b) {
+    double d = 0.0;
+    for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+        const glm::vec4 e = glm::abs(a.data()[i] - b.data()[i]);
+        d = std::max(d, static_cast<double>(std::max({e.r, e.g, e.b})));
+    }
+    return d;
+}
+
+// heuristic_rt's lighting = "cpu": the P-buffer lit on the host by the shading model that the
+// rasterizer's lighting pass computes (RasterLighting holds the two equal), on the same ray-cast
+// G-buffer, so the frame is the rasterizer-lit one (shadows off in both: the maps are the
+// rasterizer's) while no rasterizer stage runs.
+TEST(GBufferRays, HeuristicCpuLightingEqualsTheRasterizersLightingPass) {
+    const test::TechniqueParams cpu = {{"gbuffer", std::string("rays")}, {"raster_shadows", std::string("off")},
+                                       {"lighting", std::string("cpu")}, {"budget", 2e4}};
+    const test::TechniqueParams raster = {{"gbuffer", std::string("rays")}, {"raster_shadows", std::string("off")}, {"budget", 2e4}};
+    for (const char* name : {"whitted-classic", "cornell-mirror-glass", "sponza-spheres"}) {
+        SCOPED_TRACE(name);
+        const Scene scene = loadSceneFile(findSceneFile(name));
+        const FrameResult onCpu = test::renderFrame(scene, "heuristic_rt", cpu, kWidth, kHeight, 2);
+        EXPECT_TRUE(hasStage(onCpu, "lighting.cpu"));
+        for (const char* rasterStage : {"gbuffer.upload", "lighting", "readback", "overhead", "shadow_maps"})
+            EXPECT_FALSE(hasStage(onCpu, rasterStage)) << rasterStage;
+        EXPECT_EQ(onCpu.counters.at("rays_primary"), static_cast<double>(kWidth * kHeight));
+        RASTERIZER_OR_SKIP(probe, scene);
+        const FrameResult lit = test::renderFrame(scene, "heuristic_rt", raster, kWidth, kHeight, 2);
+        const double ssim = computeMetrics(onCpu.image, lit.image).whole.ssim;
+        const double difference = maxDifference(onCpu.image, lit.image);
+        std::printf("[ lighting ] heuristic_rt on %s: lighting cpu against raster SSIM %.6f, max |difference| %.3g; %g of %d pixels traced\n",
+                    name, ssim, difference, onCpu.counters.at("pixels_ray_traced"), kWidth * kHeight);
+        EXPECT_GE(ssim, 0.999);
+        // The same selection, so the same traced pixels and rays.
+        EXPECT_EQ(onCpu.counters.at("pixels_ray_traced"), lit.counters.at("pixels_ray_traced"));
+        EXPECT_EQ(onCpu.counters.at("rays_total"), lit.counters.at("rays_total"));
+        EXPECT_GT(onCpu.counters.at("pixels_ray_traced"), 0.0);
+    }
+}
+
+// With shadow rays in place of the maps, on a scene that neither reflects nor refracts and a budget
+// that selects nothing, the CPU-lit frame is the reference's: the same primary hits, local colour
+// and shadow rays.
+TEST(GBufferRays, HeuristicCpuLightingWithShadowRaysIsTheReferenceOnMatteScenes) {
+    Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
+    for (Material& m : scene.materials) {
+        m.reflectivity = 0.0f;
+        m.opacity = 1.0f;
+        m.fresnel = false;
+    }
+    const test::TechniqueParams cpu = {{"gbuffer", std::string("rays")}, {"raster_shadows", std::string("rays")},
+                                       {"lighting", std::string("cpu")}, {"budget", 1.0}};
+    const FrameResult onCpu = test::renderFrame(scene, "heuristic_rt", cpu, kWidth, kHeight);
+    const FrameResult reference = test::renderFrame(scene, "whitted", {}, kWidth, kHeight);
+    const double ssim = computeMetrics(onCpu.image, reference.image).whole.ssim;
+    std::printf("[ lighting ] heuristic_rt lighting cpu with shadow rays against whitted on matte cornell-mirror-glass: SSIM %.6f, "
+                "max |difference| %.3g; shadow rays %g against %g\n",
+                ssim, maxDifference(onCpu.image, reference.image), onCpu.counters.at("rays_shadow"), reference.counters.at("rays_shadow"));
+    EXPECT_EQ(onCpu.counters.at("pixels_ray_traced"), 0.0);
+    EXPECT_GE(ssim, 0.999);
+    EXPECT_NEAR(onCpu.counters.at("rays_shadow"), reference.counters.at("rays_shadow"), 0.001 * reference.counters.at("rays_shadow"));
+    EXPECT_GT(onCpu.counters.at("rays_shadow"), 0.0);
+}
+
+TEST(GBufferRays, CpuLightingNeedsTheRayCastGBufferAndShadowsWithoutMaps) {
+    const auto make = [](const std::string& gbuffer, const std::string& lighting, const std::string& shadows) {
+        return createTechnique("heuristic_rt", {{"gbuffer", gbuffer}, {"lighting", lighting}, {"raster_shadows", shadows}});
+    };
+    EXPECT_THROW(make("raster", "cpu", "off"), InputError);
+    EXPECT_THROW(make("rays", "cpu", "map"), InputError);
+    EXPECT_THROW(make("rays", "raster", "rays"), InputError);
+    EXPECT_NO_THROW(make("rays", "cpu", "rays"));
+    EXPECT_NO_THROW(make("rays", "cpu", "off"));
 }
 
 TEST(GBufferRays, OcclusionQueriesNeedTheRasterizedGBuffer) {

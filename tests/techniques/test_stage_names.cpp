@@ -1,6 +1,6 @@
 // The stage vocabulary (techniques/stage_names.h): every technique in the registry, at its
 // defaults and with each parameter that changes its stages (the G-buffer from rays, occlusion
-// queries, rays on the Vulkan device), names its frame's stages from it, once each; the report's
+// queries, rays on the Vulkan device, lighting on the CPU), names its frame's stages from it, once each; the report's
 // reader (paper_figures/results.py) reads the same vocabulary, and old result sets under it, and
 // experiments/README.md lists it.
 #include <gtest/gtest.h>
@@ -49,6 +49,9 @@ TEST(StageNames, EveryTechniqueNamesItsStagesFromTheVocabulary) {
             if (p.name == "gbuffer") variant.push_back({"gbuffer", std::string("rays")});
             else if (p.name == "visible_pixels") variant.push_back({"visible_pixels", std::string("queries")});
             else if (p.name == "rays") variant.push_back({"rays", std::string("vulkan")});
+            else if (p.name == "lighting")
+                variant.insert(variant.end(), {{"gbuffer", std::string("rays")}, {"lighting", std::string("cpu")},
+                                               {"raster_shadows", std::string("rays")}});
             else continue;
             cases.push_back({info.name, variant});
         }

@@ -68,8 +68,13 @@ TEST(TechniqueDeterminism, EveryTechniqueRendersTheSameFramesTwice) {
     std::vector<Case> cases;
     for (const TechniqueInfo& info : registeredTechniques()) {
         cases.push_back({info.name, {}, info.name});
-        for (const ParamSpec& p : info.parameters)
+        for (const ParamSpec& p : info.parameters) {
             if (p.name == "rays") cases.push_back({info.name, {{"rays", std::string("vulkan")}}, info.name + " rays=vulkan"});
+            if (p.name == "lighting")
+                cases.push_back({info.name,
+                                 {{"gbuffer", std::string("rays")}, {"lighting", std::string("cpu")}, {"raster_shadows", std::string("rays")}},
+                                 info.name + " lighting=cpu"});
+        }
     }
     for (const Case& c : cases) {
         SCOPED_TRACE(c.label);
