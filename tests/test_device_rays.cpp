@@ -11,7 +11,6 @@
 #include <glm/geometric.hpp>
 
 #include "cli_runner.h"
-#include "common/core/input_error.h"
 #include "common/device_rays/device_whitted_tracer.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/whitted_tracer.h"
@@ -19,6 +18,7 @@
 #include "common/scene/scene_file.h"
 #include "lens_test_scenes.h"
 #include "metrics/metrics.h"
+#include "raster_test_support.h"
 #include "scene_fixtures.h"
 #include "technique_test_support.h"
 #include "test_support.h"
@@ -31,14 +31,6 @@ using test::absorbingGlass;
 using test::emissive;
 using test::matte;
 using test::placed;
-
-// The ray-tracing device, or a skip when the machine has none (Mesa older than 25, no Vulkan).
-#define REQUIRE_RAY_TRACING_DEVICE()                                                                  \
-    try {                                                                                             \
-        VulkanDevice::shared({.rayTracing = true});                                                   \
-    } catch (const VulkanUnavailable& e) {                                                            \
-        GTEST_SKIP() << "no ray-tracing Vulkan device: " << e.what();                                 \
-    }
 
 // One ray from `origin` along `dir`, traced by both backends: a 1 x 1 image whose pixel centre is
 // the camera's forward direction, on the device; WhittedTracer::radiance on Embree.
@@ -395,20 +387,6 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_CONTAINS(r.err, "lacks VK_KHR_ray_tracing_pipeline");
     EXPECT_CONTAINS(r.err, VulkanDevice::shared({.rayTracing = true})->name());
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
-}
-
-TEST(DeviceRays, AHybridOnTheDeviceRefusesTheRayCastGBuffer) {
-    // gbuffer = "rays" is cast by Embree: with rays = "vulkan" the hybrid says so when created,
-    // before any device is asked for.
-    for (const char* technique : {"heuristic_rt", "ssr_fallback"}) {
-        SCOPED_TRACE(technique);
-        try {
-            createTechnique(technique, {{"rays", std::string("vulkan")}, {"gbuffer", std::string("rays")}});
-            ADD_FAILURE() << "no error";
-        } catch (const InputError& e) {
-            EXPECT_CONTAINS(e.what(), std::string(technique) + ": rays = \"vulkan\" reads the rasterizer's G-buffer");
-        }
-    }
 }
 
 TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {
