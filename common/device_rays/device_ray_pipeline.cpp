@@ -186,11 +186,13 @@ void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {
 }
 
 std::array<std::uint32_t, kRayCounterCount> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
-                                                                       const std::function<void(VkCommandBuffer)>& after) {
+                                                                       const std::function<void(VkCommandBuffer)>& after,
+                                                                       const std::function<void(VkCommandBuffer)>& before) {
     const VulkanDevice& dev = device_;
     std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
     dev.submitAndWait([&](VkCommandBuffer cb) {
         timer_.reset(cb);
+        if (before) before(cb);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
         const VkDescriptorSet sets[2] = {descriptors_.set(), inputs_.layout() != VK_NULL_HANDLE ? inputs_.set() : VK_NULL_HANDLE};
         vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->layout, 0, sets[1] ? 2 : 1, sets, 0, nullptr);

@@ -45,9 +45,11 @@ public:
 
     // Zeroes the counters, traces a width x height x 1 launch, records `after` (passes that read the
     // trace's output) in the same command buffer, both GPU-timed as `stage`, waits; returns the
-    // counters (device_rays.glsl rayCounts).
+    // counters (device_rays.glsl rayCounts). `before` records what the trace needs first (layout
+    // transitions of the images it writes), untimed.
     std::array<std::uint32_t, device_rays::kRayCounterCount> launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
-                                                                    const std::function<void(VkCommandBuffer)>& after = {});
+                                                                    const std::function<void(VkCommandBuffer)>& after = {},
+                                                                    const std::function<void(VkCommandBuffer)>& before = {});
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
 private:

@@ -8,7 +8,7 @@ namespace hybridlab {
 
 namespace {
 
-// The inverse of octahedralEncode in shaders/gbuffer.frag (Cigolle et al., JCGT 2014).
+// The inverse of octahedralEncode in shaders/gbuffer_encoding.glsl (Cigolle et al., JCGT 2014).
 glm::vec3 octahedralDecode(float u, float v) {
     glm::vec3 n(u, v, 1.0f - std::abs(u) - std::abs(v));
     if (n.z < 0.0f) {

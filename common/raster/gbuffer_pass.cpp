@@ -99,6 +99,11 @@ GBufferPass::GBufferPass(const GpuScene& scene) : scene_(scene) {
                              (std::string("the G-buffer's ") + kNames[i] + " target").c_str());
     }
     device.requireFormat(kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "the G-buffer's reverse-Z depth buffer");
+    if (device.features().rayTracing) {
+        for (std::size_t i = 0; i < kFormats.size(); ++i)
+            device.requireFormat(kFormats[i], VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
+                                 (std::string("primary rays into the G-buffer's ") + kNames[i] + " target").c_str());
+    }
     layout_ = createPipelineLayout(device, {scene.descriptors().layout(), scene.materialTextures().layout()}, sizeof(DrawConstants));
     // One vertex stage for the pre-pass, the G-buffer and the visible-pixel pass: its gl_Position
     // is invariant, so the depths repeat exactly and EQUAL tests are exact.
@@ -138,10 +143,12 @@ GBufferPass::GBufferPass(const GpuScene& scene) : scene_(scene) {
 void GBufferPass::resize(std::uint32_t width, std::uint32_t height) {
     if (width == width_ && height == height_) return;
     const VulkanDevice& device = scene_.device();
+    // Storage only where primary rays may write them: elsewhere it would cost a GPU its compression.
+    const VkImageUsageFlags storage = device.features().rayTracing ? VK_IMAGE_USAGE_STORAGE_BIT : 0;
     for (std::size_t i = 0; i < kFormats.size(); ++i) {
         color_[i] = GpuImage(device, {kFormats[i], width, height, 1, 1,
                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT | storage});
     }
     depth_ = GpuImage(device, {kDepthFormat, width, height, 1, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
     for (auto& r : readback_) r = GpuBuffer();
@@ -282,6 +289,27 @@ void GBufferPass::recordUpload(VkCommandBuffer cb, const GBuffer& host) {
                         VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
     }
+}
+
+GBufferStorage GBufferPass::storage() const {
+    if (!scene_.device().features().rayTracing) throw VulkanError("the G-buffer's targets are storage images on a ray-tracing device only");
+    GBufferStorage s;
+    s.width = width_;
+    s.height = height_;
+    for (int i = 0; i < kColorTargets; ++i) {
+        s.images[i] = color_[i].image();
+        s.views[i] = color_[i].view();
+    }
+    return s;
+}
+
+void GBufferPass::recordWrittenOnDevice(VkCommandBuffer cb) {
+    // Written by an earlier submission on this queue, already in VK_IMAGE_LAYOUT_GENERAL.
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
+    const VkPipelineStageFlags readers =
+        VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, readers, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
 void GBufferPass::recordReadback(VkCommandBuffer cb, GBufferTargets targets) {

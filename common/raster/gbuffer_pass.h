@@ -15,6 +15,8 @@
 
 namespace hybridlab {
 
+struct GBufferStorage;
+
 class GBufferPass {
 public:
     static constexpr int kColorTargets = 8;  // position, normal, emission, ambient, diffuse, specular, optical, object id
@@ -42,6 +44,12 @@ public:
     // pass reads it (SSR builds its depth pyramid from the position target).
     void recordUpload(VkCommandBuffer cb, const GBuffer& host);
 
+    // On a ray-tracing device the colour targets are storage images too (storage()): a G-buffer
+    // written there by primary rays replaces record() and recordFinish(), and
+    // recordWrittenOnDevice() makes its writes visible to the frame's passes and copies.
+    GBufferStorage storage() const;
+    void recordWrittenOnDevice(VkCommandBuffer cb);
+
     // Copies `targets` into host-visible buffers (after recordFinish()); unpack() fills a GBuffer
     // from them once the commands completed.
     void recordReadback(VkCommandBuffer cb, GBufferTargets targets);
@@ -63,6 +71,16 @@ private:
     GpuImage depth_;
     std::array<GpuBuffer, kColorTargets + 1> readback_;  // by target bit index; allocated on first use
     std::array<GpuBuffer, kColorTargets> upload_;        // recordUpload's staging, by target; allocated on first use
+};
+
+// The G-buffer's colour targets for a G-buffer written on the device by another pipeline (primary
+// rays: common/device_rays/device_gbuffer_caster.h) before the frame that reads it
+// (RasterRequest::deviceGBuffer): storage images of the formats gbuffer_pass.cpp gives them, in
+// whatever layout the last frame left them (the writer moves them to VK_IMAGE_LAYOUT_GENERAL).
+struct GBufferStorage {
+    std::uint32_t width = 0, height = 0;
+    std::array<VkImage, GBufferPass::kColorTargets> images{};  // by GBufferTarget bit index
+    std::array<VkImageView, GBufferPass::kColorTargets> views{};
 };
 
 }  // namespace hybridlab

@@ -11,6 +11,24 @@
 
 namespace hybridlab {
 
+namespace {
+
+// A G-buffer not drawn by the G-buffer pass (uploaded, or written on the device at the size of the
+// targets, before they are resized) has no occlusion queries, and the device's no depth target.
+void checkGBufferSource(const RasterRequest& request, const GBufferPass& gbuffer) {
+    if ((request.hostGBuffer || request.deviceGBuffer) && request.occlusionQueries)
+        throw VulkanError("Rasterizer: no occlusion queries without the G-buffer pass");
+    if (!request.deviceGBuffer) return;
+    if (request.readback & kGBufferDepth) throw VulkanError("Rasterizer: a G-buffer written on the device has no depth target to read back");
+    if (gbuffer.width() != static_cast<std::uint32_t>(request.width) || gbuffer.height() != static_cast<std::uint32_t>(request.height)) {
+        throw VulkanError("Rasterizer: the G-buffer written on the device is " + std::to_string(gbuffer.width()) + " x " +
+                          std::to_string(gbuffer.height()) + ", the frame " + std::to_string(request.width) + " x " +
+                          std::to_string(request.height));
+    }
+}
+
+}  // namespace
+
 double RasterFrame::gpuMilliseconds(const std::string& stage) const {
     for (const auto& s : gpuStages)
         if (s.name == stage) return s.milliseconds;
@@ -75,6 +93,12 @@ FrameTargets Rasterizer::targets() const {
     return t;
 }
 
+GBufferStorage Rasterizer::gbufferStorage(int width, int height) {
+    if (width <= 0 || height <= 0) throw VulkanError("Rasterizer: the frame size must be positive");
+    impl_->gbuffer.resize(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+    return impl_->gbuffer.storage();
+}
+
 Rasterizer::~Rasterizer() = default;
 
 std::string Rasterizer::deviceName() const { return impl_->device->name(); }
@@ -91,6 +115,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     Impl& r = *impl_;
     auto start = WallClock::now();
     const bool moved = r.scene.setTime(request.time);
+    checkGBufferSource(request, r.gbuffer);
     r.gbuffer.resize(static_cast<std::uint32_t>(request.width), static_cast<std::uint32_t>(request.height));
     const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
     const glm::mat4 viewProj = request.camera.projectionMatrix(aspect) * request.camera.view();
@@ -108,10 +133,12 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         r.timer.end(cb);
     }
     if (request.hostGBuffer) {
-        if (request.occlusionQueries) throw VulkanError("Rasterizer: no occlusion queries without the G-buffer pass");
         r.timer.begin(cb, "gbuffer_upload");
         r.gbuffer.recordUpload(cb, *request.hostGBuffer);
         r.timer.end(cb);
+        frame.draws = 0;
+    } else if (request.deviceGBuffer) {
+        r.gbuffer.recordWrittenOnDevice(cb);
         frame.draws = 0;
     } else {
         r.timer.begin(cb, "gbuffer");

@@ -17,6 +17,7 @@ namespace hybridlab {
 
 class RasterFramePass;     // common/raster/frame_pass.h
 struct FrameTargets;       // common/raster/frame_pass.h
+struct GBufferStorage;     // common/raster/gbuffer_pass.h
 struct DeviceFeatures;     // common/raster/vulkan_device.h
 class DeformedMeshCache;   // common/scene/deformed_mesh_cache.h
 
@@ -37,6 +38,12 @@ struct RasterRequest {
     // place (stage "gbuffer_upload"); nothing of the G-buffer is read back and occlusion queries are
     // not available. Null: the G-buffer pass.
     const GBuffer* hostGBuffer = nullptr;
+    // The colour targets were written on the device since gbufferStorage() at the request's size
+    // (primary rays: common/device_rays/device_gbuffer_caster.h): the G-buffer pass is skipped and
+    // the frame reads them where they lie. The depth target is not written (no later pass reads it:
+    // SSR builds its depth pyramid from the position target), so it cannot be read back, and
+    // occlusion queries are not available.
+    bool deviceGBuffer = false;
     // A technique's own passes (SSR, ...), recorded in order after the lighting pass and before the
     // read-back, each timed under its name; finish() is called on each after the frame completed.
     std::vector<RasterFramePass*> passes;
@@ -55,8 +62,9 @@ struct RasterFrame {
     Image lighting;                       // when RasterRequest::lighting: linear RGBA (the P-buffer)
     std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
     // GPU timestamps per pass, in order: shadow_maps (when shadows are on; near 0 when the maps were
-    // kept), gbuffer (depth pre-pass included; gbuffer_upload instead with a host G-buffer), visible_pixels (when asked), lighting (when asked),
-    // the request's own passes by name, readback (the copies).
+    // kept), gbuffer (depth pre-pass included; gbuffer_upload instead with a host G-buffer, none
+    // with one written on the device), visible_pixels (when asked), lighting (when asked), the
+    // request's own passes by name, readback (the copies).
     std::vector<RasterStageTime> gpuStages;
     // Wall clock: recording the commands, submission until completion, unpacking the read-back.
     double recordMilliseconds = 0.0, submitMilliseconds = 0.0, unpackMilliseconds = 0.0;
@@ -87,6 +95,10 @@ public:
     // The last frame's targets on the device (every view in VK_IMAGE_LAYOUT_GENERAL after render()),
     // for passes that run after the frame in submissions of their own.
     FrameTargets targets() const;
+
+    // The G-buffer's colour targets at width x height as storage images, for a G-buffer written on
+    // the device before a frame with RasterRequest::deviceGBuffer. Ray-tracing devices only.
+    GBufferStorage gbufferStorage(int width, int height);
 
     std::string deviceName() const;
     double uploadMilliseconds() const;

@@ -82,9 +82,6 @@ HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
       debugImages_(p.getBool("debug_images")),
       onDevice_(tracesOnDevice(p)),
       gbuffer_(p) {
-    if (onDevice_ && gbuffer_.rays())
-        throw InputError("heuristic_rt: rays = \"vulkan\" reads the rasterizer's G-buffer on the device (gbuffer = \"raster\"); "
-                         "gbuffer = \"rays\" casts it with Embree");
     if (gbuffer_.rays() && visiblePixelsByQueries_)
         throw InputError("heuristic_rt: visible_pixels = \"queries\" needs the rasterizer's G-buffer (gbuffer = \"raster\"); "
                          "with gbuffer = \"rays\" the visible pixels come from the object ids");
@@ -108,6 +105,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
     const FrameRequest warmUp = RasterWarmUp::preparing(scene);
     if (onDevice_) {
         deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen");
+        gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         pixelCounts_ = std::make_unique<ObjectPixelCountPass>(VulkanDevice::shared({.rayTracing = true}), scene.objects.size());
         renderOnDevice(context, warmUp);
         selectedLastFrame_.clear();
@@ -322,9 +320,12 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     FrameResult result;
     StageClock clock(result);
     // The G-buffer, the P-buffer and the visible pixels per object, on the ray-tracing device; only
-    // the counts come back.
+    // the counts come back. With gbuffer = "rays" the G-buffer from primary rays there (stage
+    // gbuffer.rays, after the acceleration structures' update it needs).
     Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
-    rasterizer.render(rasterRequest(frame), raster_);
+    if (gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
+    RayStats rays;
+    gbuffer_.renderOnDevice(rasterizer, rasterRequest(frame), raster_, rays, &clock);
     lapRasterFrame(clock, raster_);
 
     // heuristic: the selection, sent down as the effect bits of each object (the shader makes the mask).
@@ -333,7 +334,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     deviceTracer_->setObjectData(std::vector<std::uint32_t>(selection.effectsByObject.begin(), selection.effectsByObject.end()));
     clock.lap("heuristic");
 
-    updateDeviceRayScene(context, frame.time, clock, result);
+    if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
     // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
     // then the image comes back.
@@ -342,7 +343,8 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 
-    recordFrame(selection, traced.rays, traced.techniqueCounts[0], result);
+    rays += traced.rays;
+    recordFrame(selection, rays, traced.techniqueCounts[0], result);
     recordGpuStages(traced.gpuStages, result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).

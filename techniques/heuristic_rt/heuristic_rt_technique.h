@@ -14,11 +14,12 @@
 // `heuristic = false` selects every visible object (the paper's "no heuristic" run). Beyond the
 // paper (§5-6): `target_ms` sets T each frame from a learned cost-to-time rate, and `per_effect`
 // selects shadows, reflections and refractions separately per object.
-// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer runs there, the
-// visible pixels are counted there (object_pixel_count_pass.h) and read back as one count an
-// object, the selection goes down as one word an object, and the trace and blend run in one
-// ray-generation shader over the G-buffer where it lies (shaders/device_heuristic_rt.rgen); the
-// host reads back the final image (and the debug images, outside the timed stages).
+// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer runs there (with
+// `gbuffer = "rays"` the primary rays too, into its targets), the visible pixels are counted there
+// (object_pixel_count_pass.h) and read back as one count an object, the selection goes down as one
+// word an object, and the trace and blend run in one ray-generation shader over the G-buffer where
+// it lies (shaders/device_heuristic_rt.rgen); the host reads back the final image (and the debug
+// images, outside the timed stages).
 // With `gbuffer = "rays"` and `lighting = "cpu"` the frame stays on Embree instead: the P-buffer
 // of the pixels the mask leaves untraced is lit on the CPU (stage lighting.cpu) by the shading
 // model the rasterizer's lighting pass computes, with shadow rays (`raster_shadows = "rays"`) or

@@ -1,13 +1,15 @@
 #include "techniques/shared/gbuffer_source.h"
 
+#include <stdexcept>
+
 #include "techniques/shared/ray_cast_gbuffer.h"
 
 namespace hybridlab {
 
 ParamSpec GBufferSource::parameterSpec() {
     return ParamSpec::choice("gbuffer", "raster", {"raster", "rays"},
-                             "primary visibility: the rasterizer's G-buffer pass (the papers), or primary rays on the ray tracer, "
-                             "uploaded for the raster passes that read the G-buffer (lighting, SSR)");
+                             "primary visibility: the rasterizer's G-buffer pass (the papers), or primary rays on the ray backend "
+                             "(`rays`) into the same targets, which the raster passes read (lighting, SSR)");
 }
 
 GBufferSource::GBufferSource(const ParameterSet& p) : rays_(p.getChoice("gbuffer") == "rays") {}
@@ -30,6 +32,21 @@ const GBuffer& GBufferSource::cast(const RayScene& rays, const RasterRequest& re
     rayCastGBuffer(rays, request.camera, request.width, request.height, targets, cast_, stats);
     if (clock) clock->lap("gbuffer.rays");
     return cast_;
+}
+
+void GBufferSource::prepareOnDevice(const DeviceRayScene& rays) {
+    if (rays_ && !deviceCaster_) deviceCaster_ = std::make_unique<DeviceGBufferCaster>(rays);
+}
+
+void GBufferSource::renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock) {
+    if (rays_) {
+        if (!deviceCaster_) throw std::logic_error("GBufferSource: prepareOnDevice() first");
+        const DeviceGBufferCast cast = deviceCaster_->cast(rasterizer.gbufferStorage(request.width, request.height), request.camera);
+        stats.primary += cast.primaryRays;
+        if (clock) clock->lap({{"gbuffer.rays", cast.gpuMilliseconds}}, "overhead");
+        request.deviceGBuffer = true;
+    }
+    rasterizer.render(request, frame);
 }
 
 }  // namespace hybridlab

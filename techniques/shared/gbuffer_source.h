@@ -1,8 +1,13 @@
 #pragma once
 // Where a hybrid technique's G-buffer comes from (its `gbuffer` parameter): the rasterizer's
-// G-buffer pass (the papers' pipeline, the default), or primary rays on the ray backend
-// (ray_cast_gbuffer.h, Falcor's GBufferRT) uploaded for the raster passes that read it (deferred
-// lighting, SSR's depth pyramid and march). Every stage after the G-buffer is the same either way.
+// G-buffer pass (the papers' pipeline, the default), or primary rays on the ray backend (Falcor's
+// GBufferRT): on Embree (ray_cast_gbuffer.h) uploaded for the raster passes that read it (deferred
+// lighting, SSR's depth pyramid and march), on the ray-tracing Vulkan device
+// (common/device_rays/device_gbuffer_caster.h) written into the rasterizer's targets where they
+// lie. Every stage after the G-buffer is the same either way.
+#include <memory>
+
+#include "common/device_rays/device_gbuffer_caster.h"
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
@@ -29,9 +34,18 @@ public:
     const GBuffer& cast(const RayScene& rays, const RasterRequest& request, GBufferTargets targets, RayStats& stats,
                         StageClock* clock = nullptr);
 
+    // rays = "vulkan": with rays, builds the device's caster over `rays` (compiling its pipeline).
+    void prepareOnDevice(const DeviceRayScene& rays);
+    // As render(), with `rasterizer` on the ray-tracing device: with rays, the G-buffer is cast on
+    // the device (from the scene prepareOnDevice() was given, which must be at the request's time)
+    // into the rasterizer's targets, timed as stage "gbuffer.rays" by its GPU timestamps (the
+    // submission's wall clock beside them as "overhead"), and the G-buffer pass is skipped.
+    void renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock = nullptr);
+
 private:
     bool rays_ = false;
     GBuffer cast_;  // reused from frame to frame
+    std::unique_ptr<DeviceGBufferCaster> deviceCaster_;
 };
 
 }  // namespace hybridlab

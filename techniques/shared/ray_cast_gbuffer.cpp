@@ -15,7 +15,8 @@ namespace hybridlab {
 namespace {
 
 // Octahedral encoding of a unit vector into [-1, 1]^2 (Cigolle et al., JCGT 2014): as
-// octahedralEncode in shaders/gbuffer.frag (GBufferRays in tests/ holds the two G-buffers equal), decoded by GBuffer::geometricNormal.
+// octahedralEncode in shaders/gbuffer_encoding.glsl (GBufferRays in tests/ holds the two G-buffers
+// equal), decoded by GBuffer::geometricNormal.
 glm::vec2 octahedralEncode(glm::vec3 n) {
     n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
     if (n.z >= 0.0f) return {n.x, n.y};

@@ -4,7 +4,6 @@
 #include <atomic>
 #include <optional>
 
-#include "common/core/input_error.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
@@ -113,9 +112,6 @@ SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettin
     ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
     shadowSettings_ = shadowMapSettings(p);
     onDevice_ = tracesOnDevice(p);
-    if (onDevice_ && gbuffer_.rays())
-        throw InputError("ssr_fallback: rays = \"vulkan\" reads the rasterizer's G-buffer on the device (gbuffer = \"raster\"); "
-                         "gbuffer = \"rays\" casts it with Embree");
 }
 
 RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
@@ -142,6 +138,7 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 void SsrFallbackTechnique::prepare(SceneContext& context) {
     if (onDevice_) {
         deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen");
+        gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         deviceComposite_ = std::make_unique<DeviceSeamComposite>(deviceTracer_->device());
         ssr_ = std::make_unique<SsrPass>(VulkanDevice::shared({.rayTracing = true}));
         ssr_->setReadback(false);
@@ -355,14 +352,21 @@ void SsrFallbackTechnique::recordSsrStatistics(const std::vector<ReflectionSourc
 
 FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const FrameRequest& frame) {
     Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
-    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) { rasterizer.render(rasterRequest(f), raster_); });
+    warmUp_.atSizeOf(frame, [&](const FrameRequest& f) {
+        RayStats unused;
+        gbuffer_.renderOnDevice(rasterizer, rasterRequest(f), raster_, unused);
+    });
     FrameResult result;
     StageClock clock(result);
-    // The SSR pass runs inside the rasterizer's command buffer: its GPU time is its stage.
-    rasterizer.render(rasterRequest(frame), raster_);
+    // With gbuffer = "rays" the G-buffer comes from primary rays on the device (stage gbuffer.rays,
+    // after the acceleration structures' update it needs). The SSR pass runs inside the
+    // rasterizer's command buffer: its GPU time is its stage.
+    if (gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
+    RayStats rays;
+    gbuffer_.renderOnDevice(rasterizer, rasterRequest(frame), raster_, rays, &clock);
     lapRasterFrame(clock, raster_);
 
-    updateDeviceRayScene(context, frame.time, clock, result);
+    if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
     // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU time
     // together is the counter gpu_trace_ms); then the image comes back.
@@ -382,7 +386,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     clock.lap("readback");
 
     const auto& counts = traced.techniqueCounts;
-    recordRayCounters(traced.rays, counts[0], result);
+    rays += traced.rays;
+    recordRayCounters(rays, counts[0], result);
     recordRasterWork(raster_, result);
     recordGpuStages(traced.gpuStages, result);
     result.counters["reflective_pixels"] = counts[3];

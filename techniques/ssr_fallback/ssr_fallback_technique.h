@@ -5,7 +5,8 @@
 // Embree rays for the texels SSR failed on, from the G-buffer position, recursive like the
 // reference, and for every refractive texel; the two reflection images merged and their seam
 // blurred (seam_blur.h); the composition of the shading model (DESIGN.md).
-// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer and SSR run there,
+// With `rays = "vulkan"` the frame stays on the ray-tracing device: the rasterizer (or with
+// `gbuffer = "rays"` the primary rays, into its targets) and SSR run there,
 // the ray-traced stage reads the G-buffer, the lit image and SSR's outputs where they lie
 // (shaders/device_ssr_fallback.rgen), the seam blur and composite follow as a compute pass
 // (device_seam_composite.h), and the host reads back the final image (SSR's outputs and the

@@ -22,6 +22,7 @@
 #include "tests/support/scene_fixtures.h"
 #include "tests/support/technique_test_support.h"
 #include "tests/support/test_support.h"
+#include "tests/support/raster_test_support.h"
 
 namespace hybridlab {
 namespace {
@@ -31,14 +32,6 @@ using test::absorbingGlass;
 using test::emissive;
 using test::matte;
 using test::placed;
-
-// The ray-tracing device, or a skip when the machine has none (Mesa older than 25, no Vulkan).
-#define REQUIRE_RAY_TRACING_DEVICE()                                                                  \
-    try {                                                                                             \
-        VulkanDevice::shared({.rayTracing = true});                                                   \
-    } catch (const VulkanUnavailable& e) {                                                            \
-        GTEST_SKIP() << "no ray-tracing Vulkan device: " << e.what();                                 \
-    }
 
 // One ray from `origin` along `dir`, traced by both backends: a 1 x 1 image whose pixel centre is
 // the camera's forward direction, on the device; WhittedTracer::radiance on Embree.
@@ -395,20 +388,6 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_CONTAINS(r.err, "lacks VK_KHR_ray_tracing_pipeline");
     EXPECT_CONTAINS(r.err, VulkanDevice::shared({.rayTracing = true})->name());
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
-}
-
-TEST(DeviceRays, AHybridOnTheDeviceRefusesTheRayCastGBuffer) {
-    // gbuffer = "rays" is cast by Embree: with rays = "vulkan" the hybrid says so when created,
-    // before any device is asked for.
-    for (const char* technique : {"heuristic_rt", "ssr_fallback"}) {
-        SCOPED_TRACE(technique);
-        try {
-            createTechnique(technique, {{"rays", std::string("vulkan")}, {"gbuffer", std::string("rays")}});
-            ADD_FAILURE() << "no error";
-        } catch (const InputError& e) {
-            EXPECT_CONTAINS(e.what(), std::string(technique) + ": rays = \"vulkan\" reads the rasterizer's G-buffer");
-        }
-    }
 }
 
 TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/raster/rasterizer.h"
+#include "common/raster/vulkan_device.h"
 #include "common/raster/vulkan_error.h"
 
 // Declares `std::unique_ptr<Rasterizer> var` for `scene`, or skips the test when no Vulkan device
@@ -16,4 +17,12 @@
         var = std::make_unique<::hybridlab::Rasterizer>(scene);                   \
     } catch (const ::hybridlab::VulkanUnavailable& e) {                           \
         GTEST_SKIP() << "no Vulkan device, raster tests skipped: " << e.what();   \
+    }
+
+// The ray-tracing device, or a skip when the machine has none (Mesa older than 25, no Vulkan).
+#define REQUIRE_RAY_TRACING_DEVICE()                                      \
+    try {                                                                 \
+        ::hybridlab::VulkanDevice::shared({.rayTracing = true});          \
+    } catch (const ::hybridlab::VulkanUnavailable& e) {                   \
+        GTEST_SKIP() << "no ray-tracing Vulkan device: " << e.what();     \
     }

@@ -1,10 +1,11 @@
 // The stage vocabulary (techniques/stage_names.h): every technique in the registry, at its
 // defaults and with each parameter that changes its stages (the G-buffer from rays, occlusion
-// queries, rays on the Vulkan device, lighting on the CPU), names its frame's stages from it, once each; the report's
-// reader (paper_figures/results.py) reads the same vocabulary, and old result sets under it, and
-// experiments/README.md lists it.
+// queries, rays on the Vulkan device, the G-buffer from rays on that device, lighting on the CPU),
+// names its frame's stages from it, once each; the report's reader (paper_figures/results.py) reads
+// the same vocabulary, and old result sets under it, and experiments/README.md lists it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <string>
@@ -44,6 +45,7 @@ TEST(StageNames, EveryTechniqueNamesItsStagesFromTheVocabulary) {
         if (info.name == "layered_em")
             defaults = {{"em_size", 16LL}, {"bake_width", 32LL}, {"bake_height", 24LL}, {"viewpoints", 2LL}, {"layers", 1LL}, {"em_cache", false}};
         cases.push_back({info.name, defaults});
+        bool castsGBuffer = false, tracesOnDevice = false;
         for (const ParamSpec& p : info.parameters) {
             test::TechniqueParams variant = defaults;
             if (p.name == "gbuffer") variant.push_back({"gbuffer", std::string("rays")});
@@ -53,6 +55,15 @@ TEST(StageNames, EveryTechniqueNamesItsStagesFromTheVocabulary) {
                 variant.insert(variant.end(), {{"gbuffer", std::string("rays")}, {"lighting", std::string("cpu")},
                                                {"raster_shadows", std::string("rays")}});
             else continue;
+            castsGBuffer |= p.name == "gbuffer";
+            tracesOnDevice |= p.name == "rays";
+            cases.push_back({info.name, variant});
+        }
+        // The G-buffer from primary rays on the Vulkan device.
+        if (castsGBuffer && tracesOnDevice) {
+            test::TechniqueParams variant = defaults;
+            variant.push_back({"gbuffer", std::string("rays")});
+            variant.push_back({"rays", std::string("vulkan")});
             cases.push_back({info.name, variant});
         }
     }
@@ -83,6 +94,12 @@ TEST(StageNames, EveryTechniqueNamesItsStagesFromTheVocabulary) {
             names += " " + s.name;
         }
         std::printf("[ stages   ] %s:%s\n", label.c_str(), names.c_str());
+        // gbuffer = "rays" replaces the G-buffer pass with the primary rays' stage.
+        const bool cast = std::any_of(c.params.begin(), c.params.end(), [](const auto& p) { return p.first == "gbuffer"; });
+        if (cast) {
+            EXPECT_TRUE(seen.count("gbuffer.rays"));
+            EXPECT_FALSE(seen.count("gbuffer"));
+        }
         if (c.technique == "layered_em") {
             for (const char* s : {"trace.lens_vertices", "lens.tessellation", "lens.texture_coordinates", "lens.draw", "gbuffer", "blend"})
                 EXPECT_TRUE(seen.count(s)) << s;

@@ -6,6 +6,7 @@
 #define DEVICE_GBUFFER_RAYS_GLSL
 
 #include "device_whitted_tree.glsl"
+#include "gbuffer_encoding.glsl"
 
 // The set-1 bindings: the layout of DeviceGBufferTracer (common/device_rays/device_gbuffer_tracer.h).
 layout(set = 1, binding = 0) uniform sampler2D gPosition;
@@ -27,13 +28,6 @@ layout(std430, set = 1, binding = 12) buffer Texels { vec4 texels[]; };
 layout(std430, set = 1, binding = 13) buffer TechniqueCounts { uint techniqueCounts[]; };
 
 const int kTexelRecords = 4;
-
-// The inverse of octahedralEncode in gbuffer.frag (octahedralDecode in gbuffer.cpp).
-vec3 octahedralDecode(float u, float v) {
-    vec3 n = vec3(u, v, 1.0 - abs(u) - abs(v));
-    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
-}
 
 // The object seen at a texel, or -1 for the sky.
 int gbufferObject(ivec2 texel) { return int(texelFetch(gObjectId, texel, 0).r) - 1; }

@@ -61,6 +61,19 @@ vec3 triangleGeometricNormal(uint instance, uint primitive) {
     return normalize(cross(p1 - p0, p2 - p0));
 }
 
+// The camera ray through the centre of `pixel`, as Camera::rayThroughNdc (deviceFrame's camera
+// vectors): from the eye (perspective) or from the pixel on the view plane (orthographic).
+void cameraRay(ivec2 pixel, out vec3 origin, out vec3 direction) {
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.size.xy) * 2.0 - 1.0;
+    if (frame.cameraPosition.w != 0.0) {
+        origin = frame.cameraPosition.xyz;
+        direction = normalize(ndc.x * frame.cameraRight.xyz + ndc.y * frame.cameraUp.xyz + frame.cameraForward.xyz);
+    } else {
+        origin = frame.cameraPosition.xyz + ndc.x * frame.cameraRight.xyz + ndc.y * frame.cameraUp.xyz;
+        direction = frame.cameraForward.xyz;
+    }
+}
+
 const uint kRadianceRay = 0u;
 const uint kShadowRay = 1u;
 

@@ -5,6 +5,7 @@
 // diffuseTextureValue; normal mapping follows RayScene::resolveHit.
 #extension GL_GOOGLE_include_directive : require
 #include "scene_data.glsl"
+#include "gbuffer_encoding.glsl"
 
 // Pipeline variants (lavapipe runs both sides of a branch, so a texture lookup that a material
 // does not need is compiled out rather than skipped).
@@ -19,24 +20,15 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec2 uv;
 layout(location = 3) in vec4 worldTangent;
 
-layout(location = 0) out vec4 outPosition;  // xyz world position, w 1
-layout(location = 1) out vec4 outNormal;    // xyz shading normal (unit, world), w +1 front face seen, -1 back face
-layout(location = 2) out vec4 outEmission;  // rgb; w the geometric normal's first octahedral coordinate
-layout(location = 3) out vec4 outAmbient;   // material ambient * texture; w the second octahedral coordinate
-layout(location = 4) out vec4 outDiffuse;   // material diffuse * texture
-layout(location = 5) out vec4 outSpecular;  // rgb, a = exponent
-layout(location = 6) out vec4 outOptical;   // reflectivity, IOR, opacity, fresnel
-layout(location = 7) out uint outObjectId;  // object index + 1; 0 is the sky
-
-// Octahedral encoding of a unit vector into [-1, 1]^2 (Cigolle et al., JCGT 2014); decoded by
-// octahedralDecode in gbuffer.cpp. All eight attachments are taken, so the geometric normal rides in
-// two spare 16-bit channels (about 1e-3 precision: enough to offset ray origins and pick a side).
-vec2 octahedralEncode(vec3 n) {
-    n /= abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 e = n.xy;
-    if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return e;
-}
+// The eight targets, encoded as GBufferTexel (gbuffer_encoding.glsl) says.
+layout(location = 0) out vec4 outPosition;
+layout(location = 1) out vec4 outNormal;
+layout(location = 2) out vec4 outEmission;
+layout(location = 3) out vec4 outAmbient;
+layout(location = 4) out vec4 outDiffuse;
+layout(location = 5) out vec4 outSpecular;
+layout(location = 6) out vec4 outOptical;
+layout(location = 7) out uint outObjectId;
 
 // The triangle's normal by its winding (as SurfaceHit::geometricNormal). The screen-space
 // derivatives of the world position span the triangle's plane (helper lanes extrapolate the same
@@ -66,13 +58,14 @@ void main() {
     }
     vec3 texel = kDiffuseTexture ? textureGrad(diffuseTexture, tc, dtcdx, dtcdy).rgb : vec3(1.0);
 
-    outPosition = vec4(worldPosition, 1.0);
-    outNormal = vec4(n, gl_FrontFacing ? 1.0 : -1.0);
-    const vec2 ng = octahedralEncode(windingNormal(worldPosition));
-    outEmission = vec4(m.emission.rgb, ng.x);
-    outAmbient = vec4(m.ambient.rgb * texel, ng.y);
-    outDiffuse = vec4(m.diffuse.rgb * texel, 0.0);
-    outSpecular = m.specular;
-    outOptical = m.optical;
-    outObjectId = draw.object + 1u;
+    const GBufferTexel g = encodeGBufferTexel(worldPosition, n, gl_FrontFacing, windingNormal(worldPosition), m.emission.rgb, m.ambient.rgb,
+                                              m.diffuse.rgb, m.specular, m.optical, texel, draw.object);
+    outPosition = g.position;
+    outNormal = g.normal;
+    outEmission = g.emission;
+    outAmbient = g.ambient;
+    outDiffuse = g.diffuse;
+    outSpecular = g.specular;
+    outOptical = g.optical;
+    outObjectId = g.objectId;
 }
