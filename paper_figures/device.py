@@ -1,6 +1,7 @@
 """The device a result set was measured on, for the top of the report: experiment.json's `device`
 record (processor, Vulkan device and driver, Embree, threads, system) and the ray backend of the
-runs (their parameter `rays`; Embree where a run does not name one). A raster that ran on a
+runs (their parameter `rays`; Embree where a run does not name one), and the fraction of the
+configured size the set was rendered at (`hybridlab run --scale`) where not all of it. A raster that ran on a
 software Vulkan device (vulkan_device_type "cpu", e.g. Mesa's lavapipe) is flagged: its frame times
 are not a GPU's."""
 import html
@@ -24,6 +25,9 @@ def lines(result_dir, records):
     """(label, text) pairs and a warning (or None)."""
     devices = rs.devices(result_dir, records)
     rows = [("ray backend", ", ".join(ray_backends(records)))]
+    scale = rs.resolution_scale(result_dir)
+    if scale != 1.0:
+        rows.append(("size", "rendered at %g of the configured size (hybridlab run --scale %g)" % (scale, scale)))
     if len(devices) > 1:
         return [("devices", rs.device_line(result_dir, records))] + rows, (
             "The runs were measured on %d different devices: their times do not compare across them." % len(devices))

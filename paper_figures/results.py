@@ -230,13 +230,29 @@ def devices(result_dir, rows=()):
         return [None]
 
 
+def resolution_scale(result_dir):
+    """experiment.json's "resolution_scale" (`hybridlab run --scale`): the fraction of the configured
+    sizes the set was rendered at; 1 where it does not say."""
+    try:
+        with open(os.path.join(result_dir, "experiment.json")) as f:
+            return float(json.load(f).get("resolution_scale", 1.0))
+    except (OSError, ValueError, TypeError, AttributeError):
+        return 1.0
+
+
 def device_line(result_dir, rows=()):
-    """The line printed under a table: the device the times were measured on, or the devices, marked mixed."""
+    """The line printed under a table: the device the times were measured on, or the devices, marked
+    mixed; and the fraction of the configured size the set was rendered at, where not all of it."""
     ds = devices(result_dir, rows)
     if len(ds) == 1:
-        return "Measured on: " + device_summary(ds[0])
-    return "Measured on MIXED devices (times do not compare across them): " + "; ".join(
-        "(%d) %s" % (i + 1, device_summary(d)) for i, d in enumerate(ds))
+        line = "Measured on: " + device_summary(ds[0])
+    else:
+        line = "Measured on MIXED devices (times do not compare across them): " + "; ".join(
+            "(%d) %s" % (i + 1, device_summary(d)) for i, d in enumerate(ds))
+    scale = resolution_scale(result_dir)
+    if scale != 1.0:
+        line += "; rendered at %g of the configured size (hybridlab run --scale %g)" % (scale, scale)
+    return line
 
 
 def write_table(lines, out_path=None, device=None):

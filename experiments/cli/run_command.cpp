@@ -6,6 +6,7 @@
 #include "experiments/cli/commands.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/reference_cache.h"
+#include "experiments/runner/resolution_scale.h"
 
 namespace hybridlab::cli {
 
@@ -16,6 +17,7 @@ struct RunOptions {
     std::string out;
     std::string shard = "0/1";
     std::string cache;
+    std::string scale = "1";
     bool resume = false;
     bool allowMixedDevices = false;
     long maxRuns = -1;
@@ -53,6 +55,7 @@ void listRuns(const ExperimentConfig& config, const RunnerOptions& r) {
                 config.hash.substr(0, 12).c_str(), plan.runs.size());
     if (r.shardCount > 1) std::printf(", %zu in shard %d/%d (estimated cost %.3g)", plan.mine.size(), r.shardIndex, r.shardCount, plan.estimatedCost);
     std::printf("; references: %zu, %zu of them cached in %s\n", plan.references, plan.referencesCached, r.cacheDir.string().c_str());
+    if (config.resolutionScale != 1.0) std::printf("sizes at --scale %g of the configured ones\n", config.resolutionScale);
     std::size_t sceneWidth = 5, viewWidth = 4, techniqueWidth = 9;
     for (const auto& p : plan.mine) {
         sceneWidth = std::max(sceneWidth, config.scenes[p.run->scene].label.size());
@@ -73,7 +76,9 @@ void listRuns(const ExperimentConfig& config, const RunnerOptions& r) {
 }
 
 void run(const RunOptions& o) {
-    const ExperimentConfig config = loadExperimentConfig(o.config);
+    const double scale = parseResolutionScale(o.scale);  // before the config: a bad argument is named first
+    ExperimentConfig config = loadExperimentConfig(o.config);
+    scaleResolutions(config, scale);
     RunnerOptions r;
     std::tie(r.shardIndex, r.shardCount) = parseShard(o.shard);
     r.outDir = o.out.empty() ? std::filesystem::path("results") / config.name : std::filesystem::path(o.out);
@@ -91,7 +96,8 @@ void run(const RunOptions& o) {
                 config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
                 s.referenceCacheHits, r.cacheDir.string().c_str());
     if (s.complete) std::printf("results in %s (results.csv, results.json)\n", r.outDir.string().c_str());
-    else std::printf("stopped with runs left; `hybridlab run %s --out %s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str());
+    else std::printf("stopped with runs left; `hybridlab run %s --out %s%s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str(),
+                     scale == 1.0 ? "" : (" --scale " + o.scale).c_str());
 }
 
 // Each shard's estimated cost beside the time its runs took, both also as shares of the whole: how
@@ -126,6 +132,10 @@ void addRunCommand(CLI::App& app) {
     cmd->add_flag("--allow-mixed-devices", o->allowMixedDevices,
                   "With --resume: continue a result set measured on another device; each run keeps its device");
     cmd->add_option("--shard", o->shard, "Run only the i-th of n parts of the run list (0 <= i < n), balanced by estimated cost")->capture_default_str();
+    cmd->add_option("--scale", o->scale,
+                    "Render every configured resolution times this fraction (0 < S <= 1; even pixels, at least 16), "
+                    "budgets unscaled; recorded in experiment.json, and --resume keeps it")
+        ->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
     cmd->add_flag("--quiet", o->quiet, "No progress output");

@@ -204,12 +204,13 @@ TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& label
         for (const auto& set : s.parameterSets) checkParameters(*params, s.name, set);
         params->rejectUnknownKeys();
     } else if (!sets.empty()) {
+        // Each set may sweep too (a list value), e.g. one set on both ray backends.
         for (const auto& st : sets) {
-            ParameterList set;
-            for (const auto& key : st.keys()) set.emplace_back(key, toParamValue(st, key, st.node(key)));
-            checkParameters(st, s.name, set);
+            for (auto& set : expandSweep(st)) {
+                checkParameters(st, s.name, set);
+                s.parameterSets.push_back(std::move(set));
+            }
             st.rejectUnknownKeys();
-            s.parameterSets.push_back(std::move(set));
         }
     } else {
         s.parameterSets.emplace_back();

@@ -43,6 +43,7 @@ struct ExperimentConfig {
     std::string hash;          // of the config file's bytes
     int warmupFrames = 1;
     int repeats = 3;
+    double resolutionScale = 1.0;  // `run --scale`: resolutions below are already scaled (resolution_scale.h)
     MetricSelection metrics;       // `metrics`: what each image is scored with
     bool temporalError = true;     // `metrics` holds "temporal": the error between path frames
     bool keepErrorMaps = true;     // `keep` holds "error_maps" (and a metric has a map)

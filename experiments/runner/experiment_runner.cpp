@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <iterator>
@@ -69,7 +70,16 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, const
             {"shard", {{"index", o.shardIndex}, {"count", o.shardCount}, {"partition", kPartition}, {"runs", runsInShard}, {"estimated_cost", estimatedCost}}},
             {"metrics", metricNames(config)},
             {"program", programVersionHash()},
+            {"resolution_scale", config.resolutionScale},
             {"device", deviceRecord()}};
+}
+
+// 0.25, 1: as few digits as give the value back, so that the message's --scale resumes the set.
+std::string formatScale(double scale) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", scale);
+    if (std::strtod(text, nullptr) != scale) std::snprintf(text, sizeof text, "%.17g", scale);
+    return text;
 }
 
 json readJson(const fs::path& p) {
@@ -141,6 +151,12 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
+            if (const double recorded = m.value("resolution_scale", 1.0); recorded != config.resolutionScale) {
+                throw InputError(o.outDir.string() + ": was rendered at " + formatScale(recorded) + " of the configured size (--scale " +
+                                 formatScale(recorded) + "), not at " + formatScale(config.resolutionScale) + " (--scale " +
+                                 formatScale(config.resolutionScale) + "); resume it with --scale " + formatScale(recorded) +
+                                 ", or choose another --out");
+            }
             if (m.at("shard").at("index") != o.shardIndex || m.at("shard").at("count") != o.shardCount || partitionOf(m) != kPartition) {
                 throw InputError(o.outDir.string() + ": holds shard " + m.at("shard").at("index").dump() + "/" + m.at("shard").at("count").dump() +
                                  " of this experiment (runs split by " + partitionOf(m) + "), not " + std::to_string(o.shardIndex) + "/" +
@@ -505,6 +521,10 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
         if (i < 0 || i >= count) throw InputError("merge: " + d.string() + ": shard index " + std::to_string(i) + " outside 0.." + std::to_string(count - 1));
         if (given[i] >= 0) throw InputError("merge: " + d.string() + " and " + shardDirs[given[i]].string() + " are both shard " + shardName(m));
         given[i] = static_cast<int>(k);
+        if (const double a = first.value("resolution_scale", 1.0), b = m.value("resolution_scale", 1.0); a != b) {
+            throw InputError("merge: " + d.string() + " was rendered at " + formatScale(b) + " of the configured size (--scale " + formatScale(b) +
+                             "), " + firstDir.string() + " at " + formatScale(a) + " (--scale " + formatScale(a) + ")");
+        }
         if (!allowMixedDevices && !sameDevice(m.value("device", json()), first.value("device", json()))) {
             throw InputError("merge: " + d.string() + " was measured on another device than " + firstDir.string() + ":\n  " +
                              firstDir.string() + ": " + deviceSummary(first.value("device", json())) + "\n  " + d.string() + ": " +
