@@ -11,7 +11,7 @@ namespace hybridlab {
 
 const std::vector<TechniqueInfo>& registeredTechniques() {
     static const std::vector<TechniqueInfo> registry = {
-        WhittedTechnique::info(),
+        whittedTechniqueInfo(),
         RasterTechnique::info(),
         rtOnlyTechniqueInfo(),
         HeuristicRtTechnique::info(),

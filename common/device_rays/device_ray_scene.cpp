@@ -6,6 +6,7 @@
 
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
+#include "common/raster/light_record.h"
 #include "common/raster/vulkan_error.h"
 #include "common/raytrace/shading.h"
 #include "common/scene/transform.h"
@@ -32,13 +33,6 @@ DeviceMaterial deviceMaterial(const Material& m) {
     d.tilingOffset = glm::vec4(m.textureTiling, m.textureOffset);
     d.textures = glm::ivec4(m.diffuseTexture, m.normalTexture, 0, 0);
     return d;
-}
-
-DeviceLight deviceLight(const Light& l) {
-    const SpotCone cone = spotCone(l);
-    const float type = l.type == Light::Type::Directional ? 0.0f : l.type == Light::Type::Point ? 1.0f : 2.0f;
-    return {glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
-            glm::ivec4(l.castsShadows ? 0 : -1, 0, 0, 0)};
 }
 
 DeviceVertex deviceVertex(const glm::vec3& p, const glm::vec3& n, glm::vec2 uv, glm::vec4 tangent) {
@@ -164,9 +158,10 @@ void DeviceRayScene::uploadSceneBuffers(const PackedGeometry& packed) {
     std::vector<DeviceMaterial> materials;
     for (const Material& m : scene_.materials) materials.push_back(deviceMaterial(m));
     materials_ = GpuBuffer::withData(dev, materials.data(), materials.size() * sizeof(DeviceMaterial), storage);
-    std::vector<DeviceLight> lights;
-    for (const Light& l : scene_.lights) lights.push_back(deviceLight(l));
-    lights_ = GpuBuffer::withData(dev, lights.data(), lights.size() * sizeof(DeviceLight), storage);
+    // No shadow maps here: shadow.x says only whether the light casts shadows (0) or not (-1).
+    std::vector<LightData> lights;
+    for (const Light& l : scene_.lights) lights.push_back(lightRecord(l, l.castsShadows ? 0 : -1, 0));
+    lights_ = GpuBuffer::withData(dev, lights.data(), lights.size() * sizeof(LightData), storage);
     instances_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(DeviceInstance), storage, Memory::HostVisible);
     instanceDescriptors_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(VkAccelerationStructureInstanceKHR), kBuildInput, Memory::HostVisible);
 }

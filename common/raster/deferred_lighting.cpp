@@ -5,6 +5,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include "common/raster/light_record.h"
 #include "common/raster/readback.h"
 #include "common/raster/shaders/raster_records.h"
 #include "common/raster/vulkan_error.h"
@@ -40,15 +41,7 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
     uniforms_ = GpuBuffer(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     const auto& lights = scene.scene().lights;
     std::vector<LightData> data;
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        const Light& l = lights[i];
-        const SpotCone cone = spotCone(l);  // the same cosines the ray tracer uses
-        const auto type = static_cast<float>(l.type == Light::Type::Directional ? raster_records::kLightDirectional
-                                             : l.type == Light::Type::Point     ? raster_records::kLightPoint
-                                                                                : raster_records::kLightSpot);
-        data.push_back({glm::vec4(l.color * l.intensity, type), glm::vec4(l.position, cone.cosInner), glm::vec4(l.direction, cone.cosOuter),
-                        glm::ivec4(shadows.firstLayer(i), shadows.layerCount(i), 0, 0)});
-    }
+    for (std::size_t i = 0; i < lights.size(); ++i) data.push_back(lightRecord(lights[i], shadows.firstLayer(i), shadows.layerCount(i)));
     if (data.empty()) data.emplace_back();  // the array has at least one element
     lights_ = GpuBuffer::withData(device, data.data(), data.size() * sizeof(LightData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }

@@ -7,7 +7,7 @@
 #include "techniques/heuristic_rt/heuristic.h"
 #include "techniques/heuristic_rt/object_observations.h"
 #include "techniques/heuristic_rt/selection_graph.h"
-#include "techniques/rt_only/rt_only_technique.h"
+#include "techniques/make_technique_info.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
@@ -17,7 +17,6 @@
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
 #include "techniques/stage_clock.h"
-#include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
 
@@ -31,69 +30,74 @@ TracedEffects tracedEffects(std::uint8_t bits) {
             (bits & effectBit(Effect::Refraction)) != 0};
 }
 
-// The tracer's parameters, declared as `whitted` declares them, with rt_only's cut-off by default.
-std::vector<ParamSpec> tracerParameterSpecs() {
-    std::vector<ParamSpec> specs;
-    for (ParamSpec& s : WhittedTechnique::parameterSpecs(kRtOnlyImportanceCutoff))
-        if (s.name != "supersample") specs.push_back(std::move(s));
-    return specs;
-}
-
 }  // namespace
 
 TechniqueInfo HeuristicRtTechnique::info() {
-    std::vector<ParamSpec> specs = {
-        ParamSpec::real("budget", 0.0, 0.0, 1e18, "T: the cost budget of the selection (eq. 2 units, about rays); 0: unlimited"),
-        ParamSpec::real("target_ms", 0.0, 0.0, 1e6,
-                        "frame-time target: T is set each frame from a learned cost-to-time rate (0: use `budget`)"),
-        ParamSpec::real("importance", 0.0, 0.0, 1e18, "I: relevance added to objects selected last frame (eq. 3)"),
-        ParamSpec::boolean("heuristic", true, "false: every visible object selected (the paper's \"no heuristic\" run)"),
-        ParamSpec::boolean("per_effect", false, "select shadows, reflections and refractions separately per object"),
-        ParamSpec::choice("visible_pixels", "ids", {"ids", "queries"},
-                          "A from the object-id target, or from precise occlusion queries (as the paper)"),
-        ParamSpec::choice("raster_shadows", "map", {"map", "off", "rays"},
-                          "shadows of pixels not ray traced: shadow maps, none (as the paper's P-buffer), or shadow rays "
-                          "(lighting = \"cpu\", where there are no shadow maps)"),
-        ParamSpec::choice("lighting", "raster", {"raster", "cpu"},
-                          "the P-buffer: the rasterizer's deferred lighting pass, or the same shading model on the CPU from the "
-                          "ray-cast G-buffer (gbuffer = \"rays\"): the whole frame on Embree, no rasterizer"),
-        ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"),
-        GBufferSource::parameterSpec(),
-        raysParameterSpec(),
-    };
-    for (ParamSpec& s : tracerParameterSpecs()) specs.push_back(std::move(s));
-    return {"heuristic_rt",
-            "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, secondary rays "
-            "(Embree or the Vulkan device) for the selected objects' pixels, blending",
-            std::move(specs), [](const ParameterSet& p) { return std::make_unique<HeuristicRtTechnique>(p); },
-            /*relativeCost=*/0.4};  // 0.30-0.40 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
+    using P = HeuristicRtParameters;
+    ParameterBinder<P> parameters;
+    parameters.bind(&P::budget, ParamSpec::real("budget", 0.0, 0.0, 1e18, "T: the cost budget of the selection (eq. 2 units, about rays); 0: unlimited"));
+    parameters.bind(&P::targetMilliseconds, ParamSpec::real("target_ms", 0.0, 0.0, 1e6,
+                                                            "frame-time target: T is set each frame from a learned cost-to-time rate (0: use `budget`)"));
+    parameters.bind(&P::previousSelectionImportance,
+                    ParamSpec::real("importance", 0.0, 0.0, 1e18, "I: relevance added to objects selected last frame (eq. 3)"));
+    parameters.bind(&P::heuristic, ParamSpec::boolean("heuristic", true, "false: every visible object selected (the paper's \"no heuristic\" run)"));
+    parameters.bind(&P::perEffect, ParamSpec::boolean("per_effect", false, "select shadows, reflections and refractions separately per object"));
+    parameters.bind(&P::visiblePixelsByQueries,
+                    ParamSpec::choice("visible_pixels", "ids", {"ids", "queries"},
+                                      "A from the object-id target, or from precise occlusion queries (as the paper)"),
+                    {false, true});
+    parameters.bind(&P::unselectedShadows,
+                    ParamSpec::choice("raster_shadows", "map", {"map", "off", "rays"},
+                                      "shadows of pixels not ray traced: shadow maps, none (as the paper's P-buffer), or shadow rays "
+                                      "(lighting = \"cpu\", where there are no shadow maps)"),
+                    {P::UnselectedShadows::Map, P::UnselectedShadows::Off, P::UnselectedShadows::Rays});
+    parameters.bind(&P::cpuLighting,
+                    ParamSpec::choice("lighting", "raster", {"raster", "cpu"},
+                                      "the P-buffer: the rasterizer's deferred lighting pass, or the same shading model on the CPU from the "
+                                      "ray-cast G-buffer (gbuffer = \"rays\"): the whole frame on Embree, no rasterizer"),
+                    {false, true});
+    parameters.bind(&P::debugImages, ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"));
+    parameters.bind(&P::gbuffer, gbufferSourceParameters());
+    parameters.bind(&P::rays, rayBackendParameters());
+    // The tracer recurses and shades as the reference, cut off at rt_only's importance.
+    parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
+    parameters.bind(&P::shading, tracedShadingParameters());
+    return makeTechniqueInfo(
+        "heuristic_rt",
+        "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, secondary rays "
+        "(Embree or the Vulkan device) for the selected objects' pixels, blending",
+        std::move(parameters), [](const P& p) { return std::make_unique<HeuristicRtTechnique>(p); },
+        /*relativeCost=*/0.4);  // 0.30-0.40 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
 }
 
-HeuristicRtTechnique::HeuristicRtTechnique(const ParameterSet& p)
-    : tracer_(WhittedTechnique::tracerSettings(p)),
-      budget_(p.getFloat("budget")),
-      previousSelectionImportance_(p.getFloat("importance")),
-      heuristic_(p.getBool("heuristic")),
-      perEffect_(p.getBool("per_effect")),
-      visiblePixelsByQueries_(p.getChoice("visible_pixels") == "queries"),
-      rasterShadows_(p.getChoice("raster_shadows") == "map"),
-      unselectedShadowRays_(p.getChoice("raster_shadows") == "rays"),
-      cpuLighting_(p.getChoice("lighting") == "cpu"),
-      debugImages_(p.getBool("debug_images")),
-      onDevice_(tracesOnDevice(p)),
-      gbuffer_(p) {
+HeuristicRtTechnique::HeuristicRtTechnique(const HeuristicRtParameters& p)
+    : tracer_(p.recursion.settings()),
+      budget_(p.budget),
+      previousSelectionImportance_(p.previousSelectionImportance),
+      heuristic_(p.heuristic),
+      perEffect_(p.perEffect),
+      visiblePixelsByQueries_(p.visiblePixelsByQueries),
+      rasterShadows_(p.unselectedShadows == HeuristicRtParameters::UnselectedShadows::Map),
+      unselectedShadowRays_(p.unselectedShadows == HeuristicRtParameters::UnselectedShadows::Rays),
+      cpuLighting_(p.cpuLighting),
+      debugImages_(p.debugImages),
+      onDevice_(p.rays.onDevice),
+      gbuffer_(p.gbuffer) {
+    p.shading.applyTo(tracer_);
     if (gbuffer_.rays() && visiblePixelsByQueries_)
         throw InputError("heuristic_rt: visible_pixels = \"queries\" needs the rasterizer's G-buffer (gbuffer = \"raster\"); "
                          "with gbuffer = \"rays\" the visible pixels come from the object ids");
     if (cpuLighting_ && !gbuffer_.rays())
         throw InputError("heuristic_rt: lighting = \"cpu\" lights the ray-cast G-buffer (gbuffer = \"rays\"); "
                          "the rasterizer's G-buffer is lit where it lies (lighting = \"raster\")");
+    if (cpuLighting_ && onDevice_)
+        throw InputError("heuristic_rt: lighting = \"cpu\" lights Embree's ray-cast G-buffer on the host; it needs rays = \"embree\"");
     if (cpuLighting_ && rasterShadows_)
         throw InputError("heuristic_rt: lighting = \"cpu\" draws no shadow maps; raster_shadows = \"rays\" (shadow rays) or \"off\"");
     if (!cpuLighting_ && unselectedShadowRays_)
         throw InputError("heuristic_rt: raster_shadows = \"rays\" needs lighting = \"cpu\"; the rasterizer's lighting pass "
                          "takes \"map\" or \"off\"");
-    if (p.getFloat("target_ms") > 0.0) frameTimeBudget_.emplace(p.getFloat("target_ms"));
+    if (p.targetMilliseconds > 0.0) frameTimeBudget_.emplace(p.targetMilliseconds);
 }
 
 void HeuristicRtTechnique::prepare(SceneContext& context) {

@@ -35,15 +35,35 @@
 #include "techniques/heuristic_rt/frame_time_budget.h"
 #include "techniques/heuristic_rt/object_pixel_count_pass.h"
 #include "techniques/shared/gbuffer_source.h"
+#include "techniques/shared/ray_backend_parameters.h"
+#include "techniques/shared/recursion_parameters.h"
+#include "techniques/shared/traced_shading_parameters.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
+
+struct HeuristicRtParameters {
+    double budget{};                       // T; 0: unlimited
+    double targetMilliseconds{};           // 0: `budget`
+    double previousSelectionImportance{};  // I
+    bool heuristic{};
+    bool perEffect{};
+    bool visiblePixelsByQueries{};
+    // raster_shadows: the shadows of pixels not ray traced.
+    enum class UnselectedShadows { Map, Off, Rays } unselectedShadows{};
+    bool cpuLighting{};  // lighting = "cpu"
+    bool debugImages{};
+    GBufferSourceParameters gbuffer;
+    RayBackendParameters rays;
+    RecursionParameters recursion;
+    TracedShadingParameters shading;
+};
 
 class HeuristicRtTechnique : public Technique {
 public:
     static TechniqueInfo info();
 
-    explicit HeuristicRtTechnique(const ParameterSet& params);
+    explicit HeuristicRtTechnique(const HeuristicRtParameters& params);
     void prepare(SceneContext& context) override;
     FrameResult render(SceneContext& context, const FrameRequest& frame) override;
 

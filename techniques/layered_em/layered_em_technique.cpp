@@ -6,9 +6,9 @@
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
+#include "techniques/make_technique_info.h"
 #include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
-#include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
@@ -21,64 +21,76 @@ struct LayeredEmTechnique::System {
 };
 
 TechniqueInfo LayeredEmTechnique::info() {
+    using P = LayeredEmParameters;
     const EmBakeSettings d;
-    TechniqueInfo info{"layered_em",
-            "Hakura & Snyder 2001: layered inferred environment maps per lens system (baked), per-frame vertex ray tracing with "
-            "adaptive tessellation, lens drawn with the EMs on the GPU",
-            {
-                ParamSpec::integer("layers", d.layers, 0, kMaxDrawnLayers, "EM layers per lens system (0: automatic, the smallest under the distortion threshold)"),
-                ParamSpec::boolean("single_layer", false, "one EM layer per lens system (the classic single environment map; overrides layers)"),
-                ParamSpec::real("tau", d.tessellation.tauPixels, 0.5, 1000.0,
-                                "per-frame adaptive tessellation stops when projected edges are shorter (pixels, §5; the bake keeps its own)"),
-                ParamSpec::integer("em_size", d.inference.size, 2, 1024, "cube-map texels a face side"),
-                ParamSpec::real("viewpoint_step", d.viewpoints.stepDegrees, 0.5, 360.0, "degrees between viewpoint samples on the circle"),
-                ParamSpec::integer("viewpoints", 0, 0, 100000, "keep only the first n viewpoint samples (0: the whole circle)"),
-                ParamSpec::integer("bake_width", d.width, 8, 4096, "lens image width of the bake (pixels)"),
-                ParamSpec::integer("bake_height", d.height, 8, 4096, "lens image height of the bake (pixels)"),
-                ParamSpec::integer("supersampling", d.records.supersampling, 1, 8, "n x n incoming rays a bake pixel"),
-                ParamSpec::real("confidence_angle", d.records.confidenceAngleDegrees, 0.0, 180.0,
-                                "theta_c of the bake's confidence image (degrees, §4.3; 0: the paper's 5 at 480 lines, scaled to the bake's height)"),
-                ParamSpec::integer("neighbour_viewpoints", d.neighbourViewpoints, 0, 16,
-                                   "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"),
-                ParamSpec::boolean("disocclusion_prevention", true, "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"),
-                ParamSpec::choice("direct_images", "auto", {"auto", "viewpoint", "origin"},
-                                  "where the bake's direct images of the environment look from (§4.3): auto, the EM origin for a reflective "
-                                  "lens system and the viewpoint for a refractive one, as the paper advises"),
-                ParamSpec::boolean("origin_images", d.originImages,
-                                   "direct images also from the EM origin (six cube faces) for the texels no lens image of a sample's window reads: what the origin sees there, not empty"),
-                ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"),
-                ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"),
-            },
-            [](const ParameterSet& p) { return std::make_unique<LayeredEmTechnique>(p); },
-            /*relativeCost=*/0.3};  // a frame: vertex rays and one raster pass (the bake is per scene and cached)
-    for (ParamSpec& s : shadowMapParameterSpecs()) info.parameters.push_back(std::move(s));
-    return info;
+    ParameterBinder<P> parameters;
+    parameters.bind(&P::layers, ParamSpec::integer("layers", d.layers, 0, kMaxDrawnLayers,
+                                                   "EM layers per lens system (0: automatic, the smallest under the distortion threshold)"));
+    parameters.bind(&P::singleLayer,
+                    ParamSpec::boolean("single_layer", false, "one EM layer per lens system (the classic single environment map; overrides layers)"));
+    parameters.bind(&P::tau, ParamSpec::real("tau", d.tessellation.tauPixels, 0.5, 1000.0,
+                                             "per-frame adaptive tessellation stops when projected edges are shorter (pixels, §5; the bake keeps its own)"));
+    parameters.bind(&P::emSize, ParamSpec::integer("em_size", d.inference.size, 2, 1024, "cube-map texels a face side"));
+    parameters.bind(&P::viewpointStep,
+                    ParamSpec::real("viewpoint_step", d.viewpoints.stepDegrees, 0.5, 360.0, "degrees between viewpoint samples on the circle"));
+    parameters.bind(&P::viewpoints, ParamSpec::integer("viewpoints", 0, 0, 100000, "keep only the first n viewpoint samples (0: the whole circle)"));
+    parameters.bind(&P::bakeWidth, ParamSpec::integer("bake_width", d.width, 8, 4096, "lens image width of the bake (pixels)"));
+    parameters.bind(&P::bakeHeight, ParamSpec::integer("bake_height", d.height, 8, 4096, "lens image height of the bake (pixels)"));
+    parameters.bind(&P::supersampling, ParamSpec::integer("supersampling", d.records.supersampling, 1, 8, "n x n incoming rays a bake pixel"));
+    parameters.bind(&P::confidenceAngle,
+                    ParamSpec::real("confidence_angle", d.records.confidenceAngleDegrees, 0.0, 180.0,
+                                    "theta_c of the bake's confidence image (degrees, §4.3; 0: the paper's 5 at 480 lines, scaled to the bake's height)"));
+    parameters.bind(&P::neighbourViewpoints,
+                    ParamSpec::integer("neighbour_viewpoints", d.neighbourViewpoints, 0, 16,
+                                       "viewpoint samples on each side whose images each sample's EMs also match (§4.3)"));
+    parameters.bind(&P::disocclusionPrevention,
+                    ParamSpec::boolean("disocclusion_prevention", true,
+                                       "ray continuation, neighbouring viewpoints and direct images in the bake (§4.1, §4.3)"));
+    parameters.bind(&P::directImages,
+                    ParamSpec::choice("direct_images", "auto", {"auto", "viewpoint", "origin"},
+                                      "where the bake's direct images of the environment look from (§4.3): auto, the EM origin for a reflective "
+                                      "lens system and the viewpoint for a refractive one, as the paper advises"),
+                    {DirectImageSource::Automatic, DirectImageSource::Viewpoint, DirectImageSource::Origin});
+    parameters.bind(&P::originImages,
+                    ParamSpec::boolean("origin_images", d.originImages,
+                                       "direct images also from the EM origin (six cube faces) for the texels no lens image of a sample's "
+                                       "window reads: what the origin sees there, not empty"));
+    parameters.bind(&P::viewpointBlending,
+                    ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"));
+    parameters.bind(&P::emCache, ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"));
+    parameters.bind(&P::shadowMaps, shadowMapParameters());
+    return makeTechniqueInfo(
+        "layered_em",
+        "Hakura & Snyder 2001: layered inferred environment maps per lens system (baked), per-frame vertex ray tracing with "
+        "adaptive tessellation, lens drawn with the EMs on the GPU",
+        std::move(parameters), [](const P& p) { return std::make_unique<LayeredEmTechnique>(p); },
+        /*relativeCost=*/0.3);  // a frame: vertex rays and one raster pass (the bake is per scene and cached)
 }
 
-EmBakeSettings LayeredEmTechnique::bakeSettings(const ParameterSet& p) {
+EmBakeSettings LayeredEmTechnique::bakeSettings(const LayeredEmParameters& p) {
     EmBakeSettings s;
-    s.layers = p.getBool("single_layer") ? 1 : static_cast<int>(p.getInt("layers"));
+    s.layers = p.singleLayer ? 1 : p.layers;
     s.maxLayers = std::min(s.maxLayers, kMaxDrawnLayers);
-    s.inference.size = static_cast<int>(p.getInt("em_size"));
-    s.viewpoints.stepDegrees = static_cast<float>(p.getFloat("viewpoint_step"));
-    s.viewpoints.maxSamples = static_cast<int>(p.getInt("viewpoints"));
-    s.width = static_cast<int>(p.getInt("bake_width"));
-    s.height = static_cast<int>(p.getInt("bake_height"));
-    s.records.supersampling = static_cast<int>(p.getInt("supersampling"));
-    s.records.confidenceAngleDegrees = static_cast<float>(p.getFloat("confidence_angle"));
-    s.neighbourViewpoints = static_cast<int>(p.getInt("neighbour_viewpoints"));
-    s.originImages = p.getBool("origin_images");
-    s.directImageSource = directImageSourceNamed(p.getChoice("direct_images"));
-    if (!p.getBool("disocclusion_prevention")) s.disablePrevention();
+    s.inference.size = p.emSize;
+    s.viewpoints.stepDegrees = p.viewpointStep;
+    s.viewpoints.maxSamples = p.viewpoints;
+    s.width = p.bakeWidth;
+    s.height = p.bakeHeight;
+    s.records.supersampling = p.supersampling;
+    s.records.confidenceAngleDegrees = p.confidenceAngle;
+    s.neighbourViewpoints = p.neighbourViewpoints;
+    s.originImages = p.originImages;
+    s.directImageSource = p.directImages;
+    if (!p.disocclusionPrevention) s.disablePrevention();
     return s;
 }
 
-LayeredEmTechnique::LayeredEmTechnique(const ParameterSet& p) : bake_(bakeSettings(p)) {
+LayeredEmTechnique::LayeredEmTechnique(const LayeredEmParameters& p) : bake_(bakeSettings(p)) {
     frameTessellation_ = bake_.tessellation;
-    frameTessellation_.tauPixels = static_cast<float>(p.getFloat("tau"));
-    blendViewpoints_ = p.getBool("viewpoint_blending");
-    useCache_ = p.getBool("em_cache");
-    shadowSettings_ = shadowMapSettings(p);
+    frameTessellation_.tauPixels = p.tau;
+    blendViewpoints_ = p.viewpointBlending;
+    useCache_ = p.emCache;
+    shadowSettings_ = p.shadowMaps.settings();
 }
 
 LayeredEmTechnique::~LayeredEmTechnique() = default;

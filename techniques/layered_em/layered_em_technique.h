@@ -13,17 +13,37 @@
 #include "techniques/layered_em/em_bake.h"
 #include "techniques/layered_em/layered_em_pass.h"
 #include "techniques/shared/raster_warm_up.h"
+#include "techniques/shared/shadow_parameters.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
+
+struct LayeredEmParameters {
+    int layers{};
+    bool singleLayer{};
+    float tau{};  // per frame
+    int emSize{};
+    float viewpointStep{};  // degrees
+    int viewpoints{};
+    int bakeWidth{}, bakeHeight{};
+    int supersampling{};
+    float confidenceAngle{};  // degrees
+    int neighbourViewpoints{};
+    bool disocclusionPrevention{};
+    DirectImageSource directImages{};
+    bool originImages{};
+    bool viewpointBlending{};
+    bool emCache{};
+    ShadowMapParameters shadowMaps;
+};
 
 class LayeredEmTechnique : public Technique {
 public:
     static TechniqueInfo info();
     // The bake settings the parameters give.
-    static EmBakeSettings bakeSettings(const ParameterSet& params);
+    static EmBakeSettings bakeSettings(const LayeredEmParameters& params);
 
-    explicit LayeredEmTechnique(const ParameterSet& params);
+    explicit LayeredEmTechnique(const LayeredEmParameters& params);
     ~LayeredEmTechnique() override;
 
     void prepare(SceneContext& context) override;

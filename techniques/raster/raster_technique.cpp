@@ -1,5 +1,7 @@
 #include "techniques/raster/raster_technique.h"
 
+#include "techniques/make_technique_info.h"
+#include "techniques/shared/blend_parameter.h"
 #include "techniques/shared/raster_stages.h"
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/shadow_parameters.h"
@@ -7,29 +9,26 @@
 namespace hybridlab {
 
 TechniqueInfo RasterTechnique::info() {
-    TechniqueInfo info{"raster",
-            "Rasterization only (headless Vulkan): G-buffer, deferred Blinn-Phong lighting, shadow maps, sky environment mapping",
-            {
-                ParamSpec::choice("shadows", "map", {"map", "off"}, "shadow maps with PCF, or every light unshadowed"),
-                ParamSpec::boolean("redraw_shadow_maps", false,
-                                   "redraw shadow maps every frame (false: only when something moved or the settings changed)"),
-                ParamSpec::choice("blend", "design", {"design", "walewski2019"},
-                                  "composition rule: design = o_m*M + (1-o_m)*(o_r*R + (1-o_r)*C) (o_m reflectivity or Fresnel, "
-                                  "o_r 1-opacity), or walewski2019 = that averaged with the other order (Walewski 2019 eqs. (5)-(6))"),
-            },
-            [](const ParameterSet& p) { return std::make_unique<RasterTechnique>(p); },
-            /*relativeCost=*/0.2};  // 0.06-0.33 of the reference at 320x180 on lavapipe (whitted-classic, cornell-mirror-glass)
-    const std::vector<ParamSpec> shadowMaps = shadowMapParameterSpecs();
-    info.parameters.insert(info.parameters.begin() + 1, shadowMaps.begin(), shadowMaps.end());  // after "shadows"
-    return info;
+    ParameterBinder<RasterParameters> parameters;
+    parameters.bind(&RasterParameters::shadows,
+                    ParamSpec::choice("shadows", "map", {"map", "off"}, "shadow maps with PCF, or every light unshadowed"), {true, false});
+    parameters.bind(&RasterParameters::shadowMaps, shadowMapParameters());
+    parameters.bind(&RasterParameters::redrawShadowMaps,
+                    ParamSpec::boolean("redraw_shadow_maps", false,
+                                       "redraw shadow maps every frame (false: only when something moved or the settings changed)"));
+    parameters.bind(&RasterParameters::blend, blendParameterSpec(), blendParameterValues());
+    return makeTechniqueInfo(
+        "raster", "Rasterization only (headless Vulkan): G-buffer, deferred Blinn-Phong lighting, shadow maps, sky environment mapping",
+        std::move(parameters), [](const RasterParameters& p) { return std::make_unique<RasterTechnique>(p); },
+        /*relativeCost=*/0.2);  // 0.06-0.33 of the reference at 320x180 on lavapipe (whitted-classic, cornell-mirror-glass)
 }
 
-RasterTechnique::RasterTechnique(const ParameterSet& p) {
-    lighting_.shadows = p.getChoice("shadows") == "map";
+RasterTechnique::RasterTechnique(const RasterParameters& p) {
+    lighting_.shadows = p.shadows;
     lighting_.environmentMapping = true;
-    lighting_.walewskiBlend = p.getChoice("blend") == "walewski2019";
-    shadows_ = shadowMapSettings(p);
-    redrawShadowMaps_ = p.getBool("redraw_shadow_maps");
+    lighting_.walewskiBlend = p.blend == BlendRule::Walewski2019;
+    shadows_ = p.shadowMaps.settings();
+    redrawShadowMaps_ = p.redrawShadowMaps;
 }
 
 RasterRequest RasterTechnique::request(const FrameRequest& frame) const {

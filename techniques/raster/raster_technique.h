@@ -5,15 +5,24 @@
 // mapping, Blinn & Newell 1976) and compose by the shading model, so the baseline is the usual
 // raster answer rather than black.
 #include "common/raster/rasterizer.h"
+#include "common/raytrace/shading.h"
 #include "techniques/shared/raster_warm_up.h"
+#include "techniques/shared/shadow_parameters.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
 
+struct RasterParameters {
+    bool shadows{};  // shadows = "map"
+    ShadowMapParameters shadowMaps;
+    bool redrawShadowMaps{};
+    BlendRule blend{};
+};
+
 class RasterTechnique : public Technique {
 public:
     static TechniqueInfo info();
-    explicit RasterTechnique(const ParameterSet& params);
+    explicit RasterTechnique(const RasterParameters& params);
 
     // Uploads the scene and renders one small frame: lavapipe compiles shaders at their first draw,
     // which would otherwise land in the first frame's times. Static shadow maps are drawn here too.

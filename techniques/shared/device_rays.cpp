@@ -8,13 +8,6 @@
 
 namespace hybridlab {
 
-ParamSpec raysParameterSpec() {
-    return ParamSpec::choice("rays", "embree", {"embree", "vulkan"},
-                             "where rays are traced: Embree on the CPU, or the Vulkan device's ray-tracing pipeline");
-}
-
-bool tracesOnDevice(const ParameterSet& params) { return params.values().count("rays") && params.getChoice("rays") == "vulkan"; }
-
 std::unique_ptr<DeviceWhittedTracer> prepareDeviceRays(SceneContext& context) {
     try {
         return std::make_unique<DeviceWhittedTracer>(context.deviceRayScene(0.0));

@@ -1,6 +1,6 @@
 #pragma once
-// Where a technique's rays run: `rays = "embree"` (the CPU, RayScene) or `rays = "vulkan"` (the
-// ray-tracing Vulkan device, DeviceRayScene), declared once for every technique that traces.
+// The rays of a technique with `rays = "vulkan"` (ray_backend_parameters.h): the ray-tracing Vulkan
+// device's scene and tracers, shared by every technique that traces there.
 #include <memory>
 
 #include "common/device_rays/device_gbuffer_tracer.h"
@@ -9,10 +9,6 @@
 #include "techniques/technique.h"
 
 namespace hybridlab {
-
-ParamSpec raysParameterSpec();
-// True for rays = "vulkan" (false where the technique does not declare `rays`).
-bool tracesOnDevice(const ParameterSet& params);
 
 // Builds the device's ray scene and the Whitted pipeline in `prepare`. A device without ray
 // tracing (a missing extension, say) is bad input for rays = "vulkan": InputError naming the

@@ -6,13 +6,15 @@
 
 namespace hybridlab {
 
-ParamSpec GBufferSource::parameterSpec() {
-    return ParamSpec::choice("gbuffer", "raster", {"raster", "rays"},
+ParameterBinder<GBufferSourceParameters> gbufferSourceParameters() {
+    ParameterBinder<GBufferSourceParameters> b;
+    b.bind(&GBufferSourceParameters::rays,
+           ParamSpec::choice("gbuffer", "raster", {"raster", "rays"},
                              "primary visibility: the rasterizer's G-buffer pass (the papers), or primary rays on the ray backend "
-                             "(`rays`) into the same targets, which the raster passes read (lighting, SSR)");
+                             "(`rays`) into the same targets, which the raster passes read (lighting, SSR)"),
+           {false, true});
+    return b;
 }
-
-GBufferSource::GBufferSource(const ParameterSet& p) : rays_(p.getChoice("gbuffer") == "rays") {}
 
 const GBuffer& GBufferSource::render(Rasterizer& rasterizer, const RayScene* rays, RasterRequest request, RasterFrame& frame,
                                      RayStats& stats, StageClock* clock) {

@@ -11,15 +11,20 @@
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
-#include "techniques/parameters.h"
+#include "techniques/parameter_binder.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
 
+// The `gbuffer` parameter.
+struct GBufferSourceParameters {
+    bool rays{};  // gbuffer = "rays"
+};
+ParameterBinder<GBufferSourceParameters> gbufferSourceParameters();
+
 class GBufferSource {
 public:
-    static ParamSpec parameterSpec();
-    explicit GBufferSource(const ParameterSet& p);
+    explicit GBufferSource(const GBufferSourceParameters& p) : rays_(p.rays) {}
 
     bool rays() const { return rays_; }
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <optional>
 
+#include "techniques/make_technique_info.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
 #include "techniques/shared/pixel_loop.h"
@@ -11,10 +12,7 @@
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
-#include "techniques/shared/shadow_parameters.h"
 #include "techniques/stage_clock.h"
-#include "techniques/rt_only/rt_only_technique.h"
-#include "techniques/whitted/whitted_technique.h"
 
 namespace hybridlab {
 
@@ -58,60 +56,75 @@ bool reflectsOrRefracts(const glm::vec4& optical) { return optical.x > 0.0f || o
 }  // namespace
 
 TechniqueInfo SsrFallbackTechnique::info() {
+    using P = SsrFallbackParameters;
+    using Traversal = SsrSettings::Traversal;
     const SsrSettings d;
-    std::vector<ParamSpec> specs = {
-        ParamSpec::boolean("ssr", true, "run SSR (false: every reflective texel takes the fallback)"),
-        ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"),
-        ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
-                          "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
-        ParamSpec::choice("glass", "rt", {"rt", "ssr"},
-                          "refractive texels: ray trace everything, or take their Fresnel reflection from SSR as opaque "
-                          "mirrors do (with the same fallback) and ray trace only the refraction"),
-        ParamSpec::choice("recursion", "rt", {"rt", "single"},
-                          "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
-        ParamSpec::choice("traversal", d.traversal == SsrSettings::Traversal::HiZ ? "hiz" : "linear", {"linear", "hiz"},
-                          "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
-        ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"),
-        ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"),
-        ParamSpec::real("thickness", d.thickness, 0.0, 1e6, "SSR: depth of the slab behind every visible surface (view depth, world units)"),
-        ParamSpec::real("max_distance", d.maxDistance, 0.0, 1e9, "SSR: world length of a reflection ray"),
-        ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
-                        "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"),
-        ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"),
-        ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
-                        "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, which "
-                        "smears thin reflected detail)"),
-        GBufferSource::parameterSpec(),
-        raysParameterSpec(),
-    };
-    for (ParamSpec& s : shadowMapParameterSpecs()) specs.push_back(std::move(s));
+    ParameterBinder<P> parameters;
+    parameters.bind(&P::ssr, ParamSpec::boolean("ssr", true, "run SSR (false: every reflective texel takes the fallback)"));
+    parameters.bind(&P::rayTracedShadows,
+                    ParamSpec::choice("shadows", "map", {"map", "rt"}, "shadow composer: shadow maps, or ray-traced shadow rays"), {false, true});
+    parameters.bind(&P::fallback,
+                    ParamSpec::choice("fallback", "rt", {"rt", "sky", "none"},
+                                      "where SSR fails: ray tracing, the sky in the reflected direction, or no reflection (HDRP's chain)"),
+                    {Fallback::RayTraced, Fallback::Sky, Fallback::None});
+    parameters.bind(&P::glassBySsr,
+                    ParamSpec::choice("glass", "rt", {"rt", "ssr"},
+                                      "refractive texels: ray trace everything, or take their Fresnel reflection from SSR as opaque "
+                                      "mirrors do (with the same fallback) and ray trace only the refraction"),
+                    {false, true});
+    parameters.bind(&P::hitRecursion,
+                    ParamSpec::choice("recursion", "rt", {"rt", "single"},
+                                      "an SSR hit on a reflective or refractive surface: ray trace its next bounce, or take the lit image"),
+                    {Recursion::RayTraced, Recursion::Single});
+    parameters.bind(&P::traversal,
+                    ParamSpec::choice("traversal", d.traversal == Traversal::HiZ ? "hiz" : "linear", {"linear", "hiz"},
+                                      "SSR: the perspective-correct DDA pixel by pixel, or the hierarchical min-depth traversal"),
+                    {Traversal::Linear, Traversal::HiZ});
+    parameters.bind(&P::maxSteps, ParamSpec::integer("max_steps", d.maxSteps, 1, 16384, "SSR: steps per ray (pixels, or pyramid cells for hiz)"));
+    parameters.bind(&P::stride,
+                    ParamSpec::integer("stride", d.stride, 1, 64, "SSR: pixels per coarse step (a coarse hit is refined with unit steps)"));
+    parameters.bind(&P::thickness, ParamSpec::real("thickness", d.thickness, 0.0, 1e6,
+                                                   "SSR: depth of the slab behind every visible surface (view depth, world units)"));
+    parameters.bind(&P::maxDistance, ParamSpec::real("max_distance", d.maxDistance, 0.0, 1e9, "SSR: world length of a reflection ray"));
+    parameters.bind(&P::edgeFade, ParamSpec::real("edge_fade", d.edgeFade, 0.0, 0.5,
+                                                  "SSR: confidence ramps up over this fraction of the screen from its border (0: no fade)"));
+    parameters.bind(&P::blurRadius,
+                    ParamSpec::integer("blur_radius", 2, 0, 16, "seam blur radius in pixels between SSR and ray-traced reflections (0: off)"));
+    parameters.bind(&P::blurRange, ParamSpec::real("blur_range", 0.1, 0.0, 1.0,
+                                                   "seam blur: bilateral range sigma on c / (1 + c) colours (0: the paper's plain Gaussian, "
+                                                   "which smears thin reflected detail)"));
+    parameters.bind(&P::gbuffer, gbufferSourceParameters());
+    parameters.bind(&P::rays, rayBackendParameters());
+    parameters.bind(&P::shadowMaps, shadowMapParameters());
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
     // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
-    for (ParamSpec& s : WhittedTechnique::recursionParameterSpecs(kRtOnlyImportanceCutoff)) specs.push_back(std::move(s));
-    return {"ssr_fallback",
-            "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
-            "texels SSR fails on, seam blur",
-            std::move(specs), [](const ParameterSet& p) { return std::make_unique<SsrFallbackTechnique>(p); },
-            /*relativeCost=*/0.35};  // 0.20-0.42 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
+    parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
+    return makeTechniqueInfo(
+        "ssr_fallback",
+        "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
+        "texels SSR fails on, seam blur",
+        std::move(parameters), [](const P& p) { return std::make_unique<SsrFallbackTechnique>(p); },
+        /*relativeCost=*/0.35);  // 0.20-0.42 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
 }
 
-SsrFallbackTechnique::SsrFallbackTechnique(const ParameterSet& p) : tracerSettings_(WhittedTechnique::recursionSettings(p)), gbuffer_(p) {
-    ssrOn_ = p.getBool("ssr");
-    rayTracedShadows_ = p.getChoice("shadows") == "rt";
-    const std::string& f = p.getChoice("fallback");
-    fallback_ = f == "rt" ? Fallback::RayTraced : f == "sky" ? Fallback::Sky : Fallback::None;
-    recursion_ = p.getChoice("recursion") == "rt" ? Recursion::RayTraced : Recursion::Single;
-    ssrSettings_.refractive = p.getChoice("glass") == "ssr";
-    blurRadius_ = static_cast<int>(p.getInt("blur_radius"));
-    blurRange_ = static_cast<float>(p.getFloat("blur_range"));
-    ssrSettings_.traversal = p.getChoice("traversal") == "hiz" ? SsrSettings::Traversal::HiZ : SsrSettings::Traversal::Linear;
-    ssrSettings_.maxSteps = static_cast<int>(p.getInt("max_steps"));
-    ssrSettings_.stride = static_cast<int>(p.getInt("stride"));
-    ssrSettings_.thickness = static_cast<float>(p.getFloat("thickness"));
-    ssrSettings_.maxDistance = static_cast<float>(p.getFloat("max_distance"));
-    ssrSettings_.edgeFade = static_cast<float>(p.getFloat("edge_fade"));
-    shadowSettings_ = shadowMapSettings(p);
-    onDevice_ = tracesOnDevice(p);
+SsrFallbackTechnique::SsrFallbackTechnique(const SsrFallbackParameters& p)
+    : onDevice_(p.rays.onDevice),
+      ssrOn_(p.ssr),
+      rayTracedShadows_(p.rayTracedShadows),
+      fallback_(p.fallback),
+      recursion_(p.hitRecursion),
+      blurRadius_(p.blurRadius),
+      blurRange_(p.blurRange),
+      shadowSettings_(p.shadowMaps.settings()),
+      tracerSettings_(p.recursion.settings()),
+      gbuffer_(p.gbuffer) {
+    ssrSettings_.refractive = p.glassBySsr;
+    ssrSettings_.traversal = p.traversal;
+    ssrSettings_.maxSteps = p.maxSteps;
+    ssrSettings_.stride = p.stride;
+    ssrSettings_.thickness = p.thickness;
+    ssrSettings_.maxDistance = p.maxDistance;
+    ssrSettings_.edgeFade = p.edgeFade;
 }
 
 RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {

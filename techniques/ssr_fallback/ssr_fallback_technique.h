@@ -21,15 +21,20 @@
 #include "techniques/ssr_fallback/seam_blur.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/shared/raster_warm_up.h"
+#include "techniques/shared/ray_backend_parameters.h"
+#include "techniques/shared/recursion_parameters.h"
+#include "techniques/shared/shadow_parameters.h"
 #include "techniques/ssr_fallback/ssr_pass.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
 
+struct SsrFallbackParameters;
+
 class SsrFallbackTechnique : public Technique {
 public:
     static TechniqueInfo info();
-    explicit SsrFallbackTechnique(const ParameterSet& params);
+    explicit SsrFallbackTechnique(const SsrFallbackParameters& params);
 
     // Builds the ray scene, creates the SSR pass and renders one small frame (lavapipe compiles
     // shaders at their first use).
@@ -61,6 +66,26 @@ private:
     RasterWarmUp warmUp_;
     std::unique_ptr<DeviceGBufferTracer> deviceTracer_;  // rays = "vulkan"
     std::unique_ptr<DeviceSeamComposite> deviceComposite_;
+};
+
+struct SsrFallbackParameters {
+    bool ssr{};
+    bool rayTracedShadows{};  // shadows = "rt"
+    SsrFallbackTechnique::Fallback fallback{};
+    bool glassBySsr{};  // glass = "ssr"
+    SsrFallbackTechnique::Recursion hitRecursion{};
+    SsrSettings::Traversal traversal{};
+    int maxSteps{};
+    int stride{};
+    float thickness{};
+    float maxDistance{};
+    float edgeFade{};
+    int blurRadius{};
+    float blurRange{};
+    GBufferSourceParameters gbuffer;
+    RayBackendParameters rays;
+    ShadowMapParameters shadowMaps;
+    RecursionParameters recursion;
 };
 
 }  // namespace hybridlab

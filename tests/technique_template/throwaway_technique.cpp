@@ -1,15 +1,18 @@
 #include "techniques/throwaway/throwaway_technique.h"
 
+#include "techniques/make_technique_info.h"
+
 namespace hybridlab {
 
 TechniqueInfo ThrowawayTechnique::info() {
-    return {"throwaway",
-            "A template: one colour",
-            {ParamSpec::real("level", 0.5, 0.0, 1.0, "the grey level of every pixel")},
-            [](const ParameterSet& p) { return std::make_unique<ThrowawayTechnique>(p); }};
+    // Every field of ThrowawayParameters bound to its parameter, once.
+    ParameterBinder<ThrowawayParameters> parameters;
+    parameters.bind(&ThrowawayParameters::level, ParamSpec::real("level", 0.5, 0.0, 1.0, "the grey level of every pixel"));
+    return makeTechniqueInfo("throwaway", "A template: one colour", std::move(parameters),
+                             [](const ThrowawayParameters& p) { return std::make_unique<ThrowawayTechnique>(p); });
 }
 
-ThrowawayTechnique::ThrowawayTechnique(const ParameterSet& params) : level_(static_cast<float>(params.getFloat("level"))) {}
+ThrowawayTechnique::ThrowawayTechnique(const ThrowawayParameters& params) : level_(params.level) {}
 
 FrameResult ThrowawayTechnique::render(SceneContext& context, const FrameRequest& frame) {
     (void)context;

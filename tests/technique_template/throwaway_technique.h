@@ -7,10 +7,15 @@
 
 namespace hybridlab {
 
+// The technique's parameters, each bound to its spec in info().
+struct ThrowawayParameters {
+    float level{};
+};
+
 class ThrowawayTechnique : public Technique {
 public:
     static TechniqueInfo info();
-    explicit ThrowawayTechnique(const ParameterSet& params);
+    explicit ThrowawayTechnique(const ThrowawayParameters& params);
 
     FrameResult render(SceneContext& context, const FrameRequest& frame) override;
 

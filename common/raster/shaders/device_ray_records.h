@@ -5,6 +5,9 @@
 #ifndef DEVICE_RAY_RECORDS_H
 #define DEVICE_RAY_RECORDS_H
 
+// The lights buffer holds the lighting pass's records, LightData (shadow.x < 0: casts no shadow).
+#include "raster_records.h"
+
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
@@ -13,6 +16,7 @@ using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
+using raster_records::LightData;
 #endif
 
 // A Material (common/scene/material.h).
@@ -63,20 +67,12 @@ struct DeviceRay {
     vec4 directionTmax;  // xyz unit direction, w tmax
 };
 
-// A light: the layout of LightData in shading.glsl (shadow.x < 0: casts no shadow).
-struct DeviceLight {
-    vec4 radiance;
-    vec4 position;
-    vec4 direction;
-    ivec4 shadow;
-};
-
 #ifdef __cplusplus
 inline constexpr unsigned kHasUvs = 1u, kHasTangents = 2u;
 // Counters: primary, shadow, reflection, refraction (RayStats' order), medium errors.
 inline constexpr unsigned kRayCounterCount = 5u;
 static_assert(sizeof(DeviceMaterial) == 128 && sizeof(DeviceInstance) == 160 && sizeof(DeviceVertex) == 48);
-static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceLight) == 64 && sizeof(DeviceRay) == 32);
+static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceRay) == 32);
 }  // namespace hybridlab::device_rays
 #else
 const uint kHasUvs = 1u, kHasTangents = 2u;

@@ -11,7 +11,7 @@
 layout(set = 0, binding = 0) uniform accelerationStructureEXT topLevel;
 layout(std140, set = 0, binding = 1) uniform Frame { DeviceFrame frame; };
 layout(std430, set = 0, binding = 2) readonly buffer Materials { DeviceMaterial materials[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Lights { DeviceLight lights[]; };
+layout(std430, set = 0, binding = 3) readonly buffer Lights { LightData lights[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Instances { DeviceInstance instances[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Vertices { DeviceVertex vertices[]; };
 layout(std430, set = 0, binding = 6) readonly buffer Indices { uint indices[]; };

@@ -129,7 +129,7 @@ vec3 localColor(Surface s, DeviceMaterial m, vec3 n, vec3 ng, vec3 toViewer, boo
     vec3 c = unlitTerm(m.emission.rgb, m.ambient.rgb * tex, frame.ambient.rgb);
     vec3 shadowOrigin = offsetRayOrigin(s.position, ng);
     for (int i = 0; i < frame.size.z; ++i) {
-        LightData light = LightData(lights[i].radiance, lights[i].position, lights[i].direction, lights[i].shadow);
+        LightData light = lights[i];
         LightSample ls = sampleLight(light, s.position);
         vec3 direct = blinnPhong(n, m.diffuse.rgb * tex, m.specular.rgb, m.specular.a, toViewer, ls);
         if (direct == vec3(0.0)) continue;  // facing away, or outside a spot cone: no ray needed
