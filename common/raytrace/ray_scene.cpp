@@ -156,16 +156,14 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
     deformed_.resize(scene.meshes.size());
 
     static_ = rtcNewScene(device_);
-    staticTriangles_.resize(scene.meshes.size());
     for (std::size_t o = 0; o < n; ++o) {
         if (scene.objects[o].isDynamic()) continue;
         for (std::uint32_t mesh : scene.objects[o].meshes) {
             const Mesh& m = scene.meshes[mesh];
-            staticTriangles_[mesh] = worldTriangles(m, toWorld_[o], normalToWorld_[o]);
             RTCGeometry g = makeTriangleGeometry(m, m.positions, &toWorld_[o], false);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);
-            staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh});
+            staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh, worldTriangles(m, toWorld_[o], normalToWorld_[o])});
         }
     }
     rtcCommitScene(static_);
@@ -297,17 +295,15 @@ glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, g
 }
 
 void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
-    std::uint32_t object, mesh;
-    if (top_ != static_ && rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID && instanceObject_[rh.hit.instID[0]] != std::numeric_limits<std::uint32_t>::max()) {
-        object = instanceObject_[rh.hit.instID[0]];
-        mesh = scene_.objects[object].meshes[rh.hit.geomID];
-    } else {
-        const GeometryRef& ref = staticGeometry_[rh.hit.geomID];
-        object = ref.object;
-        mesh = ref.mesh;
-    }
-    const Mesh& m = scene_.meshes[mesh];
     const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+    const bool instance = top_ != static_ && rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID &&
+                          instanceObject_[rh.hit.instID[0]] != std::numeric_limits<std::uint32_t>::max();
+    // A static geometry's record is the hit's one likely cache miss: its address first.
+    const GeometryRef* ref = instance ? nullptr : &staticGeometry_[rh.hit.geomID];
+    const StaticTriangle* st = ref ? &ref->triangles[rh.hit.primID] : nullptr;
+    const std::uint32_t object = ref ? ref->object : instanceObject_[rh.hit.instID[0]];
+    const std::uint32_t mesh = ref ? ref->mesh : scene_.objects[object].meshes[rh.hit.geomID];
+    const Mesh& m = scene_.meshes[mesh];
     const glm::mat4& M = toWorld_[object];
     const glm::mat3& N = normalToWorld_[object];
 
@@ -317,15 +313,14 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     hit.primitive = rh.hit.primID;
     hit.material = &scene_.materials[m.material];
     glm::uvec3 tri;
-    if (const auto& triangles = staticTriangles_[mesh]; !triangles.empty()) {
-        const StaticTriangle& st = triangles[rh.hit.primID];
-        tri = st.vertices;
-        hit.shadingNormal = glm::normalize(w * st.normal[0] + u * st.normal[1] + v * st.normal[2]);
-        hit.position = w * st.position[0] + u * st.position[1] + v * st.position[2];
-        hit.geometricNormal = st.geometricNormal;
+    if (st) {
+        tri = st->vertices;
+        hit.shadingNormal = glm::normalize(w * st->normal[0] + u * st->normal[1] + v * st->normal[2]);
+        hit.position = w * st->position[0] + u * st->position[1] + v * st->position[2];
+        hit.geometricNormal = st->geometricNormal;
         if (!m.uvs.empty()) {
-            hit.uv = w * st.uv[0] + u * st.uv[1] + v * st.uv[2];
-            hit.uvDensityLod = st.uvDensityLod;
+            hit.uv = w * st->uv[0] + u * st->uv[1] + v * st->uv[2];
+            hit.uvDensityLod = st->uvDensityLod;
         }
     } else {
         // An instance: the object-space vertices, deformed at time_ for a deforming object.

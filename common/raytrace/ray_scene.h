@@ -112,11 +112,6 @@ public:
     std::size_t triangleCount() const { return triangles_; }  // every object's
 
 private:
-    struct GeometryRef {
-        std::uint32_t object;
-        std::uint32_t mesh;
-    };
-
     void resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const;
     // `positions` are the mesh's (or its deformed ones), placed by `toWorld` when given.
     RTCGeometry makeTriangleGeometry(const Mesh& mesh, const std::vector<glm::vec3>& positions, const glm::mat4* toWorld, bool refit);
@@ -127,7 +122,6 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene top_ = nullptr;
     RTCScene static_ = nullptr;  // == top_ when nothing is animated
-    std::vector<GeometryRef> staticGeometry_;          // by geomID in static_
     std::vector<RTCScene> objectScenes_;               // per object: its instanced BVH, or null
     std::vector<std::uint32_t> instanceObject_;        // by instance geomID in top_
     std::vector<std::uint32_t> instanceGeometry_;      // per object: its instance geomID in top_
@@ -145,8 +139,15 @@ private:
         float uvDensityLod;
         glm::uvec3 vertices;  // indices (tangents)
     };
-    // Static meshes only (by mesh index; empty for animated ones).
-    std::vector<std::vector<StaticTriangle>> staticTriangles_;
+    // A geometry of static_: its object and mesh, and its triangles' records, so that resolving a
+    // hit reaches the record in one dependent load from the geometry id. Per geometry, not per
+    // mesh: two static objects sharing a mesh have triangles in two places.
+    struct GeometryRef {
+        std::uint32_t object;
+        std::uint32_t mesh;
+        std::vector<StaticTriangle> triangles;
+    };
+    std::vector<GeometryRef> staticGeometry_;          // by geomID in static_
     // A static mesh's triangles placed in the world by its object's matrices.
     static std::vector<StaticTriangle> worldTriangles(const Mesh& mesh, const glm::mat4& toWorld, const glm::mat3& normalToWorld);
     std::unique_ptr<DeformedMeshCache> ownDeformedMeshes_;  // when none is shared
