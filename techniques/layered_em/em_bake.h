@@ -11,7 +11,7 @@
 #include "techniques/layered_em/em_cube_map.h"
 #include "techniques/layered_em/em_inference.h"
 #include "techniques/layered_em/layer_shells.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_system.h"
 #include "techniques/layered_em/lens_tessellation.h"
 #include "techniques/layered_em/outgoing_records.h"
 #include "techniques/layered_em/viewpoint_samples.h"

@@ -12,8 +12,8 @@
 #include <glm/vec3.hpp>
 
 #include "common/scene/camera.h"
-#include "techniques/layered_em/lens_paths.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_paths.h"
+#include "techniques/shared/lens_system.h"
 
 namespace hybridlab {
 

@@ -17,8 +17,8 @@
 #include "common/raytrace/whitted_tracer.h"
 #include "common/scene/camera.h"
 #include "techniques/layered_em/layer_shells.h"
-#include "techniques/layered_em/lens_paths.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_paths.h"
+#include "techniques/shared/lens_system.h"
 
 namespace hybridlab {
 

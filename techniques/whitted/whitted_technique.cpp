@@ -1,7 +1,7 @@
 #include "techniques/whitted/whitted_technique.h"
 
 #include "common/core/input_error.h"
-#include "techniques/layered_em/two_term_tracer.h"
+#include "techniques/shared/two_term_tracer.h"
 #include "techniques/make_technique_info.h"
 #include "techniques/shared/camera_ray_technique.h"
 

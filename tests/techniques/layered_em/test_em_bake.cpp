@@ -14,7 +14,7 @@
 #include "common/core/input_error.h"
 #include "common/scene/scene_file.h"
 #include "techniques/layered_em/em_cache.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_system.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/scene_fixtures.h"
 #include "tests/support/test_support.h"

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "techniques/layered_em/lens_paths.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_paths.h"
+#include "techniques/shared/lens_system.h"
 #include "tests/support/lens_test_scenes.h"
 #include "tests/support/test_support.h"
 

@@ -1,4 +1,4 @@
-#include "techniques/layered_em/two_term_tracer.h"
+#include "techniques/shared/two_term_tracer.h"
 
 #include <limits>
 

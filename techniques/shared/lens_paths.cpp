@@ -1,4 +1,4 @@
-#include "techniques/layered_em/lens_paths.h"
+#include "techniques/shared/lens_paths.h"
 
 #include <algorithm>
 #include <limits>

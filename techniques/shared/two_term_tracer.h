@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "common/raytrace/whitted_tracer.h"
-#include "techniques/layered_em/lens_paths.h"
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_paths.h"
+#include "techniques/shared/lens_system.h"
 
 namespace hybridlab {
 

@@ -1,4 +1,4 @@
-#include "techniques/layered_em/lens_system.h"
+#include "techniques/shared/lens_system.h"
 
 #include <map>
 
