@@ -72,7 +72,7 @@ TEST(ShardPartition, BalancesMixedSizesWithin25PercentOfTheMean) {
     const ExperimentConfig config = loadConfig(dir, kMixedSizes);
     const std::vector<RunSpec> runs = planRuns(config);
     ASSERT_EQ(runs.size(), 64u);
-    // A 1280x720 run costs 16 times its 320x180 twin, and a technique's class scales it.
+    // A 1280x720 run costs 16 times the same run at 320x180, and a technique's class scales it.
     EXPECT_DOUBLE_EQ(estimatedRunCost(config, runs[16]) / estimatedRunCost(config, runs[0]), 16.0);
     EXPECT_GT(estimatedRunCost(config, runs[1]), estimatedRunCost(config, runs[0]));  // rt_only over raster
 
