@@ -19,22 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
-
-// Every file and folder under `dir`, as relative paths.
-std::vector<std::string> tree(const fs::path& dir) {
-    std::vector<std::string> out;
-    if (!fs::exists(dir)) return out;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) out.push_back(fs::relative(e.path(), dir).string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 TEST(RunDryRun, ListsTheQuickExperimentsRunsAndWritesNothing) {
     test::TempDir dir;
     const fs::path config = test::sourceDir() / "experiments" / "configs" / "quick.toml";
@@ -42,7 +26,7 @@ TEST(RunDryRun, ListsTheQuickExperimentsRunsAndWritesNothing) {
     const test::CliResult r = test::runHybridlab({"run", config.string(), "--dry-run", "--cache", (dir / "cache").string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_EQ(r.err, "");
-    const std::vector<std::string> out = lines(r.out);
+    const std::vector<std::string> out = test::textLines(r.out);
     ASSERT_EQ(out.size(), 2u + 160u) << r.out;
     EXPECT_CONTAINS(out[0], "experiment quick (" + config.string() + ", config hash ");
     EXPECT_CONTAINS(out[0], "): 160 runs; references: ");
@@ -58,7 +42,7 @@ TEST(RunDryRun, ListsTheQuickExperimentsRunsAndWritesNothing) {
     EXPECT_CONTAINS(out[2], "320x180");
     EXPECT_CONTAINS(out[2], "max_depth=1");
     // Nothing written: no cache, no result folder (given or default).
-    EXPECT_EQ(tree(dir.path()), std::vector<std::string>{});
+    EXPECT_EQ(test::fileTree(dir.path()), std::vector<std::string>{});
     EXPECT_EQ(fs::exists(fs::path("results") / "quick"), defaultOutBefore);
 }
 
@@ -74,10 +58,10 @@ TEST(RunDryRun, SaysWhichReferencesTheCacheHolds) {
     const test::CliResult first =
         test::runHybridlab({"run", config.string(), "--out", (dir / "out").string(), "--cache", cache, "--max-runs", "1", "--quiet"});
     ASSERT_EQ(first.exitStatus, 0) << first.err;
-    const std::vector<std::string> before = tree(dir.path());
+    const std::vector<std::string> before = test::fileTree(dir.path());
     const test::CliResult r = test::runHybridlab({"run", config.string(), "--out", (dir / "out").string(), "--cache", cache, "--dry-run"});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
-    const std::vector<std::string> out = lines(r.out);
+    const std::vector<std::string> out = test::textLines(r.out);
     ASSERT_EQ(out.size(), 2u + 3u) << r.out;
     EXPECT_CONTAINS(out[0], ": 3 runs; references: 3, 1 of them cached in " + cache);
     EXPECT_CONTAINS(out[2], " camera ");
@@ -88,7 +72,7 @@ TEST(RunDryRun, SaysWhichReferencesTheCacheHolds) {
     EXPECT_CONTAINS(out[3], " 10 ");
     EXPECT_CONTAINS(out[4], " 20 ");
     EXPECT_CONTAINS(out[4], " to render ");
-    EXPECT_EQ(tree(dir.path()), before) << "--dry-run wrote something";
+    EXPECT_EQ(test::fileTree(dir.path()), before) << "--dry-run wrote something";
 }
 
 }  // namespace

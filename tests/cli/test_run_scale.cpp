@@ -33,22 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
-
-// Every file and folder under `dir`, as relative paths.
-std::vector<std::string> tree(const fs::path& dir) {
-    std::vector<std::string> out;
-    if (!fs::exists(dir)) return out;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) out.push_back(fs::relative(e.path(), dir).string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 json readJsonFile(const fs::path& file) { return json::parse(test::readTextFile(file)); }
 
 // What `command` wrote to standard output; fails the test when it exits with another status.
@@ -77,7 +61,7 @@ std::vector<std::string> dryRunRows(const std::string& name, const std::vector<s
     const test::CliResult r = test::runHybridlab(args);
     EXPECT_EQ(r.exitStatus, 0) << r.err;
     std::vector<std::string> rows;
-    for (const std::string& l : lines(r.out))
+    for (const std::string& l : test::textLines(r.out))
         if (!l.empty() && l.find_first_not_of(' ') != std::string::npos && std::isdigit(static_cast<unsigned char>(l[l.find_first_not_of(' ')])))
             rows.push_back(l);
     return rows;
@@ -149,7 +133,7 @@ TEST(RunScale, DryRunListsThePaperConfigsOnBothBackendsAtTheScaledSize) {
     const test::CliResult r = test::runHybridlab({"run", (test::sourceDir() / "experiments" / "configs" / "ssr.toml").string(), "--dry-run",
                                                   "--scale", "0.25", "--cache", (dir / "cache").string()});
     EXPECT_CONTAINS(r.out, "\nsizes at --scale 0.25 of the configured ones\n");
-    EXPECT_EQ(tree(dir.path()), std::vector<std::string>{});
+    EXPECT_EQ(test::fileTree(dir.path()), std::vector<std::string>{});
 }
 
 const std::string kTinyConfig =
@@ -170,7 +154,7 @@ TEST(RunScale, BadScaleExitsTwoAndWritesNothing) {
             const test::CliResult r = test::runHybridlab(args);
             EXPECT_EQ(r.exitStatus, 2);
             EXPECT_CONTAINS(r.err, "--scale " + std::string(bad) + ": expected a number greater than 0 and at most 1");
-            EXPECT_EQ(tree(dir.path()), std::vector<std::string>{"tiny.toml"});
+            EXPECT_EQ(test::fileTree(dir.path()), std::vector<std::string>{"tiny.toml"});
         }
     }
 }
@@ -192,7 +176,7 @@ TEST(RunScale, RecordsTheScaleAndResumesOnlyAtIt) {
     EXPECT_CONTAINS(r.out, "--scale 0.5 --resume` continues");
     EXPECT_EQ(readJsonFile(out / "experiment.json").at("resolution_scale"), 0.5);
     const std::string meta = test::readTextFile(out / "experiment.json");
-    const std::vector<std::string> before = tree(out);
+    const std::vector<std::string> before = test::fileTree(out);
 
     struct Refusal {
         std::vector<std::string> args;
@@ -206,7 +190,7 @@ TEST(RunScale, RecordsTheScaleAndResumesOnlyAtIt) {
         EXPECT_EQ(r.exitStatus, 2);
         EXPECT_CONTAINS(r.err, out.string() + refused.message);
         EXPECT_EQ(test::readTextFile(out / "experiment.json"), meta);
-        EXPECT_EQ(tree(out), before);
+        EXPECT_EQ(test::fileTree(out), before);
     }
 
     r = with({"--resume", "--scale", "0.5"});
@@ -222,7 +206,7 @@ TEST(RunScale, RecordsTheScaleAndResumesOnlyAtIt) {
     // Under every table of a table script, and in the report's header.
     const std::string table = tableOf("ssr_speed_table.py", out);
     std::size_t tables = 0;
-    const std::vector<std::string> ls = lines(table);
+    const std::vector<std::string> ls = test::textLines(table);
     for (std::size_t i = 0; i + 2 < ls.size(); ++i) {
         if (ls[i].rfind("|", 0) != 0 || ls[i + 1].rfind("|", 0) == 0) continue;
         ++tables;

@@ -33,6 +33,10 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text);
 // The whole file as text ("" if it cannot be read).
 std::string readTextFile(const std::filesystem::path& path);
 void writeBinaryFile(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+// The lines of `text`, without their line breaks.
+std::vector<std::string> textLines(const std::string& text);
+// Every file and folder under `dir`, as sorted relative paths (none if `dir` does not exist).
+std::vector<std::string> fileTree(const std::filesystem::path& dir);
 
 // tests/fixtures in the source tree.
 std::filesystem::path fixturesDir();
