@@ -140,6 +140,10 @@ TEST(GBufferRays, CpuLightingNeedsTheRayCastGBufferAndShadowsWithoutMaps) {
     EXPECT_THROW(make("rays", "cpu", "map"), InputError);
     EXPECT_THROW(make("rays", "raster", "rays"), InputError);
     EXPECT_NO_THROW(make("rays", "cpu", "rays"));
+    // The host lights Embree's G-buffer: with the device's rays there is none.
+    EXPECT_THROW(createTechnique("heuristic_rt", {{"gbuffer", std::string("rays")}, {"lighting", std::string("cpu")},
+                                                  {"raster_shadows", std::string("rays")}, {"rays", std::string("vulkan")}}),
+                 InputError);
     EXPECT_NO_THROW(make("rays", "cpu", "off"));
 }
 
