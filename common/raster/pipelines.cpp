@@ -192,6 +192,13 @@ UniquePipeline createGraphicsPipeline(const VulkanDevice& device, const Graphics
     return UniquePipeline(device.device(), p);
 }
 
+void recordZeroFillForCompute(VkCommandBuffer cb, VkBuffer buffer) {
+    vkCmdFillBuffer(cb, buffer, 0, VK_WHOLE_SIZE, 0);
+    VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0, nullptr);
+}
+
 void setViewport(VkCommandBuffer cb, std::uint32_t width, std::uint32_t height) {
     VkViewport v{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
     VkRect2D s{{0, 0}, {width, height}};

@@ -69,6 +69,10 @@ UniqueSampler createNearestSampler(const VulkanDevice& device, const char* purpo
 UniquePipeline createComputePipeline(const VulkanDevice& device, const std::string& computeShader, VkPipelineLayout layout,
                                      const std::vector<std::uint32_t>& constants = {});
 
+// Records a fill of `buffer` with zeros, and the barrier that makes it visible to compute shaders
+// that read and write it (counters cleared each frame).
+void recordZeroFillForCompute(VkCommandBuffer cb, VkBuffer buffer);
+
 // Sets the viewport and scissor to the whole of a width x height target.
 void setViewport(VkCommandBuffer cb, std::uint32_t width, std::uint32_t height);
 

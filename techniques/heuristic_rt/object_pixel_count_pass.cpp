@@ -18,10 +18,7 @@ ObjectPixelCountPass::ObjectPixelCountPass(std::shared_ptr<VulkanDevice> device,
 
 void ObjectPixelCountPass::record(VkCommandBuffer cb, const FrameTargets& t) {
     descriptors_.writeImage(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, t.gbuffer[7], nearest_, VK_IMAGE_LAYOUT_GENERAL);
-    vkCmdFillBuffer(cb, buffer_.buffer(), 0, VK_WHOLE_SIZE, 0);
-    VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
-                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0, nullptr);
+    recordZeroFillForCompute(cb, buffer_.buffer());
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);

@@ -27,10 +27,7 @@ void DeviceSeamComposite::record(VkCommandBuffer cb, const GpuBuffer& texels, co
     uniforms_.write(&u, sizeof u);
     descriptors_.writeBuffer(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texels.buffer());
     descriptors_.writeBuffer(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, image.buffer());
-    vkCmdFillBuffer(cb, counter_.buffer(), 0, VK_WHOLE_SIZE, 0);
-    VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
-                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0, nullptr);
+    recordZeroFillForCompute(cb, counter_.buffer());
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     VkDescriptorSet set = descriptors_.set();
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
