@@ -40,6 +40,8 @@ PACKAGES=(
   povray
   # raster core (headless Vulkan on lavapipe)
   libvulkan-dev mesa-vulkan-drivers glslc
+  # the Khronos validation layer (tests: every Vulkan path without a validation message)
+  vulkan-validationlayers
   # metrics cross-check (tests)
   python3-skimage python3-numpy
   # reports and paper figures (Debian's /usr/bin/python3)

@@ -133,7 +133,8 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
         // Identically declared set layouts are compatible: this scene's sets bind to the shared
         // pipeline (a ray-generation shader declares one set 1, so its name keys it).
         static std::mutex mutex;
-        static std::map<std::tuple<VkDevice, std::string, std::uint32_t>, std::shared_ptr<const CompiledRayPipeline>> compiled;
+        // Never destroyed, as VulkanDevice::shared()'s devices: their pipelines outlive the process.
+        static auto& compiled = *new std::map<std::tuple<VkDevice, std::string, std::uint32_t>, std::shared_ptr<const CompiledRayPipeline>>;
         std::lock_guard lock(mutex);
         auto& entry = compiled[{dev.device(), raygenShader, textureCount}];
         if (!entry) entry = compile(dev, raygenShader, textureCount, inputs);

@@ -95,7 +95,11 @@ const std::vector<const char*> kRayTracingExtensions = {
 
 std::shared_ptr<VulkanDevice> VulkanDevice::shared(DeviceFeatures features) {
     static std::mutex mutex;
-    static std::map<DeviceFeatures, std::shared_ptr<VulkanDevice>> devices;
+    // Never destroyed: a device destroyed by a static destructor at exit runs after the exit
+    // handlers of the Vulkan driver and layers (registered when they load, after this map was
+    // made), which then crash (the validation layer here, NVIDIA's driver on an H200). The
+    // process's end frees it all.
+    static auto& devices = *new std::map<DeviceFeatures, std::shared_ptr<VulkanDevice>>;
     static std::map<DeviceFeatures, std::string> failures;
     std::lock_guard lock(mutex);
     if (auto it = devices.find(features); it != devices.end()) return it->second;
@@ -256,6 +260,9 @@ void VulkanDevice::createLogicalDevice(const std::vector<const char*>& extension
     qci.pQueuePriorities = &priority;
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
+    // glslc's SPIR-V 1.6 states compute shaders' group sizes with LocalSizeId, which needs
+    // maintenance4 (core in 1.3, so every 1.3 device has it).
+    f13.maintenance4 = VK_TRUE;
     VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
     rtf.rayTracingPipeline = VK_TRUE;
     VkPhysicalDeviceAccelerationStructureFeaturesKHR asf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rtf};
@@ -274,6 +281,12 @@ void VulkanDevice::createLogicalDevice(const std::vector<const char*>& extension
     pipelineStatistics_ = supported.pipelineStatisticsQuery == VK_TRUE;  // the work counts; optional
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     features.features.shaderSampledImageArrayDynamicIndexing = features_.rayTracing ? VK_TRUE : VK_FALSE;
+    // HYBRIDLAB_VULKAN_ROBUST=1: out-of-bounds buffer and image accesses read zeros instead of
+    // faulting (a diagnosis of a device lost; off by default, as it costs time).
+    if (const char* robust = std::getenv("HYBRIDLAB_VULKAN_ROBUST"); robust && std::string(robust) == "1") {
+        features.features.robustBufferAccess = supported.robustBufferAccess;
+        f13.robustImageAccess = VK_TRUE;
+    }
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
@@ -392,7 +405,13 @@ void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &commands;
     checkVk(vkQueueSubmit(queue_, 1, &si, fence_), "submitting commands");
-    checkVk(vkWaitForFences(device_, 1, fence_.ptr(), VK_TRUE, UINT64_MAX), "waiting for the GPU");
+    // A GPU that has not finished a submission in two minutes has hung (a shader that never ends,
+    // a fault the driver did not report): an error, not a wait without end. A CPU device
+    // (lavapipe) may take that long for one frame of rays, so it is waited for.
+    const std::uint64_t timeoutNs = type() == VK_PHYSICAL_DEVICE_TYPE_CPU ? UINT64_MAX : 120'000'000'000ull;
+    const VkResult waited = vkWaitForFences(device_, 1, fence_.ptr(), VK_TRUE, timeoutNs);
+    if (waited == VK_TIMEOUT) throw VulkanError("Vulkan: " + name() + " did not finish a submission within 120 s (a hang)");
+    checkVk(waited, "waiting for the GPU");
     checkVk(vkResetFences(device_, 1, fence_.ptr()), "resetting a fence");
 }
 
