@@ -26,7 +26,11 @@ bool isBaseLibrary(const std::string& soname) {
     static const std::set<std::string> base = {"libc.so.6",     "libm.so.6",    "libpthread.so.0", "libdl.so.2",
                                                "librt.so.1",    "libresolv.so.2", "libutil.so.1",  "libanl.so.1",
                                                "libmvec.so.1",  "libstdc++.so.6", "libgcc_s.so.1"};
-    return base.count(soname) || soname.rfind("ld-linux", 0) == 0 || soname.rfind("linux-vdso", 0) == 0;
+    // glvnd's dispatch libraries: a GPU's Vulkan driver loads the node's own, and a copy of another
+    // version breaks it ("libGLdispatch ABI version is incompatible with libEGL", NVIDIA's driver).
+    static const std::set<std::string> glvnd = {"libGLdispatch.so.0", "libGLX.so.0", "libGL.so.1", "libEGL.so.1",
+                                                "libOpenGL.so.0",     "libGLESv2.so.2"};
+    return base.count(soname) || glvnd.count(soname) || soname.rfind("ld-linux", 0) == 0 || soname.rfind("linux-vdso", 0) == 0;
 }
 
 std::vector<SharedLibrary> sharedLibraries(const fs::path& binary) {
@@ -105,7 +109,9 @@ std::string readme(const std::vector<SharedLibrary>& bundled, const std::vector<
     if (config) s << " The experiment: ./hybridlab run configs/" << config->filename().string() << " --out DIR";
     s << "\n\nThe node must provide:\n"
       << "- Linux x86-64 with these libraries, which every node has and the bundle leaves out (glibc's, and\n"
-      << "  the GCC runtime of a minimal Debian, which the node's Vulkan driver loads too):\n";
+      << "  the GCC runtime of a minimal Debian, which the node's Vulkan driver loads too, and glvnd's\n"
+      << "  dispatch libraries, which a GPU's driver needs in the node's own version; Debian and Ubuntu:\n"
+      << "  libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2):\n";
     for (const auto& l : base) s << "    " << l.soname << "\n";
     s << "  glibc and libstdc++ at least as new as the build machine's (Debian 12: glibc 2.36, GCC 12).\n"
       << "- For the techniques that rasterize or trace rays on Vulkan (raster, heuristic_rt, ssr_fallback,\n"
