@@ -9,13 +9,15 @@ parameter set): its frame time over rt_only's at the same view and frame, measur
 (the median of those ratios over the views and frames: a ratio, not an absolute time, is what
 carries between runs on a shared machine), its SSIM on the whole image and on the reflective and
 refractive pixels (medians over the views and frames), the rays a pixel it traced and, for SSR,
-its march steps a pixel (means). A
-setting is on its technique's time front when no other setting of the same technique is both
-faster and more accurate (lower time ratio, higher SSIM): the front a technique's defaults are
-chosen on, rt_only being the yardstick. The work front is the same with rays a pixel for time:
-where the machine's load makes times too noisy to rank close settings, the rays rank the work.
-The last table counts, per setting, the scenes on whose fronts it is, the median of its time
-ratios and its lowest SSIM: a default has to be on the front, or near it, on every scene."""
+its march steps a pixel (means). The fronts are drawn within a family, the settings of one
+[[techniques]] entry of the config (its label: one parameter group swept around the defaults), so
+that a family's front is not decided by another family's parameters. A setting is on its family's
+time front when no other is both faster and more accurate (lower time ratio, higher SSIM), and on
+its work front when no other does no more of either kind of work (rays, SSR steps), is no less
+accurate and is better in one: where the machine's load makes times too noisy to rank close
+settings, the work ranks them. The last table counts, per setting, the scenes on whose fronts it
+is, the median of its time ratios and its lowest SSIM: a default has to be on the front, or near
+it, on every scene."""
 import collections
 import statistics
 import sys
@@ -26,17 +28,20 @@ RT_ONLY = "rt_only"
 
 
 class Point:
-    """One setting over one scene and size's runs: time ratio to rt_only, SSIM, rays a pixel."""
+    """One setting over one scene and size's runs: time ratio to rt_only, SSIM, work a pixel."""
 
     def __init__(self, name, runs, rt_only_ms):
         self.name = name
-        self.technique = runs[0]["technique"]
+        self.family = runs[0]["label"]
         self.ratio = statistics.median(r["frame_ms"]["median"] / rt_only_ms[(r["view"], r["frame"])] for r in runs)
         self.ssim = median_metric(runs, "whole")
         self.ssim_masked = median_metric(runs, "masked")
         self.rays = per_pixel(runs, "rays_total")
         self.ssr_steps = per_pixel(runs, "ssr_march_steps")
         self.time_front = self.work_front = False
+
+    def work(self):
+        return (self.rays or 0.0, self.ssr_steps or 0.0)
 
 
 def per_pixel(runs, counter):
@@ -50,16 +55,23 @@ def median_metric(runs, region):
     return statistics.median(values) if values else None
 
 
-def mark_front(points, cost, flag):
-    """Sets `flag` on the points no other point of the same technique beats on both `cost` (lower)
-    and SSIM (higher)."""
-    by_technique = collections.defaultdict(list)
+def does_less_work_as_well(a, b):
+    """`a` does no more of either kind of work than `b` and is no less accurate, and better in one."""
+    no_worse = all(x <= y for x, y in zip(a.work(), b.work())) and a.ssim >= b.ssim
+    return no_worse and (a.work() != b.work() or a.ssim > b.ssim)
+
+
+def mark_fronts(points):
+    """Marks each family's time front (results.pareto_front on time ratio and SSIM) and work front."""
+    families = collections.defaultdict(list)
     for p in points:
         if p.ssim is not None:
-            by_technique[p.technique].append(p)
-    for same in by_technique.values():
-        for _, _, p in rs.pareto_front([(cost(p), p.ssim, p) for p in same], higher_is_better=True):
-            setattr(p, flag, True)
+            families[p.family].append(p)
+    for family in families.values():
+        for _, _, p in rs.pareto_front([(p.ratio, p.ssim, p) for p in family], higher_is_better=True):
+            p.time_front = True
+        for p in family:
+            p.work_front = not any(does_less_work_as_well(o, p) for o in family if o is not p)
 
 
 def scene_points(rows):
@@ -76,8 +88,7 @@ def scene_points(rows):
             if (r["view"], r["frame"]) in rt_only_ms and rs.metric(r, "whole", "ssim") is not None:
                 by_setting[rs.variant(r)].append(r)
         points = [Point(name, setting_runs, rt_only_ms) for name, setting_runs in by_setting.items()]
-        mark_front(points, lambda p: p.ratio, "time_front")
-        mark_front([p for p in points if p.rays is not None], lambda p: p.rays, "work_front")
+        mark_fronts(points)
         out[key] = sorted(points, key=lambda p: rs.natural_key(p.name))
     return out
 
