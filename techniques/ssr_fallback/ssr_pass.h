@@ -20,6 +20,8 @@
 
 namespace hybridlab {
 
+// The pass's defaults march to the ray's end; ssr_fallback's parameters default to a shorter Hi-Z
+// march and a thinner slab, chosen on its speed-accuracy sweep (ssr_fallback_technique.cpp).
 struct SsrSettings {
     enum class Traversal { Linear, HiZ };
     // The min-depth pyramid (FidelityFX SSSR) or the DDA pixel by pixel: the same hits, found

@@ -191,7 +191,7 @@ resolutions = [[64, 36]]
 name = "whitted"
 [[techniques]]
 name = "ssr_fallback"
-param_sets = [ { }, { importance_cutoff = 0.01 } ]
+param_sets = [ { }, { importance_cutoff = 0.0 } ]
 [[techniques]]
 name = "ssr_fallback"
 label = "glass-trees"
