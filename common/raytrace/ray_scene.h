@@ -145,6 +145,8 @@ private:
     struct GeometryRef {
         std::uint32_t object;
         std::uint32_t mesh;
+        const Material* material;  // the mesh's: a hit needs no load of the Mesh itself
+        bool hasUvs;
         std::vector<StaticTriangle> triangles;
     };
     std::vector<GeometryRef> staticGeometry_;          // by geomID in static_

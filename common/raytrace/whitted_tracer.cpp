@@ -69,9 +69,14 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     glm::vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
 
     ShadingParts parts;
-    parts.local = local ? *local
-                                : localColor(hit, n, ng, -incoming, stats, effects.shadows,
-                                             uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal), media.absorption());
+    if (local) {
+        parts.local = *local;
+    } else {
+        // The footprint's level of detail (a log2) only where a texture reads it.
+        const float uvLod = m.diffuseTexture != kNoTexture ? uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal)
+                                                           : -std::numeric_limits<float>::infinity();
+        parts.local = localColor(hit, n, ng, -incoming, stats, effects.shadows, uvLod, media.absorption());
+    }
     parts.transparency = 1.0f - m.opacity;
     const float orr = parts.transparency;
     const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;
