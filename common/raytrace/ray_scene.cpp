@@ -272,7 +272,7 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     return true;
 }
 
-glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, glm::vec3 startAbsorption) const {
+glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax, const glm::vec3& startAbsorption) const {
     if (log_) log_->record({origin, dir, 0.0f, tmax, true});
     ShadowRayContext ctx;
     rtcInitIntersectContext(&ctx.base);
