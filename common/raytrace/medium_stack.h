@@ -34,6 +34,22 @@ class MediumStack {
 public:
     static constexpr int kCapacity = 8;
 
+    // The ambient medium (nothing entered). Entries past depth() are never read, so neither this
+    // nor a copy touches them: a camera ray's empty stack, passed at every recursion, costs its
+    // size and absorption alone rather than a fill and copy of every entry.
+    MediumStack() {}
+    MediumStack(const MediumStack& other) : size_(other.size_), absorption_(other.absorption_) {
+        for (int i = 0; i < size_; ++i) entries_[i] = other.entries_[i];
+    }
+    MediumStack& operator=(const MediumStack& other) {
+        size_ = other.size_;
+        absorption_ = other.absorption_;
+        for (int i = 0; i < size_; ++i) entries_[i] = other.entries_[i];
+        return *this;
+    }
+    // The stack of a camera ray, shared: default arguments take it instead of a temporary.
+    static const MediumStack kAmbient;
+
     // Sum of the absorption coefficients of the media the ray is in.
     const glm::vec3& absorption() const { return absorption_; }
     bool absorbs() const { return absorption_.x > 0.0f || absorption_.y > 0.0f || absorption_.z > 0.0f; }
@@ -68,6 +84,8 @@ private:
     int size_ = 0;
     glm::vec3 absorption_{0.0f};
 };
+
+inline const MediumStack MediumStack::kAmbient;
 
 // Beer-Lambert transmittance of a segment of `length` in media of total absorption `a`. Exactly 1
 // for a = 0 (also for an infinite length, where exp(-0 * inf) would be NaN).

@@ -163,7 +163,8 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
             RTCGeometry g = makeTriangleGeometry(m, m.positions, &toWorld_[o], false);
             rtcAttachGeometryByID(static_, g, static_cast<unsigned>(staticGeometry_.size()));
             rtcReleaseGeometry(g);
-            staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh, worldTriangles(m, toWorld_[o], normalToWorld_[o])});
+            staticGeometry_.push_back({static_cast<std::uint32_t>(o), mesh, &scene.materials[m.material], !m.uvs.empty(),
+                                       worldTriangles(m, toWorld_[o], normalToWorld_[o])});
         }
     }
     rtcCommitScene(static_);
@@ -271,7 +272,7 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     return true;
 }
 
-glm::vec3 RayScene::transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, glm::vec3 startAbsorption) const {
+glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax, const glm::vec3& startAbsorption) const {
     if (log_) log_->record({origin, dir, 0.0f, tmax, true});
     ShadowRayContext ctx;
     rtcInitIntersectContext(&ctx.base);
@@ -298,32 +299,35 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
     const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
     const bool instance = top_ != static_ && rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID &&
                           instanceObject_[rh.hit.instID[0]] != std::numeric_limits<std::uint32_t>::max();
-    // A static geometry's record is the hit's one likely cache miss: its address first.
-    const GeometryRef* ref = instance ? nullptr : &staticGeometry_[rh.hit.geomID];
-    const StaticTriangle* st = ref ? &ref->triangles[rh.hit.primID] : nullptr;
-    const std::uint32_t object = ref ? ref->object : instanceObject_[rh.hit.instID[0]];
-    const std::uint32_t mesh = ref ? ref->mesh : scene_.objects[object].meshes[rh.hit.geomID];
-    const Mesh& m = scene_.meshes[mesh];
-    const glm::mat4& M = toWorld_[object];
-    const glm::mat3& N = normalToWorld_[object];
-
     hit.t = rh.ray.tfar;
-    hit.object = object;
-    hit.mesh = mesh;
     hit.primitive = rh.hit.primID;
-    hit.material = &scene_.materials[m.material];
     glm::uvec3 tri;
-    if (st) {
-        tri = st->vertices;
-        hit.shadingNormal = glm::normalize(w * st->normal[0] + u * st->normal[1] + v * st->normal[2]);
-        hit.position = w * st->position[0] + u * st->position[1] + v * st->position[2];
-        hit.geometricNormal = st->geometricNormal;
-        if (!m.uvs.empty()) {
-            hit.uv = w * st->uv[0] + u * st->uv[1] + v * st->uv[2];
-            hit.uvDensityLod = st->uvDensityLod;
+    if (!instance) {
+        // A static geometry's record is the hit's one likely cache miss: its address first, and
+        // nothing read from the Mesh.
+        const GeometryRef& ref = staticGeometry_[rh.hit.geomID];
+        const StaticTriangle& st = ref.triangles[rh.hit.primID];
+        hit.object = ref.object;
+        hit.mesh = ref.mesh;
+        hit.material = ref.material;
+        tri = st.vertices;
+        hit.shadingNormal = glm::normalize(w * st.normal[0] + u * st.normal[1] + v * st.normal[2]);
+        hit.position = w * st.position[0] + u * st.position[1] + v * st.position[2];
+        hit.geometricNormal = st.geometricNormal;
+        if (ref.hasUvs) {
+            hit.uv = w * st.uv[0] + u * st.uv[1] + v * st.uv[2];
+            hit.uvDensityLod = st.uvDensityLod;
         }
     } else {
         // An instance: the object-space vertices, deformed at time_ for a deforming object.
+        const std::uint32_t object = instanceObject_[rh.hit.instID[0]];
+        const std::uint32_t mesh = scene_.objects[object].meshes[rh.hit.geomID];
+        const Mesh& m = scene_.meshes[mesh];
+        const glm::mat4& M = toWorld_[object];
+        const glm::mat3& N = normalToWorld_[object];
+        hit.object = object;
+        hit.mesh = mesh;
+        hit.material = &scene_.materials[m.material];
         tri = m.triangles[rh.hit.primID];
         const DeformedVertices& d = deformed_[mesh];
         const bool deformed = !d.positions.empty();
@@ -344,8 +348,11 @@ void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {
         }
     }
     const Material& mat = *hit.material;
-    if (mat.normalTexture != kNoTexture && !m.tangents.empty() && !m.uvs.empty()) {
-        const std::vector<glm::vec4>& tangents = deformed_[mesh].tangents.empty() ? m.tangents : deformed_[mesh].tangents;
+    if (mat.normalTexture == kNoTexture) return;
+    const Mesh& m = scene_.meshes[hit.mesh];
+    if (!m.tangents.empty() && !m.uvs.empty()) {
+        const glm::mat4& M = toWorld_[hit.object];
+        const std::vector<glm::vec4>& tangents = deformed_[hit.mesh].tangents.empty() ? m.tangents : deformed_[hit.mesh].tangents;
         glm::vec4 t4 = w * tangents[tri.x] + u * tangents[tri.y] + v * tangents[tri.z];
         glm::vec3 t = glm::normalize(glm::mat3(M) * glm::vec3(t4));
         t = glm::normalize(t - hit.shadingNormal * glm::dot(hit.shadingNormal, t));

@@ -81,8 +81,11 @@ public:
     // casters stop it (0); transparent ones multiply it by their occluderTransmittance (the any-hit
     // rule of Walewski 2019 Listing 8b); materials that cast no shadow are ignored. Absorbing media
     // attenuate the part of the ray inside them (medium_stack.h), `startAbsorption` being that of
-    // the media around `origin`.
-    glm::vec3 transmittance(glm::vec3 origin, glm::vec3 dir, float tmax, glm::vec3 startAbsorption = glm::vec3(0.0f)) const;
+    // the media around `origin`. The vectors by reference: by value, GCC spills a vec3's two
+    // registers apart and reloads (y, z) as one 8-byte load across both stores, a failed
+    // store-to-load forwarding that cost half of this function's time.
+    glm::vec3 transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax,
+                            const glm::vec3& startAbsorption = glm::vec3(0.0f)) const;
 
     // For benchmarks that trace the same rays with bare rtcIntersect1 / rtcOccluded1: the
     // top-level scene, and a log that records every ray traced while it is set (null: off).
@@ -145,6 +148,8 @@ private:
     struct GeometryRef {
         std::uint32_t object;
         std::uint32_t mesh;
+        const Material* material;  // the mesh's: a hit needs no load of the Mesh itself
+        bool hasUvs;
         std::vector<StaticTriangle> triangles;
     };
     std::vector<GeometryRef> staticGeometry_;          // by geomID in static_

@@ -16,10 +16,6 @@ SpotCone spotCone(const Light& light) {
 
 LightSample sampleLight(const Light& light, glm::vec3 p) { return sampleLight(light, spotCone(light), p); }
 
-glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue) {
-    return s.material->emission + s.material->ambient * scene.ambient * textureValue;
-}
-
 glm::vec3 reflectDirection(glm::vec3 d, glm::vec3 n) { return d - 2.0f * glm::dot(d, n) * n; }
 
 bool refractDirection(glm::vec3 d, glm::vec3 n, float eta, glm::vec3& out) {

@@ -77,7 +77,7 @@ inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::ve
 inline glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light);
 
 // emission + ambient * sceneAmbient * T: the part of C that needs no light.
-glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue);
+inline glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue);
 
 // Shadow transmittance through one occluder with this material.
 inline glm::vec3 occluderTransmittance(const Material& m);
@@ -158,6 +158,12 @@ inline glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::
         c += m.specular * std::pow(std::max(glm::dot(s.normal, h), 0.0f), m.specularExponent);
     }
     return light.radiance * c;
+}
+
+// Inline, not for the arithmetic but for the call: a vec3 argument assembled from scalars just
+// before it is stored apart and reloaded as one, a failed store-to-load forwarding per hit.
+inline glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue) {
+    return s.material->emission + s.material->ambient * scene.ambient * textureValue;
 }
 
 inline glm::vec3 occluderTransmittance(const Material& m) {
