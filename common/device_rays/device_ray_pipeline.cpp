@@ -1,6 +1,5 @@
 #include "common/device_rays/device_ray_pipeline.h"
 
-#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -134,14 +133,13 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
         // Identically declared set layouts are compatible: this scene's sets bind to the shared
         // pipeline (a ray-generation shader declares one set 1, so its name keys it).
         static std::mutex mutex;
-        // Released as VulkanDevice::shared()'s devices are: by an exit handler registered after
-        // theirs, so that it runs first and the pipelines go before their device.
+        // Released as VulkanDevice::shared()'s devices are, by a handler registered after theirs:
+        // the pipelines go first.
         static auto& compiled = *new std::map<std::tuple<VkDevice, std::string, std::uint32_t>, std::shared_ptr<const CompiledRayPipeline>>;
-        static const bool releasedAtExit = std::atexit([] {
+        releaseBeforeTheDriverAtExit([] {
             std::lock_guard exitLock(mutex);
             compiled.clear();
-        }) == 0;
-        (void)releasedAtExit;
+        });
         std::lock_guard lock(mutex);
         auto& entry = compiled[{dev.device(), raygenShader, textureCount}];
         if (!entry) entry = compile(dev, raygenShader, textureCount, inputs);

@@ -95,11 +95,8 @@ const std::vector<const char*> kRayTracingExtensions = {
 
 std::shared_ptr<VulkanDevice> VulkanDevice::shared(DeviceFeatures features) {
     static std::mutex mutex;
-    // Not a static destructor's to destroy: that would run after the exit handlers the Vulkan
-    // driver and layers register when they load (after this map was made), and crash in them (the
-    // validation layer here, NVIDIA's driver on an H200). An exit handler registered once the
-    // first device exists runs before theirs (exit handlers run in reverse order) and releases
-    // the devices while the driver is whole, its threads joined before LeakSanitizer's check.
+    // Released by releaseBeforeTheDriverAtExit, not by a static destructor: while the driver is
+    // whole, its threads joined before LeakSanitizer's exit check.
     static auto& devices = *new std::map<DeviceFeatures, std::shared_ptr<VulkanDevice>>;
     static std::map<DeviceFeatures, std::string> failures;
     std::lock_guard lock(mutex);
@@ -109,11 +106,10 @@ std::shared_ptr<VulkanDevice> VulkanDevice::shared(DeviceFeatures features) {
         std::shared_ptr<VulkanDevice> d(new VulkanDevice(features));
         d->create();
         devices[features] = d;
-        static const bool releasedAtExit = std::atexit([] {
+        releaseBeforeTheDriverAtExit([] {
             std::lock_guard exitLock(mutex);
             devices.clear();
-        }) == 0;
-        (void)releasedAtExit;
+        });
         return d;
     } catch (const VulkanUnavailable& e) {
         failures[features] = e.what();

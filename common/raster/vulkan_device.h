@@ -5,6 +5,7 @@
 // name> picks by name (the tests pick lavapipe, "llvmpipe", whose results they were calibrated on).
 // Validation layers are on in debug builds (or with HYBRIDLAB_VULKAN_VALIDATION=1) when installed.
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -121,5 +122,16 @@ private:
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time
 };
+
+// Runs `release` (a lambda without captures) once at exit, from a handler registered at the first
+// call. Called once a device exists, that is after the Vulkan driver and layers registered their
+// own exit handlers, it runs before them (exit handlers run in reverse order): a process-wide
+// cache of Vulkan objects released by a static destructor instead would call into a driver or
+// layer already torn down (the validation layer here, NVIDIA's driver on an H200).
+template <class Release>
+void releaseBeforeTheDriverAtExit(Release) {
+    static const bool registered = std::atexit([] { Release{}(); }) == 0;
+    (void)registered;
+}
 
 }  // namespace hybridlab

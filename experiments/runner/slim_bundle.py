@@ -123,7 +123,6 @@ def write_stub(path):
         subprocess.run(command, check=True, capture_output=True, text=True)
         subprocess.run(["strip", "--strip-unneeded", out], check=True)
         os.replace(out, path)
-    return os.path.basename(path)
 
 
 def main():
@@ -137,8 +136,7 @@ def main():
     stubbed = [n for n in names if n not in needed and not KEPT.match(n)]
     before = sum(os.path.getsize(os.path.join(lib, n)) for n in names)
     with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as pool:
-        for name in pool.map(write_stub, [os.path.join(lib, n) for n in stubbed]):
-            pass
+        list(pool.map(write_stub, [os.path.join(lib, n) for n in stubbed]))
     after = sum(os.path.getsize(os.path.join(lib, n)) for n in names)
     with open(os.path.join(bundle, "README.txt"), "a") as readme:
         readme.write(f"\nSlimmed by experiments/runner/slim_bundle.py: {len(stubbed)} of {len(names)} libraries are stubs "
