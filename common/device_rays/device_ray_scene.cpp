@@ -79,6 +79,10 @@ AccelerationStructure& AccelerationStructure::operator=(AccelerationStructure&& 
 DeviceRayScene::DeviceRayScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, DeformedMeshCache& deformedMeshes, double time)
     : device_(std::move(device)), scene_(scene), deformedMeshes_(deformedMeshes), textures_(*device_, scene) {
     const auto start = WallClock::now();
+    // A pending ray's medium stack packs object and material in 16 bits each (device_medium_stack.glsl).
+    if (scene_.objects.size() >= 0xFFFF || scene_.materials.size() >= 0xFFFF)
+        throw InputError("scene " + scene_.name + " has " + std::to_string(scene_.objects.size()) + " objects and " +
+                         std::to_string(scene_.materials.size()) + " materials; rays = \"vulkan\" addresses at most 65534 of each");
     uploadSceneBuffers(gatherBottomLevels(time));
     const StructureBytes bytes = structureSizes();
     requireDeviceMemory(bytes);

@@ -1,14 +1,44 @@
 #include "common/raster/pipelines.h"
 
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <vector>
 
+#include "common/core/input_error.h"
 #include "common/raster/embedded_shaders.h"
 #include "common/raster/vulkan_error.h"
 
 namespace hybridlab {
 
+namespace {
+
+// HYBRIDLAB_SHADER_DIR=<dir>: <dir>/<name>.spv, where present, replaces the embedded SPIR-V of
+// <name>. For trying a changed shader, or bisecting one on a driver, without rebuilding.
+std::vector<std::uint32_t> shaderOverride(const std::string& name) {
+    const char* dir = std::getenv("HYBRIDLAB_SHADER_DIR");
+    if (!dir || !*dir) return {};
+    const std::filesystem::path path = std::filesystem::path(dir) / (name + ".spv");
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return {};
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.is_open() || bytes.empty() || bytes.size() % 4 != 0)
+        throw InputError(path.string() + ": expected SPIR-V (a non-empty file of 32-bit words), read " + std::to_string(bytes.size()) +
+                         " bytes");
+    std::vector<std::uint32_t> words(bytes.size() / 4);
+    std::memcpy(words.data(), bytes.data(), bytes.size());
+    return words;
+}
+
+}  // namespace
+
 UniqueShaderModule createShaderModule(const VulkanDevice& device, const std::string& embeddedName) {
-    std::span<const std::uint32_t> code = embeddedShader(embeddedName);
+    const std::vector<std::uint32_t> replaced = shaderOverride(embeddedName);
+    std::span<const std::uint32_t> code = replaced.empty() ? embeddedShader(embeddedName) : std::span<const std::uint32_t>(replaced);
     VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     ci.codeSize = code.size_bytes();
     ci.pCode = code.data();

@@ -51,7 +51,7 @@ Surface gbufferSurface(ivec2 texel, out DeviceMaterial m) {
     s.shadingNormal = texelFetch(gNormal, texel, 0).xyz;
     s.uv = vec2(0.0);
     s.uvDensityLod = -1.0 / 0.0;
-    s.material = 0u;
+    s.material = kNoAbsorption;
     s.object = uint(gbufferObject(texel));
     return s;
 }

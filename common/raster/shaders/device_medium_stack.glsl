@@ -1,24 +1,29 @@
 // The media a device ray travels in and Beer-Lambert absorption along it: in GLSL,
 // MediumStack and segmentTransmittance (common/raytrace/medium_stack.h), which states the rule.
-// These few lines mirror that header line by line; change both together.
+// These few lines mirror that header; change both together. One difference: an entry is the
+// object and its material, 16 bits each, the absorption read from the material. A pending ray
+// carries its stack (device_whitted_tree.glsl), and the ray-generation shader's stack of pending
+// rays lives in the ray-tracing stack, which NVIDIA's driver bounds: with the C++'s layout (a vec3
+// an entry) it took 14.6 KB an invocation and lost the device (H200, driver 580; 10 KB ran).
+// Include after device_rays.glsl (the materials).
 #ifndef DEVICE_MEDIUM_STACK_GLSL
 #define DEVICE_MEDIUM_STACK_GLSL
 
 const int kMediumCapacity = 8;  // MediumStack::kCapacity
 
+// The material of a surface that absorbs nothing inside (the G-buffer's, device_gbuffer_rays.glsl).
+const uint kNoAbsorption = 0xFFFFu;
+vec3 mediumAbsorption(uint material) { return material == kNoAbsorption ? vec3(0.0) : materials[material].absorption.rgb; }
+
 struct MediumStack {
-    uint objects[kMediumCapacity];
-    vec3 absorptions[kMediumCapacity];
+    uint entries[kMediumCapacity];  // object | material << 16 (DeviceRayScene keeps both below 0xFFFF)
     int size;
     vec3 absorption;  // sum of the absorption coefficients of the media the ray is in
 };
 
 MediumStack ambientMedium() {
     MediumStack s;
-    for (int i = 0; i < kMediumCapacity; ++i) {
-        s.objects[i] = 0u;
-        s.absorptions[i] = vec3(0.0);
-    }
+    for (int i = 0; i < kMediumCapacity; ++i) s.entries[i] = 0u;
     s.size = 0;
     s.absorption = vec3(0.0);
     return s;
@@ -26,27 +31,23 @@ MediumStack ambientMedium() {
 
 bool mediumAbsorbs(MediumStack s) { return s.absorption.x > 0.0 || s.absorption.y > 0.0 || s.absorption.z > 0.0; }
 
-// The stack of a ray that entered `object` (absorption `a`); false (stack unchanged) when full.
-bool mediumEnter(inout MediumStack s, uint object, vec3 a) {
+// The stack of a ray that entered `object` of `material`; false (stack unchanged) when full.
+bool mediumEnter(inout MediumStack s, uint object, uint material) {
     if (s.size == kMediumCapacity) return false;
-    s.objects[s.size] = object;
-    s.absorptions[s.size] = a;
+    s.entries[s.size] = object | (material << 16);
     ++s.size;
-    s.absorption += a;
+    s.absorption += mediumAbsorption(material);
     return true;
 }
 
 // The stack of a ray that left `object`; false (stack unchanged) when it was never entered.
 bool mediumLeave(inout MediumStack s, uint object) {
     for (int i = s.size - 1; i >= 0; --i) {
-        if (s.objects[i] != object) continue;
-        for (int j = i; j + 1 < s.size; ++j) {
-            s.objects[j] = s.objects[j + 1];
-            s.absorptions[j] = s.absorptions[j + 1];
-        }
+        if ((s.entries[i] & 0xFFFFu) != object) continue;
+        for (int j = i; j + 1 < s.size; ++j) s.entries[j] = s.entries[j + 1];
         --s.size;
         s.absorption = vec3(0.0);  // re-summed, so that no rounding accumulates along a path
-        for (int j = 0; j < s.size; ++j) s.absorption += s.absorptions[j];
+        for (int j = 0; j < s.size; ++j) s.absorption += mediumAbsorption(s.entries[j] >> 16);
         return true;
     }
     return false;

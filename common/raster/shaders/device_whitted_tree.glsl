@@ -222,7 +222,7 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
     } else if (weightR > 0.0 && importance * weightR >= cutoff) {
         h.refracted.traced = true;
         MediumStack inside = media;
-        if (!(entering ? mediumEnter(inside, s.object, m.absorption.rgb) : mediumLeave(inside, s.object))) ++countMediumErrors;
+        if (!(entering ? mediumEnter(inside, s.object, s.material) : mediumLeave(inside, s.object))) ++countMediumErrors;
         h.refracted.ray = PendingRay(offsetRayOrigin(s.position, -ng), importance * weightR, refracted, depth + 1, vec3(1.0), coneWidth, inside);
     }
     return h;
