@@ -233,6 +233,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
         c.name = e->string("name", c.name);
         c.description = e->string("description", "");
         c.warmupFrames = e->integer("warmup_frames", c.warmupFrames, 0, 1000);
+        c.warmupMilliseconds = e->number("warmup_ms", c.warmupMilliseconds, {0.0, 600000.0});
         c.repeats = e->integer("repeats", c.repeats, 1, 1000);
         readMetricsAndKeep(*e, c);
         e->rejectUnknownKeys();

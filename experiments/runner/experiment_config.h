@@ -42,6 +42,9 @@ struct ExperimentConfig {
     std::string description;
     std::string hash;          // of the config file's bytes
     int warmupFrames = 1;
+    // `warmup_ms`: the warm-up goes on past warmup_frames until this long (a GPU raises its clock
+    // only under load; 0: frames alone).
+    double warmupMilliseconds = 0.0;
     int repeats = 3;
     double resolutionScale = 1.0;  // `run --scale`: resolutions below are already scaled (resolution_scale.h)
     MetricSelection metrics;       // `metrics`: what each image is scored with

@@ -266,11 +266,17 @@ struct TimedFrame {
     FrameResult result;  // the last repeat
     std::map<std::string, std::vector<double>> stageTimes;
     std::vector<double> frameTimes;
+    int warmupFrames = 0;
 };
 
 TimedFrame timeTechnique(const ExperimentConfig& config, Technique& technique, SceneContext& context, const FrameRequest& request) {
-    for (int i = 0; i < config.warmupFrames; ++i) technique.render(context, request);
     TimedFrame timed;
+    const auto start = WallClock::now();
+    while (timed.warmupFrames < config.warmupFrames ||
+           (config.warmupMilliseconds > 0.0 && millisecondsSince(start) < config.warmupMilliseconds)) {
+        technique.render(context, request);
+        ++timed.warmupFrames;
+    }
     for (int i = 0; i < config.repeats; ++i) {
         timed.result = technique.render(context, request);
         for (const auto& s : timed.result.stages) timed.stageTimes[s.name].push_back(s.milliseconds);
@@ -300,6 +306,7 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
     r.parametersText = run.parametersText;
     r.sequence = run.sequenceKey;
     r.frameMilliseconds = spreadOf(timed.frameTimes);
+    r.warmupFrames = timed.warmupFrames;
     for (const auto& [name, times] : timed.stageTimes) r.stages[name] = spreadOf(times);
     r.counters = timed.result.counters;
     r.metrics = reportJson(report, sources);

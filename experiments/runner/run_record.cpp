@@ -56,6 +56,7 @@ json toJson(const RunRecord& r) {
     j["parameters_text"] = r.parametersText;
     j["sequence"] = r.sequence;
     j["frame_ms"] = spreadJson(r.frameMilliseconds);
+    if (r.warmupFrames) j["warmup_frames"] = *r.warmupFrames;
     j["stages"] = json::object();
     for (const auto& [name, s] : r.stages) j["stages"][name] = spreadJson(s);
     j["counters"] = json::object();
@@ -222,6 +223,7 @@ RunRecord fromJson(const json& j) {
     r.reference = referenceFrom(f.required("reference"), f.path("reference"));
     r.images = imagesFrom(f.required("images"), f.path("images"));
     r.runSeconds = f.getOptional<double>("run_seconds");
+    r.warmupFrames = f.getOptional<int>("warmup_frames");
     if (const json* device = f.optional("device")) r.device = *device;
     r.temporalError = f.getOptional<double>("temporal_error");
     r.temporalErrorMasked = f.getOptional<double>("temporal_error_masked");

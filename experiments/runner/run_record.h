@@ -52,6 +52,7 @@ struct RunRecord {
     std::string sequence;      // the frames of one path in one setting (the temporal error's pairs)
     // What it cost and produced.
     Spread frameMilliseconds;
+    std::optional<int> warmupFrames;  // rendered before the timed repeats
     std::map<std::string, Spread> stages;
     std::map<std::string, double> counters;
     // The metric report as metrics/report_files.h's reportJson writes it: the same object is the

@@ -393,6 +393,37 @@ TEST(ExperimentRunner, ScenePathsResolveAgainstTheConfigAndResumeExplainsAChange
     }
 }
 
+TEST(ExperimentRunner, WarmupGoesOnForWarmupMilliseconds) {
+    TempDir dir;
+    // whitted at 24x14 takes about a millisecond a frame: 250 ms of warm-up is many frames.
+    const std::string body = R"(
+repeats = 2
+keep = []
+metrics = ["rmse"]
+[[scenes]]
+scene = "whitted-classic"
+resolutions = [[24, 14]]
+[[techniques]]
+name = "whitted"
+params = { max_depth = 1 }
+)";
+    auto run = [&](const std::string& name, const std::string& warmup) {
+        const fs::path out = dir.path() / name;
+        RunnerOptions o = test::quietRunnerOptions(out, dir.path() / "cache");
+        EXPECT_TRUE(runExperiment(loadExperimentConfig(writeConfig(dir, "[experiment]\n" + warmup + body, name + ".toml")), o).complete);
+        const auto records = test::readResults(out);
+        EXPECT_EQ(records.size(), 1u);
+        return records.empty() ? json() : records[0];
+    };
+    const json frames = run("frames", "warmup_frames = 3\n");
+    EXPECT_EQ(frames.at("warmup_frames"), 3);
+    const json timed = run("timed", "warmup_frames = 1\nwarmup_ms = 250\n");
+    const double frameMs = timed.at("frame_ms").at("median").get<double>();
+    // At least as many frames as fit in 250 ms at the slowest timed frame's pace, and the run took that long.
+    EXPECT_GE(timed.at("warmup_frames").get<double>(), std::min(250.0 / timed.at("frame_ms").at("max").get<double>(), 20.0)) << frameMs;
+    EXPECT_GE(timed.at("run_seconds").get<double>(), 0.25);
+}
+
 TEST(ExperimentRunner, ConfigChoosesTheMetricsAndTheImagesKept) {
     TempDir dir;
     // heuristic_rt writes debug images; three frames of a path give two temporal errors.
@@ -536,6 +567,7 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithout
         {"unknown-metric", "[experiment]\nmetrics = [\"ssim\", \"lpips\"]\n" + scene + technique,
          "experiment.metrics: 'lpips' is not one of: ssim, flip, flip_hdr, rmse, psnr, temporal"},
         {"no-metrics", "[experiment]\nmetrics = []\n" + scene + technique, "experiment.metrics: an empty list measures nothing"},
+        {"warmup-ms-range", "[experiment]\nwarmup_ms = -5\n" + scene + technique, "experiment.warmup_ms: expected a number in [0, 600000], got -5"},
         {"metrics-not-names", "[experiment]\nmetrics = \"ssim\"\n" + scene + technique, "experiment.metrics: expected an array of strings"},
         {"unknown-keep", "[experiment]\nkeep = [\"thumbnails\"]\n" + scene + technique,
          "experiment.keep: 'thumbnails' is not one of: error_maps, debug_images"},
