@@ -4,6 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
+#include "metrics/parallel_tasks.h"
+
 namespace hybridlab {
 namespace {
 
@@ -70,7 +74,7 @@ cv::Mat3f toneMapToDisplay(const cv::Mat3f& linear, double exposure, ToneMapper 
     const Rational k = curve(toneMapper);
     const float scale = static_cast<float>(std::exp2(exposure));
     cv::Mat3f out(linear.size());
-    for (int r = 0; r < linear.rows; ++r) {
+    forEachRowInParallel(linear.rows, [&](int r) {
         for (int c = 0; c < linear.cols; ++c) {
             cv::Vec3f x = linear(r, c);
             for (int i = 0; i < 3; ++i) x[i] = std::max(x[i], 0.0f) * scale;
@@ -89,21 +93,26 @@ cv::Mat3f toneMapToDisplay(const cv::Mat3f& linear, double exposure, ToneMapper 
             for (int i = 0; i < 3; ++i) y[i] = encodeSrgb(std::clamp(y[i], 0.0f, 1.0f));
             out(r, c) = y;
         }
-    }
+    });
     return out;
 }
 
 cv::Mat1f hdrFlipMap(const cv::Mat3f& test, const cv::Mat3f& reference, double pixelsPerDegree, ToneMapper toneMapper) {
     const HdrFlipExposures e = hdrFlipExposures(reference, toneMapper);
     const double step = (e.stop - e.start) / std::max(e.count - 1, 1);
-    cv::Mat1f result(reference.size(), 0.0f);
-    for (int i = 0; i < e.count; ++i) {
+    // The exposures side by side (each FLIP's filter passes leave threads idle), then their maximum,
+    // which no order changes.
+    std::vector<cv::Mat1f> ldr(static_cast<std::size_t>(std::max(e.count, 0)));
+    tbb::parallel_for(0, e.count, [&](int i) {
         const double exposure = e.start + i * step;
-        const cv::Mat1f ldr = flipMap(toneMapToDisplay(test, exposure, toneMapper), toneMapToDisplay(reference, exposure, toneMapper),
-                                      pixelsPerDegree);
-        for (int r = 0; r < result.rows; ++r)
-            for (int c = 0; c < result.cols; ++c) result(r, c) = std::max(result(r, c), ldr(r, c));
-    }
+        ldr[static_cast<std::size_t>(i)] = flipMap(toneMapToDisplay(test, exposure, toneMapper),
+                                                   toneMapToDisplay(reference, exposure, toneMapper), pixelsPerDegree);
+    });
+    cv::Mat1f result(reference.size(), 0.0f);
+    forEachRowInParallel(result.rows, [&](int r) {
+        for (const cv::Mat1f& map : ldr)
+            for (int c = 0; c < result.cols; ++c) result(r, c) = std::max(result(r, c), map(r, c));
+    });
     return result;
 }
 

@@ -8,6 +8,7 @@
 
 #include "common/core/atomic_file.h"
 #include "common/image/image_io.h"
+#include "metrics/parallel_tasks.h"
 
 namespace hybridlab {
 
@@ -79,10 +80,11 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
 
 void writeReportFiles(const fs::path& dir, const MetricReport& report, const ReportSources& sources) {
     createDirectories(dir);
+    std::vector<std::function<void()>> maps;
     for (const HeatmapSpec& h : reportHeatmaps(report)) {
-        const Image picture = heatmapWithLegend(*h.values, h.range, h.colorMap, h.title);
-        writePng(dir / h.file, picture);
+        maps.push_back([&dir, h] { writePng(dir / h.file, heatmapWithLegend(*h.values, h.range, h.colorMap, h.title)); });
     }
+    runInParallel(maps);  // each PNG's encoding is serial
     const std::string text = reportJson(report, sources).dump(2) + "\n";
     writeFileAtomically(dir / "metrics.json", text);
 }

@@ -159,6 +159,10 @@ void writePixels(const fs::path& path, const Image& img, TypeDesc type, const st
     spec.attribute("oiio:UnassociatedAlpha", 1);  // see unassociatedAlphaConfig()
     // No write time in the file (EXR capDate, PNG tIME): same pixels, same bytes.
     spec.attribute("DateTime", "");
+    // zlib's fastest level: a 1280x720 display PNG in 140 ms instead of level 6's 470 ms, 17%
+    // larger. A run writes several (the image, its error maps, debug images), one after another
+    // on a GPU machine whose frames take milliseconds.
+    spec.attribute("png:compressionLevel", 1);
     void* proxy = &memory;
     spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
     if (!out->open(path.string(), spec) || !out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {

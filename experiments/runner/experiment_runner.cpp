@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <iterator>
 #include <memory>
@@ -27,6 +28,7 @@
 #include "experiments/runner/run_record.h"
 #include "experiments/runner/shard_partition.h"
 #include "metrics/metrics.h"
+#include "metrics/parallel_tasks.h"
 #include "metrics/report_files.h"
 #include "techniques/technique.h"
 
@@ -370,28 +372,33 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         scoring.selection = config.metrics;
         const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
         const std::string image = "images/" + run->id;
-        writeImageAtomically(o.outDir / (image + ".exr"), result.image);
-        writeImageAtomically(o.outDir / (image + ".png"), result.image);
         const ReportSources sources{image + ".exr", "references/" + key + ".exr",
                                     mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
+        // The run's files side by side: each image's encoding is serial, and on a GPU machine
+        // they take longer than the frames.
+        std::vector<std::function<void()>> writes = {[&] { writeImageAtomically(o.outDir / (image + ".exr"), result.image); },
+                                                     [&] { writeImageAtomically(o.outDir / (image + ".png"), result.image); }};
         std::optional<std::string> maps;
         if (config.keepErrorMaps) {
-            writeReportFiles(store.mapsDir() / run->id, report, sources);
+            writes.push_back([&] { writeReportFiles(store.mapsDir() / run->id, report, sources); });
             maps = "maps/" + run->id;
         }
+        std::map<std::string, std::string> debugImages;
+        if (config.keepDebugImages) {
+            for (const auto& [name, dbg] : result.debugImages) {
+                const std::string p = image + "." + name + ".png";
+                debugImages[name] = p;
+                writes.push_back([&o, p, &dbg = dbg] { writeImageAtomically(o.outDir / p, dbg); });
+            }
+        }
+        runInParallel(writes);
 
         RunRecord record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
         // The run's time so far (scene load, reference, warm-up, repeats, scoring, error maps): what
         // `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = millisecondsSince(runStart) / 1000.0;
         if (mixed) record.device = mixed->here;
-        if (config.keepDebugImages) {
-            for (const auto& [name, dbg] : result.debugImages) {
-                const std::string p = image + "." + name + ".png";
-                writeImageAtomically(o.outDir / p, dbg);
-                record.images.debug[name] = p;
-            }
-        }
+        record.images.debug = std::move(debugImages);
         store.recordRun(record);
         ++summary.runsRendered;
         ++done;
