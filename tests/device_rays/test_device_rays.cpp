@@ -390,6 +390,32 @@ TEST(DeviceRays, AComputerWithoutRayTracingIsToldWhichExtensionItLacks) {
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
+TEST(DeviceRays, ASceneOfMoreObjectsOrMaterialsThanAMediumEntryAddressesIsRefused) {
+    REQUIRE_RAY_TRACING_DEVICE();
+    // A pending ray's medium stack packs object and material in 16 bits each
+    // (device_medium_stack.glsl): 65535 of either is refused by name, before anything is built.
+    auto refusal = [](const Scene& scene) -> std::string {
+        DeformedMeshCache deformed(scene);
+        try {
+            DeviceRayScene deviceScene(VulkanDevice::shared({.rayTracing = true}), scene, deformed);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    SceneBuilder objects;
+    objects.object("first", makeCube(), objects.material(matte({0.5f, 0.5f, 0.5f})));
+    objects.scene().objects.resize(0xFFFF, objects.scene().objects.front());
+    EXPECT_CONTAINS(refusal(objects.scene()), "scene test has 65535 objects and 1 materials; rays = \"vulkan\" addresses at most 65534");
+    SceneBuilder materials;
+    materials.object("only", makeCube(), materials.material(matte({0.5f, 0.5f, 0.5f})));
+    materials.scene().materials.resize(0xFFFF, materials.scene().materials.front());
+    EXPECT_CONTAINS(refusal(materials.scene()), "has 1 objects and 65535 materials");
+    // One fewer of each builds.
+    objects.scene().objects.resize(0xFFFE);
+    EXPECT_EQ(refusal(objects.scene()), "");
+}
+
 TEST(DeviceRays, ASceneTooLargeForTheDeviceIsToldItsSize) {
     REQUIRE_RAY_TRACING_DEVICE();
     // A device of 0.1 MiB: whitted-classic's 7938 triangles need about 1 MiB. Exit 2 before
