@@ -394,7 +394,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         runInParallel(writes);
 
         RunRecord record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
-        // The run's time so far (scene load, reference, warm-up, repeats, scoring, error maps): what
+        // The run's time so far (scene load, reference, warm-up, repeats, scoring, its files): what
         // `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = millisecondsSince(runStart) / 1000.0;
         if (mixed) record.device = mixed->here;
