@@ -10,7 +10,7 @@ their symbols bound at load (BIND_NOW) every one must be found. A stub has the l
 its symbol-version nodes and every symbol it exports: functions that print the library and the
 symbol's index on stderr and return a pointer to zeroed memory (an empty string or structure, as
 OpenImageIO's start-up queries of format libraries' versions expect), and objects of the same
-size in zero-filled memory. A slim bundle is about 116 MB, 25 MB as a .tar.xz, and renders the
+size in zero-filled memory. A slim bundle's lib/ is about 120 MB, 25 MB as a .tar.xz, and renders the
 same images (tests/runner/slim_bundle_test.py).
 
 Kept whole: the program's own dependencies (its DT_NEEDED), KEPT below, and what a Vulkan driver
