@@ -1,5 +1,6 @@
 #include "common/raytrace/ray_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -270,6 +271,41 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     resolveHit(rh, hit);
     return true;
+}
+
+void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, bool* found) const {
+    if (count < 1 || count > kCoherentRays) throw std::logic_error("RayScene::intersectCoherent: 1 to kCoherentRays rays");
+    alignas(32) int valid[kCoherentRays];
+    alignas(32) RTCRayHit8 packet;
+    for (int k = 0; k < kCoherentRays; ++k) {
+        const Ray& ray = rays[std::min(k, count - 1)];  // idle lanes repeat the last ray, masked off
+        valid[k] = k < count ? -1 : 0;
+        packet.ray.org_x[k] = ray.origin.x, packet.ray.org_y[k] = ray.origin.y, packet.ray.org_z[k] = ray.origin.z;
+        packet.ray.dir_x[k] = ray.direction.x, packet.ray.dir_y[k] = ray.direction.y, packet.ray.dir_z[k] = ray.direction.z;
+        packet.ray.tnear[k] = 0.0f;
+        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        packet.ray.time[k] = 0.0f;
+        packet.ray.mask[k] = 0xFFFFFFFFu;
+        packet.ray.id[k] = 0;
+        packet.ray.flags[k] = 0;
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        if (log_ && k < count) log_->record({ray.origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), false});
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect8(valid, top_, &ctx, &packet);
+    for (int k = 0; k < count; ++k) {
+        found[k] = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        if (!found[k]) continue;
+        RTCRayHit rh;
+        rh.ray.tfar = packet.ray.tfar[k];
+        rh.hit.u = packet.hit.u[k], rh.hit.v = packet.hit.v[k];
+        rh.hit.geomID = packet.hit.geomID[k], rh.hit.primID = packet.hit.primID[k];
+        rh.hit.instID[0] = packet.hit.instID[0][k];
+        resolveHit(rh, hits[k]);
+    }
 }
 
 glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax, const glm::vec3& startAbsorption) const {

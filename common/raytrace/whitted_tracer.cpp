@@ -18,11 +18,17 @@ WhittedTracer::WhittedTracer(const RayScene& rays, WhittedSettings settings) : r
 glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone,
                                   const MediumStack& media) const {
     SurfaceHit hit;
-    if (!rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit)) {
+    const bool found = rays_.intersect(ray, 0.0f, std::numeric_limits<float>::infinity(), hit);
+    return radianceFrom(ray, found ? &hit : nullptr, depth, importance, stats, cone, media);
+}
+
+glm::vec3 WhittedTracer::radianceFrom(const Ray& ray, const SurfaceHit* hit, int depth, float importance, RayStats& stats, RayCone cone,
+                                      const MediumStack& media) const {
+    if (!hit) {
         if (media.depth() > 0) ++stats.mediumErrors;  // left the scene inside a closed object: an open mesh
         return skyRadiance(rays_.scene(), ray.direction);
     }
-    return radianceAtHit(ray, hit, depth, importance, stats, cone, media);
+    return radianceAtHit(ray, *hit, depth, importance, stats, cone, media);
 }
 
 glm::vec3 WhittedTracer::radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats,

@@ -81,6 +81,9 @@ public:
     // in (medium_stack.h; camera rays: none), which absorb along it up to its hit.
     glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {},
                        const MediumStack& media = MediumStack::kAmbient) const;
+    // radiance() for a ray whose first hit the caller has already found: `hit`, or none (null).
+    glm::vec3 radianceFrom(const Ray& ray, const SurfaceHit* hit, int depth, float importance, RayStats& stats, RayCone cone = {},
+                           const MediumStack& media = MediumStack::kAmbient) const;
     // radiance() for a ray whose first hit the caller has already found.
     glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {},
                             const MediumStack& media = MediumStack::kAmbient) const;

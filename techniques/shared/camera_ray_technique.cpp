@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <stdexcept>
+#include "techniques/shared/camera_ray_packet.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/pixel_loop.h"
 #include "techniques/shared/ray_counters.h"
@@ -53,7 +54,13 @@ FrameResult CameraRayTechnique::render(SceneContext& context, const FrameRequest
     const CameraRays cameraRays(frame.camera, aspect);
     // With a lens model: the pixels it shaded and the rays spent on them (the paper's comparison).
     std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
-    const RayStats total = forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
+    // One sample per pixel without a lens model: the camera rays of a block of pixels in one
+    // coherent packet, then each pixel's ray tree from its first hit.
+    const RayStats total = n == 1 && !lensModel_ ? forEachPixelBlockInParallel(frame.width, frame.height, [&](const PixelBlock& block, RayStats& stats) {
+        const CameraRayPacket packet(rays, cameraRays, block, frame.width, frame.height, stats);
+        for (int k = 0; k < block.count; ++k)
+            result.image.at(block.x[k], block.y[k]) = glm::vec4(tracer.radianceFrom(packet.rays[k], packet.hit(k), 0, 1.0f, stats, cone), 1.0f);
+    }) : forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
         glm::vec3 sum(0.0f);
         const std::uint64_t raysBefore = stats.total();
         bool lens = false;

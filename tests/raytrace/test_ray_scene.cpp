@@ -99,6 +99,67 @@ TEST(RayScene, ShadowRaysStopAtOpaqueCastersAndIgnoreNonCasters) {
     EXPECT_EQ(rays.transmittance({0, 0, 0}, {0, 1, 0}, 10.0f), glm::vec3(0.0f));  // the wall too
 }
 
+// Camera rays through every pixel of a w x h image of `scene` at time 0.5 (the moving sphere an
+// instance half-way), traced one at a time and in packets of 1 to kCoherentRays: the same hits
+// (object, primitive, distance and position bit for bit), in each lane of a packet.
+TEST(RayScene, CoherentPacketsFindTheHitsOfSingleRays) {
+    Scene scene = movingSphereScene();
+    scene.camera.position = {4, 4, 6};
+    scene.camera.orientation = Camera::lookAtOrientation(scene.camera.position, {0, 0.5f, -1.5f}, {0, 1, 0});
+    RayScene rays(scene, 0.5);
+    const int w = 96, h = 54;
+    const CameraRays camera(scene.camera, static_cast<float>(w) / h);
+    std::vector<Ray> all;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) all.push_back(camera.throughNdc(pixelCenterNdc(x, y, w, h)));
+    int hits = 0, objects[3] = {0, 0, 0};
+    for (int size = 1; size <= RayScene::kCoherentRays; ++size) {
+        for (std::size_t first = 0; first < all.size(); first += static_cast<std::size_t>(size)) {
+            const int count = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(size), all.size() - first));
+            SurfaceHit packet[RayScene::kCoherentRays];
+            bool found[RayScene::kCoherentRays];
+            rays.intersectCoherent(&all[first], count, packet, found);
+            for (int k = 0; k < count; ++k) {
+                SurfaceHit single;
+                const bool singleFound = rays.intersect(all[first + k], 0.0f, kInf, single);
+                ASSERT_EQ(found[k], singleFound) << "ray " << first + k << " in packets of " << size;
+                if (!found[k]) continue;
+                EXPECT_EQ(packet[k].object, single.object);
+                EXPECT_EQ(packet[k].primitive, single.primitive);
+                EXPECT_EQ(packet[k].t, single.t);
+                EXPECT_EQ(packet[k].position, single.position);
+                EXPECT_EQ(packet[k].material, single.material);
+                hits += size == RayScene::kCoherentRays;
+                if (size == RayScene::kCoherentRays) ++objects[packet[k].object];
+            }
+        }
+    }
+    EXPECT_GT(hits, w * h / 2);  // the test sees something
+    for (int o = 0; o < 3; ++o) EXPECT_GT(objects[o], 50) << scene.objects[o].name;  // the instance too
+    SurfaceHit unused[RayScene::kCoherentRays + 1];
+    bool found[RayScene::kCoherentRays + 1];
+    EXPECT_THROW(rays.intersectCoherent(all.data(), 0, unused, found), std::logic_error);
+    EXPECT_THROW(rays.intersectCoherent(all.data(), RayScene::kCoherentRays + 1, unused, found), std::logic_error);
+}
+
+TEST(RayScene, CoherentPacketsAreLoggedRayByRay) {
+    Scene scene = movingSphereScene();
+    RayScene rays(scene);
+    RayLog log;
+    rays.setRayLog(&log);
+    const Ray three[3] = {{{0, 0.5f, 5}, {0, 0, -1}}, {{0, 0.6f, 5}, {0, 0, -1}}, {{0, 0.7f, 5}, {0, 0, -1}}};
+    SurfaceHit hits[3];
+    bool found[3];
+    rays.intersectCoherent(three, 3, hits, found);
+    const std::vector<LoggedRay> logged = log.collect();
+    ASSERT_EQ(logged.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(logged[k].origin, three[k].origin);
+        EXPECT_FALSE(logged[k].shadow);
+        EXPECT_EQ(logged[k].tmax, kInf);
+    }
+}
+
 FrameResult renderWhitted(const Scene& scene, std::vector<std::pair<std::string, ParamValue>> params, int w, int h) {
     SceneContext context(scene);
     auto t = createTechnique("whitted", params);

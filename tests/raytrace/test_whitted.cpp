@@ -277,6 +277,30 @@ TEST(Whitted, RendersAreByteIdenticalWhateverTheThreadCount) {
     }
 }
 
+// The technique's pixel loop traces camera rays in coherent packets; a pixel is still what
+// WhittedTracer::radiance gives for its camera ray alone, bit for bit, edges of odd-sized images
+// (partial packets) included.
+TEST(Whitted, PacketsOfCameraRaysShadeAsSingleRays) {
+    for (const char* name : {"whitted-classic", "teapot-lens"}) {
+        Scene scene = loadSceneFile(findSceneFile(name));
+        const int w = 61, h = 35;
+        const Image image = test::renderImage(scene, "whitted", {}, w, h);
+        RayScene rays(scene);
+        const WhittedTracer tracer(rays, WhittedSettings{});
+        const CameraRays camera(scene.camera, static_cast<float>(w) / h);
+        const RayCone cone = pixelCone(scene.camera, h);
+        int differing = 0;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                RayStats stats;
+                const glm::vec3 single = tracer.radiance(camera.throughNdc(pixelCenterNdc(x, y, w, h)), 0, 1.0f, stats, cone);
+                differing += glm::vec3(image.at(x, y)) != single;
+            }
+        }
+        EXPECT_EQ(differing, 0) << name;
+    }
+}
+
 TEST(RtOnly, IsWhittedWithWalewskisImportanceCutoff) {
     // Same code, other default: with the cut-off at 0 rt_only renders the reference exactly.
     Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
