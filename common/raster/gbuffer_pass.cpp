@@ -3,11 +3,11 @@
 #include <bit>
 #include <cstring>
 
-#include <glm/gtc/packing.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "common/raster/frustum.h"
+#include "common/raster/half_float.h"
 #include "common/raster/readback.h"
 #include "common/raster/vulkan_error.h"
 
@@ -84,9 +84,10 @@ void unpackHalf4(const void* src, std::size_t texels, std::vector<glm::vec4>& ou
 
 // The inverse of unpackHalf4: the host's G-buffer into a 16-bit float target's staging memory.
 void packHalf4(const std::vector<glm::vec4>& in, void* dst) {
-    auto* h = static_cast<std::uint64_t*>(dst);
+    auto* h = static_cast<std::uint16_t*>(dst);
+    const float* f = &in.data()->x;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) h[i] = glm::packHalf4x16(in[i]);
+        floatsToHalves(f + 4 * r.begin(), h + 4 * r.begin(), 4 * r.size());
     });
 }
 
