@@ -1,6 +1,7 @@
 #pragma once
 // Records every ray a RayScene traces (for benchmarks that replay the same rays with bare Embree
 // calls). Thread-safe: each thread appends to its own list.
+#include <cstdint>
 #include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -15,6 +16,10 @@ struct LoggedRay {
     float tmin;
     float tmax;
     bool shadow;  // traced with rtcOccluded1 (else rtcIntersect1)
+    // Rays traced as one coherent packet (RayScene::intersectCoherent) are logged together, lane
+    // packetLane of packetSize; a ray traced alone is lane 0 of 1.
+    std::uint8_t packetSize = 1;
+    std::uint8_t packetLane = 0;
 };
 
 class RayLog {

@@ -273,10 +273,9 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     return true;
 }
 
-void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, bool* found) const {
-    if (count < 1 || count > kCoherentRays) throw std::logic_error("RayScene::intersectCoherent: 1 to kCoherentRays rays");
+void RayScene::traceCoherentPacket(RTCScene scene, const Ray* rays, int count, RTCRayHit8& packet) {
+    if (count < 1 || count > kCoherentRays) throw std::logic_error("RayScene: a coherent packet holds 1 to kCoherentRays rays");
     alignas(32) int valid[kCoherentRays];
-    alignas(32) RTCRayHit8 packet;
     for (int k = 0; k < kCoherentRays; ++k) {
         const Ray& ray = rays[std::min(k, count - 1)];  // idle lanes repeat the last ray, masked off
         valid[k] = k < count ? -1 : 0;
@@ -290,13 +289,21 @@ void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, b
         packet.ray.flags[k] = 0;
         packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        if (log_ && k < count) log_->record({ray.origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), false});
     }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect8(valid, top_, &ctx, &packet);
+    rtcIntersect8(valid, scene, &ctx, &packet);
+}
+
+void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, bool* found) const {
+    alignas(32) RTCRayHit8 packet;
+    traceCoherentPacket(top_, rays, count, packet);
     for (int k = 0; k < count; ++k) {
+        if (log_) {
+            log_->record({rays[k].origin, rays[k].direction, 0.0f, std::numeric_limits<float>::infinity(), false,
+                          static_cast<std::uint8_t>(count), static_cast<std::uint8_t>(k)});
+        }
         found[k] = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
         if (!found[k]) continue;
         RTCRayHit rh;

@@ -85,6 +85,9 @@ public:
     // found[k] is false where rays[k] missed.
     static constexpr int kCoherentRays = 8;
     void intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, bool* found) const;
+    // The Embree call under intersectCoherent, for benchmarks that time Embree alone: rays[0, count)
+    // into `packet` (idle lanes masked off), traced in `scene`.
+    static void traceCoherentPacket(RTCScene scene, const Ray* rays, int count, RTCRayHit8& packet);
 
     // Shadow ray: the transmittance from `origin` along unit `dir` up to `tmax`. Opaque shadow
     // casters stop it (0); transparent ones multiply it by their occluderTransmittance (the any-hit

@@ -58,8 +58,10 @@ double milliseconds(F&& f) {
     return millisecondsSince(start);
 }
 
-// Traces every logged ray with bare rtcIntersect1 / rtcOccluded1; returns the number of hits so
-// that the work cannot be optimised away.
+// Traces every logged ray as the reference traced it, with nothing around the Embree calls: bare
+// rtcIntersect1 / rtcOccluded1, and the camera rays the reference traced as coherent packets as
+// the same packets (a packet whose first lane is in a task's range is that task's, whole). Returns
+// the number of hits so that the work cannot be optimised away.
 std::size_t replay(RTCScene scene, const std::vector<LoggedRay>& rays) {
     std::atomic<std::size_t> hits{0};
     RayTaskContext context;  // the mode the reference traces in, for a like-for-like throughput
@@ -67,7 +69,15 @@ std::size_t replay(RTCScene scene, const std::vector<LoggedRay>& rays) {
         std::size_t local = 0;
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
             const LoggedRay& lr = rays[i];
-            if (lr.shadow) {
+            if (lr.packetLane != 0) continue;  // traced with its packet's first lane
+            if (lr.packetSize > 1) {
+                Ray packetRays[RayScene::kCoherentRays];
+                const int count = std::min<int>(lr.packetSize, static_cast<int>(rays.size() - i));
+                for (int k = 0; k < count; ++k) packetRays[k] = {rays[i + k].origin, rays[i + k].direction};
+                alignas(32) RTCRayHit8 packet;
+                RayScene::traceCoherentPacket(scene, packetRays, count, packet);
+                for (int k = 0; k < count; ++k) local += packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+            } else if (lr.shadow) {
                 ShadowRayContext ctx;
                 rtcInitIntersectContext(&ctx.base);
                 RTCRay ray{lr.origin.x, lr.origin.y, lr.origin.z, lr.tmin, lr.direction.x, lr.direction.y, lr.direction.z,

@@ -157,7 +157,12 @@ TEST(RayScene, CoherentPacketsAreLoggedRayByRay) {
         EXPECT_EQ(logged[k].origin, three[k].origin);
         EXPECT_FALSE(logged[k].shadow);
         EXPECT_EQ(logged[k].tmax, kInf);
+        EXPECT_EQ(logged[k].packetSize, 3);  // so that a replay traces them as one packet too
+        EXPECT_EQ(logged[k].packetLane, k);
     }
+    SurfaceHit alone;
+    rays.intersect(three[0], 0.0f, kInf, alone);
+    EXPECT_EQ(log.collect().back().packetSize, 1);
 }
 
 FrameResult renderWhitted(const Scene& scene, std::vector<std::pair<std::string, ParamValue>> params, int w, int h) {
