@@ -136,9 +136,14 @@ async function check(name, body) {
 }
 
 const browser = await chromium.launch({ executablePath: CHROMIUM, args: ['--no-sandbox'] });
+// Waits of up to 2 minutes, not playwright's 30 s: under ctest -j2 this test shares 2 cores with
+// the heaviest render tests, and a wait that ran out there failed a viewer that works. ctest's
+// own limit (5 minutes) still ends a hang.
+const kWaitMs = 120_000;
 const consoleErrors = [];
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+  page.setDefaultTimeout(kWaitMs);
   page.on('console', (m) => m.type() === 'error' && consoleErrors.push(m.text()));
   page.on('pageerror', (e) => consoleErrors.push(e.message));
   page.on('requestfailed', (r) => consoleErrors.push(`${r.url()}: ${r.failure().errorText}`));
@@ -415,6 +420,7 @@ try {
 
   await check("the report's table and charts open the viewer on a run", async () => {
     const report = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+    report.setDefaultTimeout(kWaitMs);
     report.on('pageerror', (e) => consoleErrors.push(e.message));
     await report.goto(pathToFileURL(path.join(reportDir, 'index.html')).href);
     // The verdict: rt_only at 0.01 is the only setting reaching SSIM 0.99 on this scene (max_depth = 1
