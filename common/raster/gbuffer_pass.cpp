@@ -1,6 +1,5 @@
 #include "common/raster/gbuffer_pass.h"
 
-#include <bit>
 #include <cstring>
 
 #include <tbb/blocked_range.h>
@@ -48,22 +47,6 @@ std::size_t texelBytes(VkFormat f) {
         case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
         default: return 4;
     }
-}
-
-float halfToFloat(std::uint16_t h) {
-    const std::uint32_t sign = (h & 0x8000u) << 16, exponent = (h >> 10) & 0x1Fu, mantissa = h & 0x3FFu;
-    std::uint32_t bits;
-    if (exponent == 0x1Fu) {
-        bits = sign | 0x7F800000u | (mantissa << 13);  // inf, NaN
-    } else if (exponent != 0) {
-        bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);
-    } else if (mantissa == 0) {
-        bits = sign;
-    } else {  // subnormal: value = mantissa * 2^-24
-        const float v = static_cast<float>(mantissa) * 5.9604644775390625e-8f;
-        return sign ? -v : v;
-    }
-    return std::bit_cast<float>(bits);
 }
 
 // Unpacking is part of every hybrid frame's rasterization stage (six 16-bit targets at 720p are

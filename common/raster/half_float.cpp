@@ -1,5 +1,7 @@
 #include "common/raster/half_float.h"
 
+#include <bit>
+
 #include <glm/gtc/packing.hpp>
 
 #if defined(__SSE2__)
@@ -7,6 +9,22 @@
 #endif
 
 namespace hybridlab {
+
+float halfToFloat(std::uint16_t h) {
+    const std::uint32_t sign = (h & 0x8000u) << 16, exponent = (h >> 10) & 0x1Fu, mantissa = h & 0x3FFu;
+    std::uint32_t bits;
+    if (exponent == 0x1Fu) {
+        bits = sign | 0x7F800000u | (mantissa << 13);  // inf, NaN
+    } else if (exponent != 0) {
+        bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);
+    } else if (mantissa == 0) {
+        bits = sign;
+    } else {  // subnormal: value = mantissa * 2^-24
+        const float v = static_cast<float>(mantissa) * 5.9604644775390625e-8f;
+        return sign ? -v : v;
+    }
+    return std::bit_cast<float>(bits);
+}
 
 std::uint16_t floatToHalf(float f) { return glm::packHalf1x16(f); }
 
