@@ -24,11 +24,10 @@ PACKAGES=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
   # scene core and images
-  libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
-  libopenimageio-dev libcli11-dev
-  # OpenImageIO's CMake config imports its command-line tools (iconvert, ...) and fails without them
-  openimageio-tools
-  # OpenImageIO's CMake config names the OpenCV headers; metrics use OpenCV too
+  libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+  # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR
+  libopenexr-dev libpng-dev libjpeg-dev libstb-dev
+  # metrics (SSIM's filtering)
   libopencv-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev

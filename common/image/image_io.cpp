@@ -1,12 +1,11 @@
 #include "common/image/image_io.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
-#include <memory>
+#include <cstring>
+#include <fstream>
 #include <system_error>
 #include <vector>
 
@@ -17,23 +16,12 @@
 #include "common/core/input_error.h"
 #include "common/core/number_check.h"
 #include "common/image/color.h"
+#include "common/image/image_codecs.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
-using OIIO::ImageInput;
-using OIIO::ImageOutput;
-using OIIO::ImageSpec;
-using OIIO::TypeDesc;
 
 namespace {
-
-// Pixels are unassociated (straight) alpha, as PNG stores them. Without this OpenImageIO
-// premultiplies colour by alpha on read and divides by it on write.
-ImageSpec unassociatedAlphaConfig() {
-    ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    return config;
-}
 
 // The transfer function of integer channels: none (linear), sRGB, or a power `gamma`.
 struct Transfer {
@@ -42,44 +30,34 @@ struct Transfer {
     std::string description;
 };
 
-Transfer transferOf(const ImageSpec& spec, bool integer, ColorEncoding decode) {
-    if (!integer) return {Transfer::Kind::Linear, 1.0f, "linear (floating point)"};
+Transfer transferOf(const DecodedImage& image, ColorEncoding decode) {
+    if (!image.integer) return {Transfer::Kind::Linear, 1.0f, "linear (floating point)"};
     if (decode == ColorEncoding::Linear) return {Transfer::Kind::Linear, 1.0f, "as stored"};
     if (decode == ColorEncoding::Srgb) return {Transfer::Kind::Srgb, 1.0f, "sRGB"};
-    const std::string tag(spec.get_string_attribute("oiio:ColorSpace"));
-    std::string space = tag;
-    std::transform(space.begin(), space.end(), space.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    const float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
-    if (space == "linear" || space == "scene_linear" || space == "lin_srgb" || gamma == 1.0f) {
-        return {Transfer::Kind::Linear, 1.0f, "linear (colour-space metadata: linear)"};
-    }
-    if (space == "srgb" || space.empty()) {
-        return {Transfer::Kind::Srgb, 1.0f, space.empty() ? "sRGB (no colour-space metadata)" : "sRGB (colour-space metadata: sRGB)"};
-    }
-    if (gamma > 0.0f) {
+    const ColorTag& tag = image.tag;
+    switch (tag.kind) {
+    case ColorTag::Kind::Linear: return {Transfer::Kind::Linear, 1.0f, "linear (colour-space metadata: " + tag.source + ")"};
+    case ColorTag::Kind::Srgb: return {Transfer::Kind::Srgb, 1.0f, "sRGB (colour-space metadata: " + tag.source + ")"};
+    case ColorTag::Kind::Gamma: {
         char text[96];
-        std::snprintf(text, sizeof text, "gamma %.4g (colour-space metadata: %s)", gamma, tag.c_str());
-        return {Transfer::Kind::Power, gamma, text};
+        std::snprintf(text, sizeof text, "gamma %.4g (colour-space metadata: %s)", tag.gamma, tag.source.c_str());
+        return {Transfer::Kind::Power, tag.gamma, text};
     }
-    return {Transfer::Kind::Srgb, 1.0f, "sRGB (unrecognised colour-space metadata '" + tag + "')"};
+    case ColorTag::Kind::Unrecognised:
+        return {Transfer::Kind::Srgb, 1.0f, "sRGB (unrecognised colour-space metadata: " + tag.source + ")"};
+    case ColorTag::Kind::None: break;
+    }
+    return {Transfer::Kind::Srgb, 1.0f, "sRGB (no colour-space metadata)"};
 }
 
-Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode, std::string* assumed = nullptr) {
-    const ImageSpec& spec = in.spec();
-    const int w = spec.width, h = spec.height, nc = spec.nchannels;
-    if (w <= 0 || h <= 0 || nc <= 0) throw InputError(name + ": image has no pixels");
-    std::vector<float> raw(static_cast<std::size_t>(w) * h * nc);
-    if (!in.read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data())) {
-        throw InputError(name + ": cannot decode image (" + in.geterror() + ")");
-    }
-    const bool integer = spec.format.basetype != TypeDesc::FLOAT && spec.format.basetype != TypeDesc::HALF &&
-                         spec.format.basetype != TypeDesc::DOUBLE;
-    const Transfer transfer = transferOf(spec, integer, decode);
+Image toImage(const DecodedImage& decoded, ColorEncoding decode, std::string* assumed) {
+    const int w = decoded.header.width, h = decoded.header.height, nc = decoded.header.channels;
+    const Transfer transfer = transferOf(decoded, decode);
     if (assumed) *assumed = transfer.description;
     Image img(w, h);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const float* p = &raw[(static_cast<std::size_t>(y) * w + x) * nc];
+            const float* p = &decoded.values[(static_cast<std::size_t>(y) * w + x) * nc];
             glm::vec4 c(0.0f, 0.0f, 0.0f, 1.0f);
             if (nc < 3) {
                 c.r = c.g = c.b = p[0];
@@ -96,105 +74,125 @@ Image decodeOpened(ImageInput& in, const std::string& name, ColorEncoding decode
     return img;
 }
 
-}  // namespace
-
-namespace {
-
-// The file opened as an image with its header read: a regular file, of a format OpenImageIO knows,
-// with a size the header states within limits::kImageSide a side.
-std::unique_ptr<ImageInput> openImage(const fs::path& path) {
-    if (!fs::exists(path)) throw InputError(path.string() + ": image file not found");
-    if (fs::is_directory(path)) throw InputError(path.string() + ": is a directory, expected an image file");
-    // A device or a pipe (/dev/zero) never ends: OpenImageIO would read it forever.
-    if (!fs::is_regular_file(path)) throw InputError(path.string() + ": is not a regular file (a device or a pipe), expected an image file");
-    const ImageSpec config = unassociatedAlphaConfig();
-    auto in = ImageInput::open(path.string(), &config);
-    if (!in) throw InputError(path.string() + ": cannot read image (" + OIIO::geterror() + ")");
-    const ImageSpec& spec = in->spec();
-    if (spec.width > limits::kImageSide || spec.height > limits::kImageSide)
-        throw InputError(path.string() + ": image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+// Checks a header against the limits; `name` for messages.
+void checkHeader(const ImageHeader& h, const std::string& name) {
+    if (h.width <= 0 || h.height <= 0 || h.channels <= 0) throw InputError(name + ": image has no pixels");
+    if (h.width > limits::kImageSide || h.height > limits::kImageSide)
+        throw InputError(name + ": image of " + std::to_string(h.width) + "x" + std::to_string(h.height) +
                          " pixels exceeds the limit of " + std::to_string(limits::kImageSide) + " a side");
-    return in;
+}
+
+ImageHeader readHeader(const unsigned char* bytes, std::size_t size) {
+    switch (imageFormatOf(bytes, size)) {
+    case ImageFormat::Exr: return readExrHeader(bytes, size);
+    case ImageFormat::Png: return readPngHeader(bytes, size);
+    case ImageFormat::Jpeg: return readJpegHeader(bytes, size);
+    case ImageFormat::Other: break;
+    }
+    return readStbHeader(bytes, size);
+}
+
+// The header is checked before the pixels are decoded, so that a header claiming a huge image is
+// refused without the allocation.
+Image decode(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode, std::string* assumed) {
+    ImageHeader header;
+    try {
+        header = readHeader(bytes, size);
+    } catch (const ImageCodecError& e) {
+        throw InputError(name + ": cannot read image (" + e.what() + ")");
+    }
+    checkHeader(header, name);
+    DecodedImage decoded;
+    try {
+        switch (imageFormatOf(bytes, size)) {
+        case ImageFormat::Exr: decoded = decodeExr(bytes, size); break;
+        case ImageFormat::Png: decoded = decodePng(bytes, size); break;
+        case ImageFormat::Jpeg: decoded = decodeJpeg(bytes, size); break;
+        case ImageFormat::Other: decoded = decodeStb(bytes, size); break;
+        }
+    } catch (const ImageCodecError& e) {
+        throw InputError(name + ": cannot decode image (" + e.what() + ")");
+    }
+    checkHeader(decoded.header, name);
+    const std::size_t expected = static_cast<std::size_t>(decoded.header.width) * decoded.header.height * decoded.header.channels;
+    if (decoded.values.size() != expected) throw InputError(name + ": cannot decode image (fewer pixels than its header states)");
+    return toImage(decoded, decode, assumed);
+}
+
+// The file's bytes: a regular file (a device or a pipe, /dev/zero, would never end).
+std::vector<unsigned char> readImageBytes(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path.string() + ": image file not found");
+    if (fs::is_directory(path, ec)) throw InputError(path.string() + ": is a directory, expected an image file");
+    if (!fs::is_regular_file(path, ec)) throw InputError(path.string() + ": is not a regular file (a device or a pipe), expected an image file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot read image (" + std::strerror(errno) + ")");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path.string() + ": cannot read image (read error)");
+    return bytes;
 }
 
 }  // namespace
 
 Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed) {
-    auto in = openImage(path);
-    return decodeOpened(*in, path.string(), decode, assumed);
+    const std::vector<unsigned char> bytes = readImageBytes(path);
+    return hybridlab::decode(bytes.data(), bytes.size(), path.string(), decode, assumed);
 }
 
 void checkImageFile(const fs::path& path) {
-    auto in = openImage(path);
-    const ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path.string() + ": image has no pixels");
+    const std::vector<unsigned char> bytes = readImageBytes(path);
+    try {
+        checkHeader(readHeader(bytes.data(), bytes.size()), path.string());
+    } catch (const ImageCodecError& e) {
+        throw InputError(path.string() + ": cannot read image (" + e.what() + ")");
+    }
 }
 
-Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name,
-                          const std::string& mimeType, ColorEncoding decode) {
-    std::string hint = name;
-    if (mimeType == "image/png") hint = "embedded.png";
-    else if (mimeType == "image/jpeg") hint = "embedded.jpg";
-    OIIO::Filesystem::IOMemReader proxy(const_cast<unsigned char*>(bytes), size);
-    ImageSpec config = unassociatedAlphaConfig();
-    // With a config, OpenImageIO 2.4 takes the proxy from it rather than from the argument.
-    void* proxyPtr = &proxy;
-    config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxyPtr);
-    auto in = ImageInput::open(hint, &config, &proxy);
-    if (!in) throw InputError(name + ": cannot read embedded image (" + OIIO::geterror() + ")");
-    return decodeOpened(*in, name, decode);
+Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode) {
+    return hybridlab::decode(bytes, size, name, decode, nullptr);
 }
 
 namespace {
 
 // Encodes into memory, so that the bytes reach the disk through writeFileAtomically, which checks
-// every step: OpenImageIO's PNG writer does not report a failed write (a full disk left truncated
-// PNGs behind).
-void writePixels(const fs::path& path, const Image& img, TypeDesc type, const std::vector<float>& rgba) {
-    auto out = ImageOutput::create(path.string());
-    if (!out) throw std::runtime_error(path.string() + ": no image writer (" + OIIO::geterror() + ")");
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    ImageSpec spec(img.width(), img.height(), 4, type);
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // see unassociatedAlphaConfig()
-    // No write time in the file (EXR capDate, PNG tIME): same pixels, same bytes.
-    spec.attribute("DateTime", "");
-    // zlib's fastest level: a 1280x720 display PNG in 140 ms instead of level 6's 470 ms, 17%
-    // larger. A run writes several (the image, its error maps, debug images), one after another
-    // on a GPU machine whose frames take milliseconds.
-    spec.attribute("png:compressionLevel", 1);
-    void* proxy = &memory;
-    spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
-    if (!out->open(path.string(), spec) || !out->write_image(TypeDesc::FLOAT, rgba.data()) || !out->close()) {
-        throw std::runtime_error(path.string() + ": cannot encode image (" + out->geterror() + ")");
-    }
+// every step.
+void writeBytes(const fs::path& path, const std::vector<unsigned char>& bytes) {
     writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-std::vector<float> flatten(const Image& img, glm::vec4 (*map)(glm::vec4)) {
-    std::vector<float> out(img.pixelCount() * 4);
-    for (std::size_t i = 0; i < img.pixelCount(); ++i) {
-        glm::vec4 c = map(img.data()[i]);
-        for (int k = 0; k < 4; ++k) out[i * 4 + k] = c[k];
-    }
+Image mapped(const Image& img, glm::vec4 (*map)(glm::vec4)) {
+    Image out(img.width(), img.height());
+    for (std::size_t i = 0; i < img.pixelCount(); ++i) out.data()[i] = map(img.data()[i]);
     return out;
 }
 
-TypeDesc pngType(int bits) { return bits == 16 ? TypeDesc::UINT16 : TypeDesc::UINT8; }
+std::vector<unsigned char> encodePngOrThrow(const fs::path& path, const Image& values, int bits) {
+    try {
+        return encodePng(values, bits);
+    } catch (const ImageCodecError& e) {
+        throw std::runtime_error(path.string() + ": cannot encode image (" + e.what() + ")");
+    }
+}
 
 }  // namespace
 
 void writeExr(const fs::path& path, const Image& linear) {
-    writePixels(path, linear, TypeDesc::FLOAT, flatten(linear, [](glm::vec4 c) { return c; }));
+    std::vector<unsigned char> bytes;
+    try {
+        bytes = encodeExr(linear);
+    } catch (const ImageCodecError& e) {
+        throw std::runtime_error(path.string() + ": cannot encode image (" + e.what() + ")");
+    }
+    writeBytes(path, bytes);
 }
 
 void writeDisplayPng(const fs::path& path, const Image& linear, int bits) {
-    writePixels(path, linear, pngType(bits), flatten(linear, linearToDisplay));
+    writeBytes(path, encodePngOrThrow(path, mapped(linear, linearToDisplay), bits));
 }
 
 void writePng(const fs::path& path, const Image& display, int bits) {
-    writePixels(path, display, pngType(bits),
-                flatten(display, [](glm::vec4 c) { return glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f)); }));
+    // encodePng clamps to [0, 1].
+    writeBytes(path, encodePngOrThrow(path, display, bits));
 }
 
 void writeImageAtomically(const fs::path& path, const Image& linear) {

@@ -1,5 +1,7 @@
 #pragma once
-// Image files through OpenImageIO: linear EXR (half or float) and display PNG (8 or 16 bit sRGB).
+// Image files: linear EXR (any pixel type) and display PNG (8 or 16 bit sRGB) written; EXR, PNG,
+// JPEG, BMP, TGA, GIF, PSD, PNM and Radiance HDR read, each recognised by its first bytes
+// (image_codecs.h: the library behind each).
 #include <filesystem>
 #include <string>
 
@@ -7,21 +9,21 @@
 
 namespace hybridlab {
 
-// How 8/16-bit colour channels are decoded. Tagged: as the file's metadata says, as OpenImageIO
-// reports it from PNG's sRGB, gAMA and cICP chunks (oiio:ColorSpace, oiio:Gamma): "linear" (or
-// gamma 1) as stored, another gamma g as v^g, sRGB or no such metadata as sRGB. Float formats
-// (EXR) are always taken as stored.
+// How 8/16-bit colour channels are decoded. Tagged: as the file's metadata says, from PNG's cICP
+// chunk (which overrides the others), sRGB chunk or gAMA chunk: linear (cICP transfer 8, gAMA 1) as
+// stored, a gAMA of 1/g as v^g, sRGB or no such metadata as sRGB. Float formats (EXR, HDR) are
+// always taken as stored.
 enum class ColorEncoding { Linear, Srgb, Tagged };
 
-// Reads any format OpenImageIO knows. Pixel values are returned as stored; with `decode =
+// Reads an image file. Pixel values are returned as stored; with `decode =
 // ColorEncoding::Srgb` 8/16-bit colour channels are decoded from sRGB to linear, with Tagged as
 // the file says. Grey images are expanded to RGB; missing alpha is 1. `assumed`, when given,
 // receives what the values were taken as ("linear (float)", "sRGB (no colour-space metadata)", ...).
 // Throws InputError naming the file on failure.
 Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear, std::string* assumed = nullptr);
 
-// What readImage checks before decoding, without decoding: the file is an image OpenImageIO can
-// open, with pixels, within the size limit. For commands that check a scene without rendering it.
+// What readImage checks before decoding, without decoding: the file is an image of a format read
+// here, with pixels, within the size limit. For commands that check a scene without rendering it.
 void checkImageFile(const std::filesystem::path& path);
 
 // Every writer writes the complete file or nothing (common/core/atomic_file.h; failures throw
@@ -44,7 +46,7 @@ void writeImageAtomically(const std::filesystem::path& path, const Image& linear
 
 namespace hybridlab {
 // Decodes an encoded image (PNG, JPEG, ...) held in memory, as readImage does for files; `name`
-// is used in messages and its extension, or `mimeType`, picks the decoder.
+// is used in messages. The format is recognised by the first bytes, as for files.
 Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name,
-                          const std::string& mimeType, ColorEncoding decode = ColorEncoding::Linear);
+                          ColorEncoding decode = ColorEncoding::Linear);
 }  // namespace hybridlab

@@ -328,7 +328,7 @@ private:
             const auto& buf = model_.buffers.at(view.buffer).data;
             if (view.byteOffset > buf.size() || view.byteLength > buf.size() - view.byteOffset) reader_.fail("image " + std::to_string(src) + " reads past its buffer");
             t.source = file_.string() + "#image" + std::to_string(src);
-            t.image = readImageFromMemory(buf.data() + view.byteOffset, view.byteLength, t.source, img.mimeType,
+            t.image = readImageFromMemory(buf.data() + view.byteOffset, view.byteLength, t.source,
                                           srgb ? ColorEncoding::Srgb : ColorEncoding::Linear);
         } else {
             reader_.fail("image " + std::to_string(src) + " has neither a uri nor a buffer view");
@@ -346,7 +346,7 @@ private:
     int depth_ = 0;
 };
 
-// Images are decoded by us (OpenImageIO, with sRGB decoding and clear errors), not by tinygltf.
+// Images are decoded by us (image_io.h, with sRGB decoding and clear errors), not by tinygltf.
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }

@@ -77,7 +77,7 @@ void writeInputs(const fs::path& d) {
     writeTextFile(d / "texture-text.toml", sceneText("diffuse_texture = \"not-an-image.png\"\n", "primitive = \"cube\"\n"));
     fs::create_directories(d / "folder.png");
     writeTextFile(d / "texture-folder.toml", sceneText("diffuse_texture = \"folder.png\"\n", "primitive = \"cube\"\n"));
-    // A texture that is a device which never ends (OpenImageIO read it forever).
+    // A texture that is a device which never ends (a reader would read it forever).
     writeTextFile(d / "texture-device.toml", sceneText("diffuse_texture = \"/dev/zero\"\n", "primitive = \"cube\"\n"));
     // A camera path of 2e10 frames (frame numbers are ints).
     writeTextFile(d / "long-path.toml", sceneText("", "primitive = \"cube\"\n") +

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "common/image/image_codecs.h"
 #include "common/image/image_io.h"
 #include "metrics/heatmap.h"
 #include "metrics/metrics.h"
@@ -144,19 +144,11 @@ TEST(CompareCommand, WritesTheMetricsAndMapsAndRejectsBadInputWritingNothing) {
     EXPECT_FALSE(fs::exists(badOut));
 }
 
-// Writes `values` as a 16-bit PNG as they are, tagged with `colorSpace` (OpenImageIO writes
-// "linear" as a gAMA chunk of 1.0, as POV-Ray's File_Gamma=1.0 does; "" writes no tag).
-void writeTaggedPng16(const fs::path& path, const Image& values, const std::string& colorSpace) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    ASSERT_TRUE(out);
-    OIIO::ImageSpec spec(values.width(), values.height(), 3, OIIO::TypeDesc::UINT16);
-    if (!colorSpace.empty()) spec.attribute("oiio:ColorSpace", colorSpace);
-    std::vector<float> rgb;
-    for (std::size_t i = 0; i < values.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c) rgb.push_back(values.data()[i][c]);
-    ASSERT_TRUE(out->open(path.string(), spec));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
-    ASSERT_TRUE(out->close());
+// Writes `values` as a 16-bit PNG as they are, tagged Linear (a gAMA chunk of 1.0, as POV-Ray's
+// File_Gamma=1.0 writes) or not at all (None).
+void writeTaggedPng16(const fs::path& path, const Image& values, ColorTag::Kind tag) {
+    const std::vector<unsigned char> bytes = encodePng(values, 16, tag);
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 TEST(CompareCommand, ALinearPngScoresAsTheSameImageInExrAndEachInputSaysWhatItWasTakenAs) {
@@ -169,8 +161,8 @@ TEST(CompareCommand, ALinearPngScoresAsTheSameImageInExrAndEachInputSaysWhatItWa
     }
     const fs::path exr = f.dir / "linear.exr", png = f.dir / "linear.png", untagged = f.dir / "untagged.png";
     writeExr(exr, linear);
-    writeTaggedPng16(png, linear, "linear");
-    writeTaggedPng16(untagged, linear, "");
+    writeTaggedPng16(png, linear, ColorTag::Kind::Linear);
+    writeTaggedPng16(untagged, linear, ColorTag::Kind::None);
     const std::vector<CliResult> r = runHybridlabAll({{{"compare", png.string(), f.reference.string()}, {}},
                                                      {{"compare", exr.string(), f.reference.string()}, {}},
                                                      {{"compare", untagged.string(), f.reference.string()}, {}}});
@@ -178,7 +170,7 @@ TEST(CompareCommand, ALinearPngScoresAsTheSameImageInExrAndEachInputSaysWhatItWa
     // The same numbers, line for line, after the two lines that name the inputs.
     auto metrics = [](const std::string& out) { return out.substr(out.find('\n', out.find('\n') + 1)); };
     EXPECT_EQ(metrics(r[0].out), metrics(r[1].out));
-    EXPECT_CONTAINS(r[0].out, "linear.png  [linear (colour-space metadata: linear)]");
+    EXPECT_CONTAINS(r[0].out, "linear.png  [linear (colour-space metadata: gAMA 1)]");
     EXPECT_CONTAINS(r[1].out, "linear.exr  [linear (floating point)]");
     // Without metadata a PNG is sRGB, as before: the same values then score differently.
     EXPECT_CONTAINS(r[2].out, "untagged.png  [sRGB");

@@ -25,8 +25,8 @@ struct CliRun {
     EnvChanges env;
 };
 
-// Runs all the invocations at once (each start of the program costs ~0.3 s, mostly loading
-// shared libraries); the results come back in the order of `runs`.
+// Runs all the invocations at once, so that their renders overlap; the results come back in the
+// order of `runs`.
 std::vector<CliResult> runHybridlabAll(const std::vector<CliRun>& runs);
 
 }  // namespace hybridlab::test

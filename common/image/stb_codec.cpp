@@ -1,0 +1,72 @@
+// The formats with no library of their own here (BMP, TGA, GIF's first frame, PSD, PNM, PIC and
+// Radiance HDR) on stb_image, and the recognition of every format by its first bytes.
+#include <stb_image.h>
+
+#include <climits>
+#include <cstring>
+#include <memory>
+
+#include "common/core/number_check.h"
+#include "common/image/image_codecs.h"
+
+namespace hybridlab {
+
+ImageFormat imageFormatOf(const unsigned char* bytes, std::size_t size) {
+    auto startsWith = [&](std::initializer_list<unsigned char> magic) {
+        return size >= magic.size() && std::memcmp(bytes, magic.begin(), magic.size()) == 0;
+    };
+    if (startsWith({0x76, 0x2F, 0x31, 0x01})) return ImageFormat::Exr;
+    if (startsWith({0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'})) return ImageFormat::Png;
+    if (startsWith({0xFF, 0xD8, 0xFF})) return ImageFormat::Jpeg;
+    return ImageFormat::Other;
+}
+
+namespace {
+
+int lengthOf(std::size_t size) {
+    if (size > static_cast<std::size_t>(INT_MAX)) throw ImageCodecError("file of over 2 GiB");
+    return static_cast<int>(size);
+}
+
+[[noreturn]] void failed() {
+    const char* reason = stbi_failure_reason();
+    throw ImageCodecError(std::string("not an image in a format hybridlab reads (EXR, PNG, JPEG, BMP, TGA, GIF, PSD, PNM, HDR)") +
+                          (reason ? std::string(": ") + reason : std::string()));
+}
+
+}  // namespace
+
+ImageHeader readStbHeader(const unsigned char* bytes, std::size_t size) {
+    ImageHeader h;
+    if (!stbi_info_from_memory(bytes, lengthOf(size), &h.width, &h.height, &h.channels)) failed();
+    return h;
+}
+
+DecodedImage decodeStb(const unsigned char* bytes, std::size_t size) {
+    const int length = lengthOf(size);
+    DecodedImage image;
+    image.header = readStbHeader(bytes, size);
+    if (image.header.width > limits::kImageSide || image.header.height > limits::kImageSide) return image;
+    int w = 0, h = 0, nc = 0;
+    const std::size_t count = static_cast<std::size_t>(image.header.width) * image.header.height * image.header.channels;
+    if (stbi_is_hdr_from_memory(bytes, length)) {
+        // Radiance HDR: linear floats, as stored.
+        std::unique_ptr<float, void (*)(void*)> p(stbi_loadf_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
+        if (!p) failed();
+        image.values.assign(p.get(), p.get() + count);
+        return image;
+    }
+    image.integer = true;
+    if (stbi_is_16_bit_from_memory(bytes, length)) {
+        std::unique_ptr<stbi_us, void (*)(void*)> p(stbi_load_16_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
+        if (!p) failed();
+        image.values = unitFloats(p.get(), count);
+        return image;
+    }
+    std::unique_ptr<stbi_uc, void (*)(void*)> p(stbi_load_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
+    if (!p) failed();
+    image.values = unitFloats(p.get(), count);
+    return image;
+}
+
+}  // namespace hybridlab

@@ -1,0 +1,93 @@
+// Every format and variant the image readers take (tests/fixtures/image_formats/files, made by its
+// make_files.py: PNG 8 and 16 bits, grey, grey and alpha, a palette with transparency, Adam7
+// interlacing; baseline, progressive and grey JPEG; half EXR with a data window off the origin,
+// luminance EXR; BMP, TGA, Radiance HDR) decodes to the values OpenImageIO 2.4, an independent
+// decoder, gave for it, bit for bit; and PNG's colour metadata picks the transfer function.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/image/color.h"
+#include "common/image/image_io.h"
+#include "tests/support/test_support.h"
+
+namespace hybridlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fixtures() { return test::fixturesDir() / "image_formats"; }
+
+std::vector<unsigned char> fileBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void expectSamePixels(const Image& ours, const Image& theirs) {
+    ASSERT_EQ(ours.width(), theirs.width());
+    ASSERT_EQ(ours.height(), theirs.height());
+    for (int y = 0; y < ours.height(); ++y)
+        for (int x = 0; x < ours.width(); ++x)
+            for (int c = 0; c < 4; ++c) ASSERT_EQ(ours.at(x, y)[c], theirs.at(x, y)[c]) << "pixel " << x << "," << y << " channel " << c;
+}
+
+TEST(ImageFormats, EveryFileDecodesAsOpenImageIoDecodedIt) {
+    int files = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(fixtures() / "files")) {
+        const std::string name = e.path().filename().string();
+        SCOPED_TRACE(name);
+        ++files;
+        EXPECT_NO_THROW(checkImageFile(e.path()));
+        const Image ours = readImage(e.path());
+        expectSamePixels(ours, readImage(fixtures() / "decoded_by_openimageio" / (name + ".exr")));
+        // From memory (an image in a glTF buffer): the same decoder, the same values.
+        const std::vector<unsigned char> bytes = fileBytes(e.path());
+        expectSamePixels(readImageFromMemory(bytes.data(), bytes.size(), name), ours);
+    }
+    EXPECT_EQ(files, 20) << "fixtures missing from " << fixtures();
+}
+
+TEST(ImageFormats, PngColourMetadataPicksTheTransferFunction) {
+    enum class Expect { Stored, Srgb, Gamma22 };
+    struct Case {
+        const char* file;
+        const char* assumed;
+        Expect values;
+    };
+    const Case cases[] = {
+        {"rgb16.png", "sRGB (no colour-space metadata)", Expect::Srgb},
+        {"tag-gama-linear.png", "linear (colour-space metadata: gAMA 1)", Expect::Stored},
+        {"tag-gama-22.png", "gamma 2.2 (colour-space metadata: gAMA 0.45455)", Expect::Gamma22},
+        // An sRGB chunk wins over gAMA; cICP wins over both (PNG, third edition).
+        {"tag-srgb.png", "sRGB (colour-space metadata: sRGB chunk)", Expect::Srgb},
+        {"tag-cicp-linear.png", "linear (colour-space metadata: cICP transfer 8)", Expect::Stored},
+        {"tag-cicp-pq.png", "sRGB (unrecognised colour-space metadata: cICP transfer 16)", Expect::Srgb},
+        {"rgb.jpg", "sRGB (no colour-space metadata)", Expect::Srgb},
+        {"luminance.exr", "linear (floating point)", Expect::Stored},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.file);
+        const fs::path path = fixtures() / "files" / c.file;
+        std::string assumed;
+        const Image tagged = readImage(path, ColorEncoding::Tagged, &assumed);
+        EXPECT_EQ(assumed, c.assumed);
+        const Image stored = readImage(path);
+        for (std::size_t i = 0; i < stored.pixelCount(); ++i) {
+            for (int k = 0; k < 3; ++k) {
+                const float v = stored.data()[i][k];
+                const float expected = c.values == Expect::Stored ? v
+                                       : c.values == Expect::Srgb ? srgbToLinear(v)
+                                                                  : std::pow(v, static_cast<float>(1.0 / 0.45455));
+                ASSERT_NEAR(tagged.data()[i][k], expected, 1e-6f * std::max(1.0f, expected)) << "value " << i << "," << k;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace hybridlab
