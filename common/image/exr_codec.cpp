@@ -10,6 +10,7 @@
 #include <Iex.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <thread>
@@ -86,9 +87,11 @@ void useEveryCore() {
 
 ImageHeader headerOf(const Imf::Header& header) {
     const Imath::Box2i window = header.dataWindow();
+    // In 64 bits: a window from INT_MIN to INT_MAX is a header's claim, not an image.
+    const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1, height = std::int64_t{window.max.y} - window.min.y + 1;
     ImageHeader h;
-    h.width = window.max.x - window.min.x + 1;
-    h.height = window.max.y - window.min.y + 1;
+    h.width = static_cast<int>(std::clamp<std::int64_t>(width, 0, std::numeric_limits<int>::max()));
+    h.height = static_cast<int>(std::clamp<std::int64_t>(height, 0, std::numeric_limits<int>::max()));
     h.channels = static_cast<int>(channelsToRead(header.channels()).size());
     return h;
 }
