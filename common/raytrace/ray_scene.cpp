@@ -267,7 +267,7 @@ bool RayScene::intersect(const Ray& ray, float tmin, float tmax, SurfaceHit& hit
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(top_, &ctx, &rh);
+    timedEmbreeCall(callClock_, [&] { rtcIntersect1(top_, &ctx, &rh); });
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     resolveHit(rh, hit);
     return true;
@@ -298,7 +298,7 @@ void RayScene::traceCoherentPacket(RTCScene scene, const Ray* rays, int count, R
 
 void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, bool* found) const {
     alignas(32) RTCRayHit8 packet;
-    traceCoherentPacket(top_, rays, count, packet);
+    timedEmbreeCall(callClock_, [&] { traceCoherentPacket(top_, rays, count, packet); });
     for (int k = 0; k < count; ++k) {
         if (log_) {
             log_->record({rays[k].origin, rays[k].direction, 0.0f, std::numeric_limits<float>::infinity(), false,
@@ -329,7 +329,7 @@ glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir,
     r.mask = 0xFFFFFFFFu;
     r.id = 0;
     r.flags = 0;
-    rtcOccluded1(top_, &ctx.base, &r);
+    timedEmbreeCall(callClock_, [&] { rtcOccluded1(top_, &ctx.base, &r); });
     // Embree sets tfar to -inf when a hit was accepted: an opaque caster, or transmittance gone.
     if (r.tfar == -std::numeric_limits<float>::infinity()) return glm::vec3(0.0f);
     if (std::isfinite(tmax)) ctx.opticalDepth += startAbsorption * tmax;

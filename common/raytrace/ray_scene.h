@@ -14,6 +14,7 @@
 #include <embree3/rtcore.h>
 
 #include "common/image/mip_chain.h"
+#include "common/raytrace/embree_call_clock.h"
 #include "common/raytrace/ray_log.h"
 #include "common/raytrace/shading.h"
 #include "common/scene/camera.h"
@@ -103,6 +104,8 @@ public:
     // top-level scene, and a log that records every ray traced while it is set (null: off).
     RTCScene embreeScene() const { return top_; }
     void setRayLog(RayLog* log) { log_ = log; }
+    // Times every Embree call while set (null: off); embree_call_clock.h.
+    void setCallClock(EmbreeCallClock* clock) { callClock_ = clock; }
 
     // Texture `index`'s mip chain (the reference's filtered lookups), null for kNoTexture.
     const MipChain* textureMips(std::int32_t index) const {
@@ -174,6 +177,7 @@ private:
     std::vector<MipChain> textureMips_;                // per scene texture
     std::vector<DiffuseTexture> diffuseTextures_;      // per material
     RayLog* log_ = nullptr;
+    EmbreeCallClock* callClock_ = nullptr;
     double time_ = 0.0;
     double buildMs_ = 0.0;
     double updateMs_ = 0.0;

@@ -3,7 +3,8 @@
 // whitted-classic). Both run side by side in one process, on the same threads, and report medians
 // over repeats. Where a ray-tracing Vulkan device is present, a second column: the same rays, by
 // kind, replayed on the device (DeviceRayReplay), its acceleration-structure build, and the
-// reference frame with rays = "vulkan".
+// reference frame with rays = "vulkan". Then, on one thread, the reference's frame split by a clock
+// on every Embree call into traversal and the work around it, beside the same rays bare.
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -14,11 +15,13 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
 #include "common/device_rays/device_ray_replay.h"
 #include "common/raster/vulkan_error.h"
+#include "common/raytrace/embree_call_clock.h"
 #include "common/raytrace/ray_task_context.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
@@ -153,6 +156,35 @@ void benchDevice(const BenchOptions& o, SceneContext& context, const RayScene& r
     std::printf("reference frame, rays = vulkan %10.2f ms median (embree %.2f ms): %.3f x embree's time\n", d, embreeFrameMs, d / embreeFrameMs);
 }
 
+// On one thread, so that the calls' time is a share of the frame's: the reference frame, the part of
+// it inside Embree's calls (embree_call_clock.h), and the same rays bare, interleaved; medians.
+// Inside and bare agree when the replay measures what the reference's traversal costs.
+void benchSplit(const BenchOptions& o, SceneContext& context, Technique& whitted, RayScene& rays, const FrameRequest& request,
+                const std::vector<LoggedRay>& logged) {
+    std::vector<double> frameMs, insideMs, bareMs;
+    tbb::task_arena oneThread(1);
+    oneThread.execute([&] {
+        for (int i = 0; i < o.repeats; ++i) {
+            EmbreeCallClock clock;
+            rays.setCallClock(&clock);
+            std::uint64_t start = 0, end = 0;
+            const double frame = milliseconds([&] {
+                start = EmbreeCallClock::now();
+                whitted.render(context, request);
+                end = EmbreeCallClock::now();
+            });
+            rays.setCallClock(nullptr);
+            frameMs.push_back(frame);
+            insideMs.push_back(frame * static_cast<double>(clock.ticks()) / static_cast<double>(std::max<std::uint64_t>(end - start, 1)));
+            bareMs.push_back(milliseconds([&] { replay(rays.embreeScene(), logged); }));
+        }
+    });
+    const double frame = summarize(frameMs).median, inside = summarize(insideMs).median, bare = summarize(bareMs).median;
+    std::printf("one thread: reference frame %.2f ms = %.2f ms inside Embree's calls (%.1f %%) + %.2f ms around them; "
+                "the same rays bare %.2f ms\n",
+                frame, inside, 100.0 * inside / frame, frame - inside, bare);
+}
+
 void run(const BenchOptions& o) {
     Scene scene = loadSceneFile(findSceneFile(o.scene));
     View view = resolveView(scene, o.cameraPath, o.frame, std::nullopt);
@@ -190,6 +222,7 @@ void run(const BenchOptions& o) {
     std::printf("reference frame          %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", ref.median, ref.min, ref.max, refRate);
     std::printf("bare Embree, same rays   %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", raw.median, raw.min, raw.max, rawRate);
     std::printf("reference / bare Embree  %10.1f %%\n", 100.0 * refRate / rawRate);
+    benchSplit(o, context, *whitted, rays, request, logged);
     benchDevice(o, context, rays, request, logged, ref.median);
 }
 

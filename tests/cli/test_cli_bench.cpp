@@ -1,5 +1,5 @@
 // `hybridlab bench` at a small size: the reference's rays all logged and replayed, the throughput
-// lines and a ratio that is a share, not a stray number.
+// lines, a ratio that is a share, not a stray number, and the one-thread split of the frame.
 #include <regex>
 #include <string>
 
@@ -25,6 +25,19 @@ TEST(CliBench, LogsEveryRayOfTheReferenceAndComparesItsThroughput) {
     EXPECT_GT(percent, 5.0);
     EXPECT_LT(percent, 200.0);
     EXPECT_CONTAINS(r.out, "bare Embree, same rays");
+    // The one-thread split adds up, and the traversal timed inside the reference is the bare
+    // replay's within the machine's noise (the replay is fair when they agree).
+    ASSERT_TRUE(std::regex_search(
+        r.out, m,
+        std::regex(R"(one thread: reference frame ([0-9.]+) ms = ([0-9.]+) ms inside Embree's calls \(([0-9.]+) %\) \+ ([0-9.]+) ms around them; the same rays bare ([0-9.]+) ms)")))
+        << r.out;
+    const double frame = std::stod(m[1]), inside = std::stod(m[2]), around = std::stod(m[4]), bare = std::stod(m[5]);
+    EXPECT_NEAR(inside + around, frame, 0.011);
+    EXPECT_NEAR(std::stod(m[3]), 100.0 * inside / frame, 0.051 + 100.0 * 0.01 / frame);  // the times printed to 0.01 ms
+    EXPECT_GT(inside, 0.0);
+    EXPECT_GT(around, 0.0);
+    EXPECT_GT(inside, 0.33 * bare);
+    EXPECT_LT(inside, 3.0 * bare);
     EXPECT_CONTAINS(r.out, "vulkan: not measured");  // no device here: said, not failed
 }
 

@@ -165,6 +165,29 @@ TEST(RayScene, CoherentPacketsAreLoggedRayByRay) {
     EXPECT_EQ(log.collect().back().packetSize, 1);
 }
 
+// The call clock counts each Embree call once (a packet is one call) while it is set, and nothing
+// after; its ticks grow with the calls.
+TEST(RayScene, TheCallClockTimesEachEmbreeCallWhileSet) {
+    Scene scene = movingSphereScene();
+    RayScene rays(scene);
+    EmbreeCallClock clock;
+    rays.setCallClock(&clock);
+    const Ray three[3] = {{{0, 0.5f, 5}, {0, 0, -1}}, {{0, 0.6f, 5}, {0, 0, -1}}, {{0, 0.7f, 5}, {0, 0, -1}}};
+    SurfaceHit hits[3];
+    bool found[3];
+    rays.intersectCoherent(three, 3, hits, found);
+    EXPECT_EQ(clock.calls(), 1u);
+    SurfaceHit alone;
+    rays.intersect(three[0], 0.0f, kInf, alone);
+    rays.transmittance({0, 0.5f, 5}, {0, 0, -1}, 10.0f);
+    rays.transmittance({0, 0.5f, 5}, {0, 1, 0}, 10.0f);
+    EXPECT_EQ(clock.calls(), 4u);
+    EXPECT_GT(clock.ticks(), 0u);
+    rays.setCallClock(nullptr);
+    rays.intersect(three[0], 0.0f, kInf, alone);
+    EXPECT_EQ(clock.calls(), 4u);
+}
+
 FrameResult renderWhitted(const Scene& scene, std::vector<std::pair<std::string, ParamValue>> params, int w, int h) {
     SceneContext context(scene);
     auto t = createTechnique("whitted", params);
