@@ -57,8 +57,8 @@ enum class ImageFormat { Exr, Png, Jpeg, Other };
 // By the file's first bytes, not its name.
 ImageFormat imageFormatOf(const unsigned char* bytes, std::size_t size);
 
-// Each reader: the header (without decoding) or the whole image. A header over `maxSide` a side is
-// refused by the caller before decode allocates.
+// Each reader: the header (without decoding) or the whole image. A decoder leaves the values empty
+// for a header over limits::kImageSide a side, which the caller refuses, rather than allocate.
 ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size);
 DecodedImage decodeExr(const unsigned char* bytes, std::size_t size);
 ImageHeader readPngHeader(const unsigned char* bytes, std::size_t size);

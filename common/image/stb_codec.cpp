@@ -47,25 +47,28 @@ DecodedImage decodeStb(const unsigned char* bytes, std::size_t size) {
     DecodedImage image;
     image.header = readStbHeader(bytes, size);
     if (image.header.width > limits::kImageSide || image.header.height > limits::kImageSide) return image;
+    // The values as decoded: their count from what the decoder returns, not from the header.
+    auto take = [&](auto* p, int w, int h, int nc, auto convert) {
+        if (!p) failed();
+        const std::unique_ptr<void, void (*)(void*)> owned(p, stbi_image_free);
+        image.header = {w, h, nc};
+        image.values = convert(p, static_cast<std::size_t>(w) * h * nc);
+    };
     int w = 0, h = 0, nc = 0;
-    const std::size_t count = static_cast<std::size_t>(image.header.width) * image.header.height * image.header.channels;
     if (stbi_is_hdr_from_memory(bytes, length)) {
         // Radiance HDR: linear floats, as stored.
-        std::unique_ptr<float, void (*)(void*)> p(stbi_loadf_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
-        if (!p) failed();
-        image.values.assign(p.get(), p.get() + count);
+        float* p = stbi_loadf_from_memory(bytes, length, &w, &h, &nc, 0);
+        take(p, w, h, nc, [](const float* v, std::size_t n) { return std::vector<float>(v, v + n); });
         return image;
     }
     image.integer = true;
     if (stbi_is_16_bit_from_memory(bytes, length)) {
-        std::unique_ptr<stbi_us, void (*)(void*)> p(stbi_load_16_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
-        if (!p) failed();
-        image.values = unitFloats(p.get(), count);
+        stbi_us* p = stbi_load_16_from_memory(bytes, length, &w, &h, &nc, 0);
+        take(p, w, h, nc, [](const stbi_us* v, std::size_t n) { return unitFloats(v, n); });
         return image;
     }
-    std::unique_ptr<stbi_uc, void (*)(void*)> p(stbi_load_from_memory(bytes, length, &w, &h, &nc, 0), stbi_image_free);
-    if (!p) failed();
-    image.values = unitFloats(p.get(), count);
+    stbi_uc* p = stbi_load_from_memory(bytes, length, &w, &h, &nc, 0);
+    take(p, w, h, nc, [](const stbi_uc* v, std::size_t n) { return unitFloats(v, n); });
     return image;
 }
 
