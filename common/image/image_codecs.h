@@ -57,8 +57,9 @@ enum class ImageFormat { Exr, Png, Jpeg, Other };
 // By the file's first bytes, not its name.
 ImageFormat imageFormatOf(const unsigned char* bytes, std::size_t size);
 
-// Each reader: the header (without decoding) or the whole image. A decoder leaves the values empty
-// for a header over limits::kImageSide a side, which the caller refuses, rather than allocate.
+// Each reader: the header (without decoding) or the whole image. A decoder allocates what the
+// header states: image_io.cpp reads the header first and refuses one without pixels or over
+// limits::kImageSide a side, so that only a header that passed is decoded.
 ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size);
 DecodedImage decodeExr(const unsigned char* bytes, std::size_t size);
 ImageHeader readPngHeader(const unsigned char* bytes, std::size_t size);

@@ -82,8 +82,8 @@ void checkHeader(const ImageHeader& h, const std::string& name) {
                          " pixels exceeds the limit of " + std::to_string(limits::kImageSide) + " a side");
 }
 
-ImageHeader readHeader(const unsigned char* bytes, std::size_t size) {
-    switch (imageFormatOf(bytes, size)) {
+ImageHeader readHeader(ImageFormat format, const unsigned char* bytes, std::size_t size) {
+    switch (format) {
     case ImageFormat::Exr: return readExrHeader(bytes, size);
     case ImageFormat::Png: return readPngHeader(bytes, size);
     case ImageFormat::Jpeg: return readJpegHeader(bytes, size);
@@ -95,16 +95,15 @@ ImageHeader readHeader(const unsigned char* bytes, std::size_t size) {
 // The header is checked before the pixels are decoded, so that a header claiming a huge image is
 // refused without the allocation.
 Image decode(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode, std::string* assumed) {
-    ImageHeader header;
+    const ImageFormat format = imageFormatOf(bytes, size);
     try {
-        header = readHeader(bytes, size);
+        checkHeader(readHeader(format, bytes, size), name);
     } catch (const ImageCodecError& e) {
         throw InputError(name + ": cannot read image (" + e.what() + ")");
     }
-    checkHeader(header, name);
     DecodedImage decoded;
     try {
-        switch (imageFormatOf(bytes, size)) {
+        switch (format) {
         case ImageFormat::Exr: decoded = decodeExr(bytes, size); break;
         case ImageFormat::Png: decoded = decodePng(bytes, size); break;
         case ImageFormat::Jpeg: decoded = decodeJpeg(bytes, size); break;
@@ -142,7 +141,7 @@ Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed
 void checkImageFile(const fs::path& path) {
     const std::vector<unsigned char> bytes = readImageBytes(path);
     try {
-        checkHeader(readHeader(bytes.data(), bytes.size()), path.string());
+        checkHeader(readHeader(imageFormatOf(bytes.data(), bytes.size()), bytes.data(), bytes.size()), path.string());
     } catch (const ImageCodecError& e) {
         throw InputError(path.string() + ": cannot read image (" + e.what() + ")");
     }

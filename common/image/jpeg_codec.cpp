@@ -7,7 +7,6 @@
 
 #include <csetjmp>
 
-#include "common/core/number_check.h"
 #include "common/image/image_codecs.h"
 
 namespace hybridlab {
@@ -53,7 +52,7 @@ bool readJpeg(const unsigned char* bytes, std::size_t size, bool headerOnly, Jpe
     out.header.width = static_cast<int>(info.image_width);
     out.header.height = static_cast<int>(info.image_height);
     out.header.channels = out.cmyk ? 3 : info.out_color_space == JCS_GRAYSCALE ? 1 : 3;
-    if (!headerOnly && out.header.width <= limits::kImageSide && out.header.height <= limits::kImageSide) {
+    if (!headerOnly) {
         jpeg_start_decompress(&info);
         const std::size_t rowBytes = static_cast<std::size_t>(info.output_width) * info.output_components;
         out.bytes.resize(rowBytes * info.output_height);
@@ -83,7 +82,6 @@ DecodedImage decodeJpeg(const unsigned char* bytes, std::size_t size) {
     DecodedImage image;
     image.header = read.header;
     image.integer = true;
-    if (read.bytes.empty()) return image;
     const std::size_t pixels = static_cast<std::size_t>(read.header.width) * read.header.height;
     if (!read.cmyk) {
         image.values = unitFloats(read.bytes.data(), pixels * read.header.channels);

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <cstring>
 
-#include "common/core/number_check.h"
 #include "common/image/image_codecs.h"
 
 namespace hybridlab {
@@ -105,8 +104,7 @@ bool readPng(const unsigned char* bytes, std::size_t size, bool headerOnly, PngR
     out.header.channels = png_get_channels(png, info);
     out.bitDepth = png_get_bit_depth(png, info);
     out.tag = tagOf(png, info);
-    if (!headerOnly && out.header.width > 0 && out.header.height > 0 && out.header.width <= limits::kImageSide &&
-        out.header.height <= limits::kImageSide) {
+    if (!headerOnly) {
         const std::size_t rowBytes = png_get_rowbytes(png, info);
         out.bytes.resize(rowBytes * static_cast<std::size_t>(out.header.height));
         out.rows.resize(static_cast<std::size_t>(out.header.height));
@@ -176,7 +174,6 @@ DecodedImage decodePng(const unsigned char* bytes, std::size_t size) {
     image.integer = true;
     image.tag = read.tag;
     const std::size_t count = static_cast<std::size_t>(read.header.width) * read.header.height * read.header.channels;
-    if (read.bytes.empty()) return image;  // no pixels or over the size limit: the caller refuses it
     if (read.bitDepth != 16) {
         image.values = unitFloats(read.bytes.data(), count);
         return image;

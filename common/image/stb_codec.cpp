@@ -6,7 +6,6 @@
 #include <cstring>
 #include <memory>
 
-#include "common/core/number_check.h"
 #include "common/image/image_codecs.h"
 
 namespace hybridlab {
@@ -45,8 +44,6 @@ ImageHeader readStbHeader(const unsigned char* bytes, std::size_t size) {
 DecodedImage decodeStb(const unsigned char* bytes, std::size_t size) {
     const int length = lengthOf(size);
     DecodedImage image;
-    image.header = readStbHeader(bytes, size);
-    if (image.header.width > limits::kImageSide || image.header.height > limits::kImageSide) return image;
     // The values as decoded: their count from what the decoder returns, not from the header.
     auto take = [&](auto* p, int w, int h, int nc, auto convert) {
         if (!p) failed();
