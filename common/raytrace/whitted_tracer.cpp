@@ -86,12 +86,19 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
 
 glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                RayCone footprint, const MediumStack& media) const {
-    return shadeParts(hit, incoming, depth, importance, stats, {}, footprint, std::nullopt, nullptr, media).composed(settings_.blend);
+    return shadeSurface(hit, incoming, depth, importance, stats, {}, footprint, std::nullopt, nullptr, media, LocalColor::IfWeighted)
+        .composed(settings_.blend);
 }
 
 ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                        TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local,
                                        EnvironmentTerms* environment, const MediumStack& media) const {
+    return shadeSurface(hit, incoming, depth, importance, stats, effects, footprint, local, environment, media, LocalColor::Always);
+}
+
+ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                                         TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local,
+                                         EnvironmentTerms* environment, const MediumStack& media, LocalColor shadeC) const {
     if (!settings_.rayCones) footprint = {};  // point-sampled textures (texture_filter = "none"), at every depth
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
@@ -101,21 +108,25 @@ ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming
     glm::vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
 
     ShadingParts parts;
-    if (local) {
-        parts.local = *local;
-    } else {
-        // The footprint's level of detail (a log2) only where a texture reads it.
-        const float uvLod = m.diffuseTexture != kNoTexture ? uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal)
-                                                           : -std::numeric_limits<float>::infinity();
-        parts.local = shadeLocal(rays_, cones_, settings_.shadows && effects.shadows, hit, n, ng, -incoming, stats, uvLod,
-                                 media.absorption());
-    }
     parts.transparency = 1.0f - m.opacity;
     const float orr = parts.transparency;
     const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;
     const float cosi = std::max(-glm::dot(incoming, n), 0.0f);
     const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
     parts.reflectivity = om;
+    const bool composes = (om > 0.0f || orr > 0.0f) && !(depth >= settings_.maxDepth && settings_.depthLimit == DepthLimit::Local);
+    // Both composition rules weight C by (1 - o_m)(1 - o_r): 0 for clear glass (o_r = 1), a perfect
+    // mirror and total internal reflection (o_m = 1). There a composed radiance does not depend on
+    // C, and C's shading and shadow rays are skipped (C = 0 leaves the sum bit for bit the same).
+    if (local) {
+        parts.local = *local;
+    } else if (shadeC == LocalColor::Always || !composes || (om < 1.0f && orr < 1.0f)) {
+        // The footprint's level of detail (a log2) only where a texture reads it.
+        const float uvLod = m.diffuseTexture != kNoTexture ? uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal)
+                                                           : -std::numeric_limits<float>::infinity();
+        parts.local = shadeLocal(rays_, cones_, settings_.shadows && effects.shadows, hit, n, ng, -incoming, stats, uvLod,
+                                 media.absorption());
+    }
     if (om <= 0.0f && orr <= 0.0f) return parts;
     if (depth >= settings_.maxDepth) {
         if (settings_.depthLimit == DepthLimit::Local) return parts;  // C alone

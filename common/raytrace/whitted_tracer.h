@@ -115,6 +115,13 @@ public:
                          float uvLod = -std::numeric_limits<float>::infinity(), glm::vec3 mediumAbsorption = glm::vec3(0.0f)) const;
 
 private:
+    // Whether shadeSurface() shades C where the composition gives it weight 0: always (a caller
+    // reads parts.local), or only if weighted (a caller that composes alone).
+    enum class LocalColor { Always, IfWeighted };
+    ShadingParts shadeSurface(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                              TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local, EnvironmentTerms* environment,
+                              const MediumStack& media, LocalColor shadeC) const;
+
     const RayScene& rays_;
     WhittedSettings settings_;
     std::vector<SpotCone> cones_;  // per light

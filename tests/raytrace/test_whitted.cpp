@@ -222,6 +222,49 @@ TEST(Whitted, RayCountsFollowTheRayTree) {
     EXPECT_EQ(stats.shadow, 0u);  // no lights
 }
 
+// Where the composition weights C by 0 ((1 - o_m)(1 - o_r): clear glass, a perfect mirror, total
+// internal reflection), shade() skips C and its shadow rays; the radiance is still the composition
+// of the shaded C, bit for bit, at every camera ray's first hit of scenes with each of the three.
+TEST(Whitted, ShadeSkipsTheLocalColourOnlyWhereItsWeightIsZero) {
+    for (const char* name : {"whitted-classic", "teapot-lens", "facing-mirrors", "cornell-mirror-glass"}) {
+        Scene scene = loadSceneFile(findSceneFile(name));
+        if (std::string(name) == "facing-mirrors")
+            for (Material& m : scene.materials)
+                if (m.reflectivity > 0.0f) m.reflectivity = 1.0f;  // perfect mirrors
+        RayScene rays(scene);
+        for (const BlendRule rule : {BlendRule::Design, BlendRule::Walewski2019}) {
+            WhittedSettings settings;
+            settings.blend = rule;
+            const WhittedTracer tracer(rays, settings);
+            const int w = 48, h = 27;
+            const CameraRays camera(scene.camera, static_cast<float>(w) / h);
+            const RayCone cone = pixelCone(scene.camera, h);
+            int differing = 0, skipped = 0;
+            for (int y = 0; y < h; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    const Ray ray = camera.throughNdc(pixelCenterNdc(x, y, w, h));
+                    SurfaceHit hit;
+                    if (!rays.intersect(ray, 0.0f, kInf, hit)) continue;
+                    RayStats always, ifWeighted;
+                    const RayCone footprint = cone.at(hit.t);
+                    const ShadingParts parts = tracer.shadeParts(hit, ray.direction, 0, 1.0f, always, {}, footprint);
+                    const glm::vec3 shaded = tracer.shade(hit, ray.direction, 0, 1.0f, ifWeighted, footprint);
+                    differing += parts.composed(rule) != shaded;
+                    const bool weightless = parts.composes && (parts.reflectivity >= 1.0f || parts.transparency >= 1.0f);
+                    if (weightless) {
+                        skipped += ifWeighted.shadow < always.shadow;
+                    } else {
+                        EXPECT_EQ(ifWeighted.shadow, always.shadow) << name << " at " << x << ", " << y;
+                    }
+                    EXPECT_LE(ifWeighted.shadow, always.shadow);
+                }
+            }
+            EXPECT_EQ(differing, 0) << name;
+            EXPECT_GT(skipped, 0) << name;
+        }
+    }
+}
+
 FrameResult renderWithThreads(const Scene& scene, int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     SceneContext context(scene);

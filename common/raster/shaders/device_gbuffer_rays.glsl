@@ -76,7 +76,7 @@ vec3 composed(Parts p) { return p.composes ? compose(p.reflectivity, p.transpare
 // traced with the ray tree.
 Parts shadeParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects, bool localGiven,
                  vec3 givenLocal) {
-    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal);
+    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal, false);
     Parts p;
     p.local = h.local;
     p.reflectivity = h.reflectivity;

@@ -165,24 +165,32 @@ struct HitShading {
 };
 
 // `effects` (shadows, reflection, refraction) are traced at this hit (TracedEffects); with
-// `localGiven`, `givenLocal` stands in for C (the rasterizer's, shadowed by its maps).
+// `localGiven`, `givenLocal` stands in for C (the rasterizer's, shadowed by its maps). With
+// `localIfWeighted`, C is shaded only where the composition weights it (WhittedTracer::shade()):
+// not for clear glass, a perfect mirror or under total internal reflection, where h.local is 0.
 HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, MediumStack media,
-                    bvec3 effects, bool localGiven, vec3 givenLocal) {
+                    bvec3 effects, bool localGiven, vec3 givenLocal, bool localIfWeighted) {
     const float cutoff = frame.settings.x;
     HitShading h;
     // Work on the side the ray arrives from.
     bool entering = dot(incoming, s.geometricNormal) < 0.0;
     vec3 ng = entering ? s.geometricNormal : -s.geometricNormal;
     vec3 n = entering ? s.shadingNormal : -s.shadingNormal;
-    h.local = localGiven ? givenLocal
-                         : localColor(s, m, n, ng, -incoming, effects.x, uvFootprintLod(s.uvDensityLod, coneWidth, incoming, s.geometricNormal),
-                                      media.absorption);
     h.transparency = 1.0 - m.optical.z;
     float orr = h.transparency;
     float n1 = entering ? frame.ambient.a : m.optical.y, n2 = entering ? m.optical.y : frame.ambient.a;
     float cosi = max(-dot(incoming, n), 0.0);
     float om = m.optical.w != 0.0 ? fresnelDielectric(cosi, n1, n2) : m.optical.x;
     h.reflectivity = om;
+    bool composes = !(om <= 0.0 && orr <= 0.0) && !(depth >= frame.size.w && frame.rules.x == 0u);
+    if (localGiven) {
+        h.local = givenLocal;
+    } else if (!localIfWeighted || !composes || (om < 1.0 && orr < 1.0)) {
+        h.local = localColor(s, m, n, ng, -incoming, effects.x, uvFootprintLod(s.uvDensityLod, coneWidth, incoming, s.geometricNormal),
+                             media.absorption);
+    } else {
+        h.local = vec3(0.0);
+    }
     h.tir = false;
     h.reflected.traced = false;
     h.refracted.traced = false;
@@ -252,7 +260,7 @@ vec3 traceTree(PendingRay root) {
         // The cone at the hit (RayCone::at); none without ray cones (texture_filter = "none").
         float coneWidth = rayCones ? ray.coneWidth + frame.cone.y * hit.t : 0.0;
         HitShading h = shadeHit(s, materials[s.material], ray.direction, ray.depth, ray.importance, coneWidth, ray.media, effects, false,
-                                vec3(0.0));
+                                vec3(0.0), true);
         if (!h.composes) {
             L += throughput * h.local;
             continue;
