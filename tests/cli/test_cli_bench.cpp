@@ -1,5 +1,6 @@
 // `hybridlab bench` at a small size: the reference's rays all logged and replayed, the throughput
-// lines, a ratio that is a share, not a stray number, and the one-thread split of the frame.
+// lines, a ratio that is a share, not a stray number, the ceiling with every hit resolved and
+// nothing shaded, and the one-thread split of the frame.
 #include <regex>
 #include <string>
 
@@ -25,6 +26,12 @@ TEST(CliBench, LogsEveryRayOfTheReferenceAndComparesItsThroughput) {
     EXPECT_GT(percent, 5.0);
     EXPECT_LT(percent, 200.0);
     EXPECT_CONTAINS(r.out, "bare Embree, same rays");
+    // The ceiling: the same rays through the reference's calls, hits resolved and nothing shaded.
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(hits resolved, unshaded +([0-9.]+) ms median)"))) << r.out;
+    EXPECT_GT(std::stod(m[1]), 0.0);
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(resolved / bare Embree +([0-9.]+) % \(the reference's ceiling)"))) << r.out;
+    EXPECT_GT(std::stod(m[1]), 5.0);
+    EXPECT_LT(std::stod(m[1]), 200.0);
     // The one-thread split adds up, and the traversal timed inside the reference is the bare
     // replay's within the machine's noise (the replay is fair when they agree).
     ASSERT_TRUE(std::regex_search(
