@@ -114,35 +114,38 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
     const float cosi = std::max(-glm::dot(incoming, n), 0.0f);
     const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
     parts.reflectivity = om;
-    const bool composes = (om > 0.0f || orr > 0.0f) && !(depth >= settings_.maxDepth && settings_.depthLimit == DepthLimit::Local);
-    // Both composition rules weight C by (1 - o_m)(1 - o_r): 0 for clear glass (o_r = 1), a perfect
-    // mirror and total internal reflection (o_m = 1). There a composed radiance does not depend on
-    // C, and C's shading and shadow rays are skipped (C = 0 leaves the sum bit for bit the same).
+    // C alone where the surface neither reflects nor refracts, or at the depth limit with "local";
+    // at the limit with "weighted" the rays not traced count 0 (under total internal reflection too).
+    parts.composes = (om > 0.0f || orr > 0.0f) && !(depth >= settings_.maxDepth && settings_.depthLimit == DepthLimit::Local);
+    const bool tracesRays = parts.composes && depth < settings_.maxDepth;
+    glm::vec3 refracted;
+    const bool tir = tracesRays && orr > 0.0f && !refractDirection(incoming, n, n1 / n2, refracted);
+    // Total internal reflection sends everything to the reflected ray.
+    const float weightM = tir ? om + (1.0f - om) * orr : om;
+    const float weightR = tir ? 0.0f : (1.0f - om) * orr;
+    auto worthTracing = [&](float w) { return w > 0.0f && importance * w >= settings_.importanceCutoff; };
+    const bool traceM = tracesRays && effects.reflection && worthTracing(weightM);
+    const bool traceR = tracesRays && !tir && effects.refraction && worthTracing(weightR);
+
+    // C weighs (1 - o_m)(1 - o_r) in the composition under both rules. It also stands in for a ray
+    // not traced (the importance cut-off): the reflected one, weighted by weightM (which the
+    // refracted one copies under total internal reflection), or the refracted one, whose weight
+    // carries the factor o_r under both rules. Where none of these weighs (clear glass, total
+    // internal reflection, a perfect mirror, each with its rays traced), the composed radiance does
+    // not depend on C: its shading and shadow rays are skipped, C = 0 leaving the sum bit for bit
+    // the same.
+    const bool localWeighs = !parts.composes || (om < 1.0f && orr < 1.0f) ||
+                             (tracesRays && ((!traceM && weightM > 0.0f) || (!tir && !traceR && orr > 0.0f)));
     if (local) {
         parts.local = *local;
-    } else if (shadeC == LocalColor::Always || !composes || (om < 1.0f && orr < 1.0f)) {
+    } else if (shadeC == LocalColor::Always || localWeighs) {
         // The footprint's level of detail (a log2) only where a texture reads it.
         const float uvLod = m.diffuseTexture != kNoTexture ? uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal)
                                                            : -std::numeric_limits<float>::infinity();
         parts.local = shadeLocal(rays_, cones_, settings_.shadows && effects.shadows, hit, n, ng, -incoming, stats, uvLod,
                                  media.absorption());
     }
-    if (om <= 0.0f && orr <= 0.0f) return parts;
-    if (depth >= settings_.maxDepth) {
-        if (settings_.depthLimit == DepthLimit::Local) return parts;  // C alone
-        // Weighted: the rays not traced count 0 (the same under total internal reflection, where
-        // C's weight is (1 - o_m)(1 - o_r) too).
-        parts.composes = true;
-        return parts;
-    }
-    parts.composes = true;
-
-    glm::vec3 refracted;
-    const bool tir = orr > 0.0f && !refractDirection(incoming, n, n1 / n2, refracted);
-    // Total internal reflection sends everything to the reflected ray.
-    const float weightM = tir ? om + (1.0f - om) * orr : om;
-    const float weightR = tir ? 0.0f : (1.0f - om) * orr;
-    auto worthTracing = [&](float w) { return w > 0.0f && importance * w >= settings_.importanceCutoff; };
+    if (!tracesRays) return parts;
 
     const glm::vec3 reflected = reflectDirection(incoming, n);
     // The sky only where a term is asked for; a term of weight 0 keeps the local colour.
@@ -155,7 +158,7 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
     parts.reflected = parts.refracted = parts.local;
     if (!effects.reflection) {
         parts.reflected = sky.reflected;
-    } else if (worthTracing(weightM)) {
+    } else if (traceM) {
         ++stats.reflection;
         parts.reflected = radiance({offsetRayOrigin(hit.position, ng), reflected}, depth + 1, importance * weightM, stats, footprint, media);
     }
@@ -163,7 +166,7 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
         parts.refracted = parts.reflected;
     } else if (!effects.refraction) {
         parts.refracted = sky.refracted;
-    } else if (worthTracing(weightR)) {
+    } else if (traceR) {
         ++stats.refraction;
         MediumStack inside = media;
         if (!(entering ? inside.enter(hit.object, m.absorption) : inside.leave(hit.object))) ++stats.mediumErrors;

@@ -1,6 +1,8 @@
 // End-to-end analytic checks of the Whitted reference: rays traced through RayScene and
 // WhittedTracer in scenes built so that the answer is known in closed form.
 #include <cmath>
+#include <functional>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -8,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/core/input_error.h"
+#include "common/raytrace/ray_offset.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
@@ -222,46 +225,75 @@ TEST(Whitted, RayCountsFollowTheRayTree) {
     EXPECT_EQ(stats.shadow, 0u);  // no lights
 }
 
-// Where the composition weights C by 0 ((1 - o_m)(1 - o_r): clear glass, a perfect mirror, total
-// internal reflection), shade() skips C and its shadow rays; the radiance is still the composition
-// of the shaded C, bit for bit, at every camera ray's first hit of scenes with each of the three.
-TEST(Whitted, ShadeSkipsTheLocalColourOnlyWhereItsWeightIsZero) {
-    for (const char* name : {"whitted-classic", "teapot-lens", "facing-mirrors", "cornell-mirror-glass"}) {
-        Scene scene = loadSceneFile(findSceneFile(name));
-        if (std::string(name) == "facing-mirrors")
-            for (Material& m : scene.materials)
-                if (m.reflectivity > 0.0f) m.reflectivity = 1.0f;  // perfect mirrors
+// Where C weighs nothing in the composition ((1 - o_m)(1 - o_r) = 0: clear glass, a perfect mirror,
+// total internal reflection) and stands in for no untraced ray of non-zero weight, shade() skips C
+// and its shadow rays; the radiance is still the composition of the shaded C, bit for bit. At
+// every camera ray's first hit, under both rules, with and without the importance cut-off, at
+// importances that cut rays off and at the depth limit, on scenes with each kind of surface.
+TEST(Whitted, ShadeSkipsTheLocalColourOnlyWhereItWeighsNothing) {
+    struct Case {
+        const char* scene;
+        std::function<void(Material&)> edit;
+    };
+    const std::vector<Case> cases = {
+        {"whitted-classic", {}},
+        {"teapot-lens", {}},
+        {"cornell-mirror-glass", {}},
+        {"facing-mirrors", [](Material& m) { if (m.reflectivity > 0.0f) m.reflectivity = 1.0f; }},  // perfect mirrors
+        // Half-transparent perfect mirrors, and glass without Fresnel (o_m = 0 under total internal
+        // reflection): an untraced ray's stand-in C still weighs there.
+        {"facing-mirrors", [](Material& m) { if (m.reflectivity > 0.0f) m.reflectivity = 1.0f, m.opacity = 0.5f; }},
+        {"teapot-lens", [](Material& m) { if (m.fresnel) m.fresnel = false, m.reflectivity = 0.0f, m.ambient = glm::vec3(0.3f); }},
+    };
+    for (const Case& c : cases) {
+        Scene scene = loadSceneFile(findSceneFile(c.scene));
+        if (c.edit)
+            for (Material& m : scene.materials) c.edit(m);
         RayScene rays(scene);
+        int skipped = 0;
         for (const BlendRule rule : {BlendRule::Design, BlendRule::Walewski2019}) {
-            WhittedSettings settings;
-            settings.blend = rule;
-            const WhittedTracer tracer(rays, settings);
-            const int w = 48, h = 27;
-            const CameraRays camera(scene.camera, static_cast<float>(w) / h);
-            const RayCone cone = pixelCone(scene.camera, h);
-            int differing = 0, skipped = 0;
-            for (int y = 0; y < h; ++y) {
-                for (int x = 0; x < w; ++x) {
-                    const Ray ray = camera.throughNdc(pixelCenterNdc(x, y, w, h));
-                    SurfaceHit hit;
-                    if (!rays.intersect(ray, 0.0f, kInf, hit)) continue;
-                    RayStats always, ifWeighted;
-                    const RayCone footprint = cone.at(hit.t);
-                    const ShadingParts parts = tracer.shadeParts(hit, ray.direction, 0, 1.0f, always, {}, footprint);
-                    const glm::vec3 shaded = tracer.shade(hit, ray.direction, 0, 1.0f, ifWeighted, footprint);
-                    differing += parts.composed(rule) != shaded;
-                    const bool weightless = parts.composes && (parts.reflectivity >= 1.0f || parts.transparency >= 1.0f);
-                    if (weightless) {
-                        skipped += ifWeighted.shadow < always.shadow;
-                    } else {
-                        EXPECT_EQ(ifWeighted.shadow, always.shadow) << name << " at " << x << ", " << y;
+            for (const float cutoff : {0.0f, 0.1f}) {
+                WhittedSettings settings;
+                settings.blend = rule;
+                settings.importanceCutoff = cutoff;
+                settings.maxDepth = 3;
+                const WhittedTracer tracer(rays, settings);
+                const int w = 32, h = 18;
+                const CameraRays camera(scene.camera, static_cast<float>(w) / h);
+                const RayCone cone = pixelCone(scene.camera, h);
+                int differing = 0;
+                auto compare = [&](const SurfaceHit& hit, glm::vec3 incoming, RayCone footprint) {
+                    for (const int depth : {0, 3}) {
+                        for (const float importance : {1.0f, 0.3f, 0.05f}) {
+                            RayStats always, ifWeighted;
+                            const ShadingParts parts = tracer.shadeParts(hit, incoming, depth, importance, always, {}, footprint);
+                            const glm::vec3 shaded = tracer.shade(hit, incoming, depth, importance, ifWeighted, footprint);
+                            differing += parts.composed(rule) != shaded;
+                            EXPECT_LE(ifWeighted.shadow, always.shadow);
+                            skipped += ifWeighted.shadow < always.shadow;
+                        }
                     }
-                    EXPECT_LE(ifWeighted.shadow, always.shadow);
+                };
+                for (int y = 0; y < h; ++y) {
+                    for (int x = 0; x < w; ++x) {
+                        const Ray ray = camera.throughNdc(pixelCenterNdc(x, y, w, h));
+                        SurfaceHit hit;
+                        if (!rays.intersect(ray, 0.0f, kInf, hit)) continue;
+                        compare(hit, ray.direction, cone.at(hit.t));
+                        // The hit inside a refractive object too, where total internal reflection happens.
+                        glm::vec3 inward;
+                        if (hit.material->isRefractive() && glm::dot(ray.direction, hit.geometricNormal) < 0.0f &&
+                            refractDirection(ray.direction, hit.shadingNormal, scene.ambientIor / hit.material->ior, inward)) {
+                            SurfaceHit inner;
+                            if (rays.intersect({offsetRayOrigin(hit.position, -hit.geometricNormal), inward}, 0.0f, kInf, inner))
+                                compare(inner, inward, cone.at(hit.t + inner.t));
+                        }
+                    }
                 }
+                EXPECT_EQ(differing, 0) << c.scene << ", cut-off " << cutoff;
             }
-            EXPECT_EQ(differing, 0) << name;
-            EXPECT_GT(skipped, 0) << name;
         }
+        EXPECT_GT(skipped, 0) << c.scene;
     }
 }
 

@@ -167,7 +167,8 @@ struct HitShading {
 // `effects` (shadows, reflection, refraction) are traced at this hit (TracedEffects); with
 // `localGiven`, `givenLocal` stands in for C (the rasterizer's, shadowed by its maps). With
 // `localIfWeighted`, C is shaded only where the composition weights it (WhittedTracer::shade()):
-// not for clear glass, a perfect mirror or under total internal reflection, where h.local is 0.
+// not for clear glass, a perfect mirror or under total internal reflection with their rays traced,
+// where h.local is 0.
 HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, MediumStack media,
                     bvec3 effects, bool localGiven, vec3 givenLocal, bool localIfWeighted) {
     const float cutoff = frame.settings.x;
@@ -182,34 +183,34 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
     float cosi = max(-dot(incoming, n), 0.0);
     float om = m.optical.w != 0.0 ? fresnelDielectric(cosi, n1, n2) : m.optical.x;
     h.reflectivity = om;
-    bool composes = !(om <= 0.0 && orr <= 0.0) && !(depth >= frame.size.w && frame.rules.x == 0u);
+    // C alone where the surface neither reflects nor refracts, or at the depth limit with "local"
+    // (depth_limit); at the limit with "weighted" the rays not traced count 0 (also under total
+    // internal reflection, where C's weight is the same).
+    h.composes = !(om <= 0.0 && orr <= 0.0) && !(depth >= frame.size.w && frame.rules.x == 0u);
+    bool tracesRays = h.composes && depth < frame.size.w;
+    vec3 refracted;
+    h.tir = tracesRays && orr > 0.0 && !refractDirection(incoming, n, n1 / n2, refracted);
+    // Total internal reflection sends everything to the reflected ray.
+    float weightM = h.tir ? om + (1.0 - om) * orr : om;
+    float weightR = h.tir ? 0.0 : (1.0 - om) * orr;
+    bool traceM = tracesRays && effects.y && weightM > 0.0 && importance * weightM >= cutoff;
+    bool traceR = tracesRays && !h.tir && effects.z && weightR > 0.0 && importance * weightR >= cutoff;
+    // C only where it weighs, as WhittedTracer::shadeSurface decides.
+    bool localWeighs = !h.composes || (om < 1.0 && orr < 1.0) || (tracesRays && ((!traceM && weightM > 0.0) || (!h.tir && !traceR && orr > 0.0)));
     if (localGiven) {
         h.local = givenLocal;
-    } else if (!localIfWeighted || !composes || (om < 1.0 && orr < 1.0)) {
+    } else if (!localIfWeighted || localWeighs) {
         h.local = localColor(s, m, n, ng, -incoming, effects.x, uvFootprintLod(s.uvDensityLod, coneWidth, incoming, s.geometricNormal),
                              media.absorption);
     } else {
         h.local = vec3(0.0);
     }
-    h.tir = false;
     h.reflected.traced = false;
     h.refracted.traced = false;
     h.reflected.value = vec3(0.0);
     h.refracted.value = vec3(0.0);
     h.skyReflected = h.skyRefracted = h.local;
-    h.composes = !(om <= 0.0 && orr <= 0.0);
-    if (!h.composes) return h;
-    if (depth >= frame.size.w) {
-        // depth_limit: "local" returns C alone; "weighted" composes C with the untraced rays
-        // counting 0 (also under total internal reflection, where C's weight is the same).
-        h.composes = frame.rules.x != 0u;
-        return h;
-    }
-    vec3 refracted;
-    h.tir = orr > 0.0 && !refractDirection(incoming, n, n1 / n2, refracted);
-    // Total internal reflection sends everything to the reflected ray.
-    float weightM = h.tir ? om + (1.0 - om) * orr : om;
-    float weightR = h.tir ? 0.0 : (1.0 - om) * orr;
+    if (!tracesRays) return h;
     vec3 reflected = reflectDirection(incoming, n);
     if (weightM > 0.0) h.skyReflected = skyRadiance(reflected);
     if (weightR > 0.0) h.skyRefracted = skyRadiance(refracted);
@@ -218,7 +219,7 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
     h.reflected.value = h.local;
     if (!effects.y) {
         h.reflected.value = h.skyReflected;
-    } else if (weightM > 0.0 && importance * weightM >= cutoff) {
+    } else if (traceM) {
         h.reflected.traced = true;
         h.reflected.ray = PendingRay(offsetRayOrigin(s.position, ng), importance * weightM, reflected, depth + 1, vec3(1.0), coneWidth, media);
     }
@@ -227,7 +228,7 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
         h.refracted.value = h.reflected.value;
     } else if (!effects.z) {
         h.refracted.value = h.skyRefracted;
-    } else if (weightR > 0.0 && importance * weightR >= cutoff) {
+    } else if (traceR) {
         h.refracted.traced = true;
         MediumStack inside = media;
         if (!(entering ? mediumEnter(inside, s.object, s.material) : mediumLeave(inside, s.object))) ++countMediumErrors;
