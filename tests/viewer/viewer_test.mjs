@@ -450,9 +450,15 @@ try {
     const hrefs = await report.$$eval('table.runs a[href^="viewer.html#run="]', (as) => as.map((a) => a.getAttribute('href')));
     assert.deepEqual(hrefs.sort(), manifest.runs.map((r) => `viewer.html#run=${r.id}`).sort());
     const target = runAt(40, variants[1]);
-    await report.click(`table.runs a[href="viewer.html#run=${target.id}"]`);
-    await report.waitForURL(/viewer\.html/);
-    await report.waitForFunction(() => [...document.querySelectorAll('#panes img.image')].every((i) => i.complete && i.naturalWidth > 0));
+    // The anchor's own click, and the navigation awaited from before it: a click at coordinates can
+    // land beside the link while the report's figures still lay out on a loaded machine, and the
+    // viewer's images are awaited below rather than through the page's load event.
+    const link = `table.runs a[href="viewer.html#run=${target.id}"]`;
+    await Promise.all([report.waitForURL(/viewer\.html/, { waitUntil: 'commit' }), report.$eval(link, (a) => a.click())]);
+    await report.waitForFunction(() => {
+      const imgs = [...document.querySelectorAll('#panes img.image')];
+      return imgs.length >= 2 && imgs.every((i) => i.complete && i.naturalWidth > 0);
+    });
     const files = await report.$$eval('#panes img.image', (imgs) => imgs.map((i) => i.dataset.file));
     assert.deepEqual(files.slice(0, 2), [target.reference, target.image]);
     // A path figure's points are runs; a speed-accuracy point is a setting, which opens its first run.
