@@ -90,7 +90,8 @@ public:
 
     // Full Whitted shading of a surface hit seen along unit direction `incoming` (towards the
     // surface): local colour with ray-traced shadows, composed with recursive reflection and
-    // refraction.
+    // refraction. The local colour is not shaded where the composition gives it no weight (clear
+    // glass, a perfect mirror, total internal reflection): the same radiance, fewer shadow rays.
     // `footprint` is the ray's cone at the hit; `media` those the incoming ray travelled in (the
     // refracted ray enters or leaves the hit object's).
     glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {},
