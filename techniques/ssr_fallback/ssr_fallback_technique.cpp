@@ -264,7 +264,7 @@ TracedTexels traceTexels(const GBuffer& g, const Image& lit, const SsrResult* ss
                 const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
                 // The camera ray's cone continued along the mirror ray to the hit.
                 const RayCone cone = surface.footprint().at(glm::distance(surface.hit().position, hitSurface.hit().position));
-                ssrM = tracer.shadeParts(hitSurface.hit(), mirror, 1, parts.reflectivity, st, {}, cone).composed(settings.blend);
+                ssrM = tracer.shade(hitSurface.hit(), mirror, 1, parts.reflectivity, st, cone);
             }
         }
         out.reflection[i] = confidence * ssrM + (1.0f - confidence) * fallbackM;

@@ -73,10 +73,11 @@ struct Parts {
 vec3 composed(Parts p) { return p.composes ? compose(p.reflectivity, p.transparency, p.reflected, p.refracted, p.local, frame.settings.y != 0.0) : p.local; }
 
 // As WhittedTracer::shadeParts() in the ambient medium: the hit's terms, its secondary rays
-// traced with the ray tree.
+// traced with the ray tree. With `composedOnly` (a caller that reads composed() alone, as
+// WhittedTracer::shade()), C is shaded only where it weighs.
 Parts shadeParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects, bool localGiven,
-                 vec3 givenLocal) {
-    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal, false);
+                 vec3 givenLocal, bool composedOnly) {
+    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal, composedOnly);
     Parts p;
     p.local = h.local;
     p.reflectivity = h.reflectivity;
