@@ -95,21 +95,29 @@ ImageHeader headerOf(const Imf::Header& header) {
     return h;
 }
 
-}  // namespace
-
-ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size) {
+// Runs `call`, OpenEXR's exceptions turned into ImageCodecError.
+template <typename Call>
+auto translatingErrors(Call&& call) {
     try {
-        MemoryInput in(bytes, size);
-        Imf::InputFile file(in);
-        return headerOf(file.header());
+        return call();
     } catch (const Iex::BaseExc& e) {
         throw ImageCodecError(std::string("EXR: ") + e.what());
     }
 }
 
+}  // namespace
+
+ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size) {
+    return translatingErrors([&] {
+        MemoryInput in(bytes, size);
+        Imf::InputFile file(in);
+        return headerOf(file.header());
+    });
+}
+
 DecodedImage decodeExr(const unsigned char* bytes, std::size_t size) {
     useEveryCore();
-    try {
+    return translatingErrors([&] {
         MemoryInput in(bytes, size);
         Imf::InputFile file(in);
         DecodedImage image;
@@ -128,32 +136,30 @@ DecodedImage decodeExr(const unsigned char* bytes, std::size_t size) {
         file.setFrameBuffer(frame);
         file.readPixels(window.min.y, window.max.y);
         return image;
-    } catch (const Iex::BaseExc& e) {
-        throw ImageCodecError(std::string("EXR: ") + e.what());
-    }
+    });
 }
 
 std::vector<unsigned char> encodeExr(const Image& image) {
     useEveryCore();
-    std::vector<unsigned char> bytes;
-    try {
+    return translatingErrors([&] {
+        std::vector<unsigned char> bytes;
         Imf::Header header(image.width(), image.height());
         header.compression() = Imf::ZIP_COMPRESSION;
         static const char* const kNames[4] = {"R", "G", "B", "A"};
         for (const char* name : kNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-        MemoryOutput out(bytes);
-        Imf::OutputFile file(out, header);
-        Imf::FrameBuffer frame;
-        // The image's pixels are vec4s, row after row: the slices read them in place.
-        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
-        const std::size_t xStride = sizeof(glm::vec4), yStride = xStride * static_cast<std::size_t>(image.width());
-        for (int c = 0; c < 4; ++c) frame.insert(kNames[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
-        file.setFrameBuffer(frame);
-        file.writePixels(image.height());
-    } catch (const Iex::BaseExc& e) {
-        throw ImageCodecError(std::string("EXR: ") + e.what());
-    }
-    return bytes;
+        {
+            MemoryOutput out(bytes);
+            Imf::OutputFile file(out, header);
+            Imf::FrameBuffer frame;
+            // The image's pixels are vec4s, row after row: the slices read them in place.
+            char* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
+            const std::size_t xStride = sizeof(glm::vec4), yStride = xStride * static_cast<std::size_t>(image.width());
+            for (int c = 0; c < 4; ++c) frame.insert(kNames[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+            file.setFrameBuffer(frame);
+            file.writePixels(image.height());
+        }  // closing the file writes its table of line offsets into `bytes`
+        return bytes;
+    });
 }
 
 }  // namespace hybridlab

@@ -92,15 +92,20 @@ ImageHeader readHeader(ImageFormat format, const unsigned char* bytes, std::size
     return readStbHeader(bytes, size);
 }
 
-// The header is checked before the pixels are decoded, so that a header claiming a huge image is
-// refused without the allocation.
-Image decode(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode, std::string* assumed) {
-    const ImageFormat format = imageFormatOf(bytes, size);
+// Reads the header of an image of `format` and checks it against the limits.
+void checkReadableHeader(ImageFormat format, const unsigned char* bytes, std::size_t size, const std::string& name) {
     try {
         checkHeader(readHeader(format, bytes, size), name);
     } catch (const ImageCodecError& e) {
         throw InputError(name + ": cannot read image (" + e.what() + ")");
     }
+}
+
+// The header is checked before the pixels are decoded, so that a header claiming a huge image is
+// refused without the allocation.
+Image decode(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode, std::string* assumed) {
+    const ImageFormat format = imageFormatOf(bytes, size);
+    checkReadableHeader(format, bytes, size, name);
     DecodedImage decoded;
     try {
         switch (format) {
@@ -140,11 +145,7 @@ Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed
 
 void checkImageFile(const fs::path& path) {
     const std::vector<unsigned char> bytes = readImageBytes(path);
-    try {
-        checkHeader(readHeader(imageFormatOf(bytes.data(), bytes.size()), bytes.data(), bytes.size()), path.string());
-    } catch (const ImageCodecError& e) {
-        throw InputError(path.string() + ": cannot read image (" + e.what() + ")");
-    }
+    checkReadableHeader(imageFormatOf(bytes.data(), bytes.size()), bytes.data(), bytes.size(), path.string());
 }
 
 Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode) {
@@ -165,9 +166,11 @@ Image mapped(const Image& img, glm::vec4 (*map)(glm::vec4)) {
     return out;
 }
 
-std::vector<unsigned char> encodePngOrThrow(const fs::path& path, const Image& values, int bits) {
+// The bytes `encode()` returns, its failure named with `path`.
+template <typename Encode>
+std::vector<unsigned char> encoded(const fs::path& path, Encode&& encode) {
     try {
-        return encodePng(values, bits);
+        return encode();
     } catch (const ImageCodecError& e) {
         throw std::runtime_error(path.string() + ": cannot encode image (" + e.what() + ")");
     }
@@ -176,22 +179,17 @@ std::vector<unsigned char> encodePngOrThrow(const fs::path& path, const Image& v
 }  // namespace
 
 void writeExr(const fs::path& path, const Image& linear) {
-    std::vector<unsigned char> bytes;
-    try {
-        bytes = encodeExr(linear);
-    } catch (const ImageCodecError& e) {
-        throw std::runtime_error(path.string() + ": cannot encode image (" + e.what() + ")");
-    }
-    writeBytes(path, bytes);
+    writeBytes(path, encoded(path, [&] { return encodeExr(linear); }));
 }
 
 void writeDisplayPng(const fs::path& path, const Image& linear, int bits) {
-    writeBytes(path, encodePngOrThrow(path, mapped(linear, linearToDisplay), bits));
+    const Image display = mapped(linear, linearToDisplay);
+    writeBytes(path, encoded(path, [&] { return encodePng(display, bits); }));
 }
 
 void writePng(const fs::path& path, const Image& display, int bits) {
     // encodePng clamps to [0, 1].
-    writeBytes(path, encodePngOrThrow(path, display, bits));
+    writeBytes(path, encoded(path, [&] { return encodePng(display, bits); }));
 }
 
 void writeImageAtomically(const fs::path& path, const Image& linear) {

@@ -142,12 +142,15 @@ TEST(RayScene, CoherentPacketsFindTheHitsOfSingleRays) {
     EXPECT_THROW(rays.intersectCoherent(all.data(), RayScene::kCoherentRays + 1, unused, found), std::logic_error);
 }
 
+// Three parallel camera-like rays towards the moving sphere, a packet of them.
+const Ray kThreeParallelRays[3] = {{{0, 0.5f, 5}, {0, 0, -1}}, {{0, 0.6f, 5}, {0, 0, -1}}, {{0, 0.7f, 5}, {0, 0, -1}}};
+
 TEST(RayScene, CoherentPacketsAreLoggedRayByRay) {
     Scene scene = movingSphereScene();
     RayScene rays(scene);
     RayLog log;
     rays.setRayLog(&log);
-    const Ray three[3] = {{{0, 0.5f, 5}, {0, 0, -1}}, {{0, 0.6f, 5}, {0, 0, -1}}, {{0, 0.7f, 5}, {0, 0, -1}}};
+    const Ray* three = kThreeParallelRays;
     SurfaceHit hits[3];
     bool found[3];
     rays.intersectCoherent(three, 3, hits, found);
@@ -172,7 +175,7 @@ TEST(RayScene, TheCallClockTimesEachEmbreeCallWhileSet) {
     RayScene rays(scene);
     EmbreeCallClock clock;
     rays.setCallClock(&clock);
-    const Ray three[3] = {{{0, 0.5f, 5}, {0, 0, -1}}, {{0, 0.6f, 5}, {0, 0, -1}}, {{0, 0.7f, 5}, {0, 0, -1}}};
+    const Ray* three = kThreeParallelRays;
     SurfaceHit hits[3];
     bool found[3];
     rays.intersectCoherent(three, 3, hits, found);
