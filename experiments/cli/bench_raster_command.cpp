@@ -2,13 +2,13 @@
 // the rest), medians over repeated frames after warm-up (lavapipe compiles shaders at the first
 // draw), beside the Whitted reference's frame time on the same view. The `raster` technique's
 // frame is shadow maps + G-buffer + lighting + read-back of the image.
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
 #include <vector>
 
+#include "common/core/process_cpu_clock.h"
 #include "common/core/wall_clock.h"
 #include "common/raster/gbuffer.h"
 #include "common/raster/rasterizer.h"
@@ -58,13 +58,6 @@ struct Samples {
     // machine it moves less with other people's load than the wall clock does.
     double cpuMillisecondsPerFrame = 0.0;
 };
-
-double processCpuMilliseconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    auto ms = [](const timeval& t) { return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_usec) * 1e-3; };
-    return ms(u.ru_utime) + ms(u.ru_stime);
-}
 
 Samples measure(Rasterizer& raster, const RasterRequest& request, int warmup, int repeats) {
     RasterFrame frame;

@@ -219,6 +219,20 @@ TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& label
     return s;
 }
 
+// The [experiment] keys of the timing protocol (interleaved_timing.h).
+void readTimingProtocol(const TomlTable& e, TimingProtocol& t) {
+    t.warmupFrames = static_cast<int>(e.integer("warmup_frames", t.warmupFrames, 0, 1000));
+    t.warmupMs = e.number("warmup_ms", t.warmupMs, {0.0, 600000.0});
+    t.steadyFrames = static_cast<int>(e.integer("steady_frames", t.steadyFrames, 0, 100));
+    t.steadyTolerance = e.number("steady_tolerance", t.steadyTolerance, {0.0, 10.0});
+    t.maxWarmupFrames = static_cast<int>(e.integer("max_warmup_frames", t.maxWarmupFrames, 0, 10000));
+    t.minRounds = static_cast<int>(e.integer("repeats", t.minRounds, 1, 1000));
+    t.maxRounds = static_cast<int>(e.integer("max_rounds", t.maxRounds, 1, 100000));
+    t.precision = e.number("precision", t.precision, {0.0, 10.0});
+    t.groupBudgetMs = 1000.0 * e.number("group_budget_s", t.groupBudgetMs / 1000.0, {0.0, 86400.0});
+    if (t.maxRounds < t.minRounds) e.fail("max_rounds", "expected at least repeats (" + std::to_string(t.minRounds) + ")");
+}
+
 }  // namespace
 
 ExperimentConfig loadExperimentConfig(const fs::path& file) {
@@ -232,9 +246,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
     if (auto e = root.table("experiment")) {
         c.name = e->string("name", c.name);
         c.description = e->string("description", "");
-        c.warmupFrames = e->integer("warmup_frames", c.warmupFrames, 0, 1000);
-        c.warmupMilliseconds = e->number("warmup_ms", c.warmupMilliseconds, {0.0, 600000.0});
-        c.repeats = e->integer("repeats", c.repeats, 1, 1000);
+        readTimingProtocol(*e, c.timing);
         readMetricsAndKeep(*e, c);
         e->rejectUnknownKeys();
     }

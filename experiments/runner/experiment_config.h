@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/runner/interleaved_timing.h"
 #include "metrics/metrics.h"
 #include "techniques/parameters.h"
 
@@ -41,11 +42,11 @@ struct ExperimentConfig {
     std::string name;
     std::string description;
     std::string hash;          // of the config file's bytes
-    int warmupFrames = 1;
-    // `warmup_ms`: the warm-up goes on past warmup_frames until this long (a GPU raises its clock
-    // only under load; 0: frames alone).
-    double warmupMilliseconds = 0.0;
-    int repeats = 3;
+    // How each group of runs is timed (interleaved_timing.h): `warmup_frames`, `warmup_ms` (the
+    // warm-up goes on past warmup_frames until this long: a GPU raises its clock only under load),
+    // `steady_frames`, `steady_tolerance`, `max_warmup_frames`, `repeats` (the fewest rounds),
+    // `max_rounds`, `precision` and `group_budget_s`.
+    TimingProtocol timing;
     double resolutionScale = 1.0;  // `run --scale`: resolutions below are already scaled (resolution_scale.h)
     MetricSelection metrics;       // `metrics`: what each image is scored with
     bool temporalError = true;     // `metrics` holds "temporal": the error between path frames

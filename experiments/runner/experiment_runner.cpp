@@ -20,8 +20,12 @@
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
+#include "common/core/process_cpu_clock.h"
 #include "common/core/wall_clock.h"
 #include "experiments/runner/device_record.h"
+#include "experiments/runner/gpu_clocks.h"
+#include "experiments/runner/interleaved_timing.h"
+#include "experiments/runner/timing_statistics.h"
 #include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
@@ -263,34 +267,51 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
     return ref;
 }
 
-// A technique's frame after the warm-up frames, with every timed repeat's stage and frame times.
-struct TimedFrame {
-    FrameResult result;  // the last repeat
+// One setting of a group as the protocol times it (interleaved_timing.h): each frame's clocks, its
+// stage times by round, and its last frame, which is scored (renders are deterministic, so every
+// timed frame's image is the same).
+struct TimedSetting {
+    Technique* technique = nullptr;
+    FrameResult last;
     std::map<std::string, std::vector<double>> stageTimes;
-    std::vector<double> frameTimes;
-    int warmupFrames = 0;
+
+    FrameClocks render(SceneContext& context, const FrameRequest& request) {
+        const double cpuStart = processCpuMilliseconds();
+        last = technique->render(context, request);
+        FrameClocks c;
+        c.cpuMs = processCpuMilliseconds() - cpuStart;
+        c.wallMs = last.totalMilliseconds();
+        // The device's timestamps, where the frame's device work recorded them (gpu_<pass>_ms).
+        for (const auto& [name, value] : last.counters) {
+            if (name.rfind("gpu_", 0) == 0 && name.size() > 7 && name.compare(name.size() - 3, 3, "_ms") == 0)
+                c.deviceMs = c.deviceMs.value_or(0.0) + value;
+        }
+        return c;
+    }
 };
 
-TimedFrame timeTechnique(const ExperimentConfig& config, Technique& technique, SceneContext& context, const FrameRequest& request) {
-    TimedFrame timed;
-    const auto start = WallClock::now();
-    while (timed.warmupFrames < config.warmupFrames ||
-           (config.warmupMilliseconds > 0.0 && millisecondsSince(start) < config.warmupMilliseconds)) {
-        technique.render(context, request);
-        ++timed.warmupFrames;
-    }
-    for (int i = 0; i < config.repeats; ++i) {
-        timed.result = technique.render(context, request);
-        for (const auto& s : timed.result.stages) timed.stageTimes[s.name].push_back(s.milliseconds);
-        timed.frameTimes.push_back(timed.result.totalMilliseconds());
-    }
-    return timed;
+// The runs of one group: same scene, view, frame and size, timed together (experiments/README.md
+// "Timing"); consecutive in the plan's order.
+bool sameGroup(const RunSpec& a, const RunSpec& b) {
+    return a.scene == b.scene && a.cameraPath == b.cameraPath && a.frame == b.frame && a.width == b.width && a.height == b.height;
+}
+
+std::string groupName(const ExperimentConfig& config, const RunSpec& run) {
+    return config.scenes[run.scene].label + "|" + (run.cameraPath.empty() ? "camera" : run.cameraPath) + "|" + std::to_string(run.frame) +
+           "|" + std::to_string(run.width) + "x" + std::to_string(run.height);
+}
+
+// The run whose speed-ups are read as "over rt_only": the group's default rt_only (no parameters).
+const RunSpec* rtOnlyOf(const ExperimentConfig& config, const std::vector<const RunSpec*>& group) {
+    for (const RunSpec* r : group)
+        if (config.techniques[r->technique].name == "rt_only" && r->parameters.empty()) return r;
+    return nullptr;
 }
 
 // The results record of one run (run_record.h): what ran, its times, counters and scores, and the
 // paths of its images beside the reference's.
 RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneStats& sceneStats, const View& view,
-                    const TechniqueSpec& techSpec, const TimedFrame& timed, const MetricReport& report, const ReportSources& sources,
+                    const TechniqueSpec& techSpec, const TimedSetting& timed, const MetricReport& report, const ReportSources& sources,
                     const CachedReference& ref, bool masked, const std::string& image, std::optional<std::string> maps) {
     RunRecord r;
     r.index = run.index;
@@ -307,16 +328,135 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
     r.parameters = run.parameters;
     r.parametersText = run.parametersText;
     r.sequence = run.sequenceKey;
-    r.frameMilliseconds = spreadOf(timed.frameTimes);
-    r.warmupFrames = timed.warmupFrames;
     for (const auto& [name, times] : timed.stageTimes) r.stages[name] = spreadOf(times);
-    r.counters = timed.result.counters;
+    r.counters = timed.last.counters;
     r.metrics = reportJson(report, sources);
     const std::string reference = "references/" + ref.key;
     r.reference = {ref.key, reference + ".exr", reference + ".png",
                    masked ? std::optional<std::string>(reference + ".mask.png") : std::nullopt, ref.frameMilliseconds, ref.cacheHit};
     r.images = {image + ".exr", image + ".png", std::move(maps), {}};
     return r;
+}
+
+// Times a group's pending runs and the reference in interleaved rounds (with the group's default
+// rt_only, recorded or not, for the speed-ups over it), then scores and records each run. Returns
+// the runs recorded.
+std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, const ResultsStore& store, const ReferenceCache& cache,
+                        ActiveScene& active, const std::vector<const RunSpec*>& group, const std::vector<const RunSpec*>& pending,
+                        const std::optional<MixedDevices>& mixed, Progress& progress, std::size_t done, RunnerSummary& summary) {
+    const auto groupStart = WallClock::now();
+    const RunSpec& head = *pending.front();
+    const std::string name = groupName(config, head);
+    progress.start(done, name + ": timing " + std::to_string(pending.size()) + " run(s) and the reference in rounds", pending.size());
+    active.load(config, head.scene);
+    const View view = resolveView(*active.scene, head.cameraPath, head.frame >= 0 ? std::optional<int>(head.frame) : std::nullopt, std::nullopt);
+    const FrameRequest request{view.camera, view.time, head.width, head.height};
+    const CachedReference ref = referenceFor(config, cache, active, head, view, request, summary);
+
+    // The settings timed together: the pending runs, the reference, and rt_only where it is not pending.
+    std::vector<const RunSpec*> timedRuns = pending;
+    const RunSpec* rtOnly = rtOnlyOf(config, group);
+    if (rtOnly && std::find(pending.begin(), pending.end(), rtOnly) == pending.end()) timedRuns.push_back(rtOnly);
+    std::vector<TimedSetting> settings(timedRuns.size() + 1);
+    for (std::size_t i = 0; i < timedRuns.size(); ++i) {
+        const RunSpec& run = *timedRuns[i];
+        settings[i].technique = &active.technique(std::to_string(run.technique) + "|" + run.parametersText, config.techniques[run.technique].name,
+                                                  run.parameters);
+    }
+    const std::size_t referenceIndex = timedRuns.size();
+    settings[referenceIndex].technique = &active.technique("\x01reference", "whitted", config.referenceParameters);
+    std::vector<TimedRender> renders;
+    for (TimedSetting& s : settings) {
+        renders.push_back([&s, &active, &request] {
+            FrameClocks c = s.render(*active.context, request);
+            for (const auto& st : s.last.stages) s.stageTimes[st.name].push_back(st.milliseconds);
+            return c;
+        });
+    }
+    const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
+    GroupTiming timing = timeInterleaved(renders, config.timing);
+    const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
+    // Only the rounds' stage times: the warm-up's are not the setting's steady state.
+    for (TimedSetting& s : settings) {
+        for (auto& [stage, times] : s.stageTimes)
+            times.erase(times.begin(), times.end() - std::min<std::ptrdiff_t>(timing.rounds, static_cast<std::ptrdiff_t>(times.size())));
+    }
+    const std::vector<double> referenceRounds = wallTimes(timing.settings[referenceIndex]);
+    const double timingSeconds = millisecondsSince(groupStart) / 1000.0;
+
+    const PixelMask mask = PixelMask::fromImage(ref.mask);
+    writeReferenceCopy(store, ref, mask.count() > 0);
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        const auto runStart = WallClock::now();
+        const RunSpec* run = pending[i];
+        const SettingTiming& st = timing.settings[i];
+        const FrameResult& result = settings[i].last;
+        MetricOptions scoring;
+        scoring.selection = config.metrics;
+        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
+        const std::string image = "images/" + run->id;
+        const ReportSources sources{image + ".exr", "references/" + ref.key + ".exr",
+                                    mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
+        // The run's files side by side: each image's encoding is serial, and on a GPU machine
+        // they take longer than the frames.
+        std::vector<std::function<void()>> writes = {[&] { writeImageAtomically(o.outDir / (image + ".exr"), result.image); },
+                                                     [&] { writeImageAtomically(o.outDir / (image + ".png"), result.image); }};
+        std::optional<std::string> maps;
+        if (config.keepErrorMaps) {
+            writes.push_back([&] { writeReportFiles(store.mapsDir() / run->id, report, sources); });
+            maps = "maps/" + run->id;
+        }
+        std::map<std::string, std::string> debugImages;
+        if (config.keepDebugImages) {
+            for (const auto& [debugName, dbg] : result.debugImages) {
+                const std::string p = image + "." + debugName + ".png";
+                debugImages[debugName] = p;
+                writes.push_back([&o, p, &dbg = dbg] { writeImageAtomically(o.outDir / p, dbg); });
+            }
+        }
+        runInParallel(writes);
+
+        RunRecord record = runRecord(*run, config.scenes[run->scene], active.stats, view, config.techniques[run->technique], settings[i], report,
+                                     sources, ref, mask.count() > 0, image, maps);
+        const std::vector<double> wall = wallTimes(st);
+        record.frameMilliseconds = intervalSpreadOf(wall);
+        record.warmupFrames = st.warmupFrames;
+        RunTiming t;
+        t.group = name;
+        t.rounds = timing.rounds;
+        t.frameRounds = wall;
+        t.referenceRounds = referenceRounds;
+        t.cpuRounds = cpuTimes(st);
+        t.cpu = intervalSpreadOf(t.cpuRounds);
+        if (const auto device = deviceTimes(st)) {
+            t.deviceRounds = *device;
+            t.device = intervalSpreadOf(*device);
+        }
+        t.precision = config.timing.precision;
+        t.precisionReached = timing.precisionReached;
+        t.warmupMs = st.warmupMs;
+        t.steady = st.steady;
+        if (clocksBefore && clocksAfter) t.gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
+        record.timing = std::move(t);
+        record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
+        const auto speedupOver = [&](const std::vector<double>& other) {
+            const MedianInterval m = pairedRatio(other, wall);
+            return m.hasInterval ? RatioInterval{m.median, m.low, m.high} : RatioInterval{m.median, std::nullopt, std::nullopt};
+        };
+        record.speedup["reference"] = speedupOver(referenceRounds);
+        if (rtOnly) {
+            const std::size_t k = static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) - timedRuns.begin());
+            record.speedup["rt_only"] = speedupOver(wallTimes(timing.settings[k]));
+        }
+        // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
+        // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
+        record.runSeconds = timingSeconds / static_cast<double>(pending.size()) + millisecondsSince(runStart) / 1000.0;
+        if (mixed) record.device = mixed->here;
+        record.images.debug = std::move(debugImages);
+        store.recordRun(record);
+        ++summary.runsRendered;
+    }
+    return pending.size();
 }
 
 void checkShard(const RunnerOptions& o) {
@@ -342,66 +482,23 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     Progress progress(mine.size(), o.quiet);
     ActiveScene active;
     std::size_t done = 0;
-    for (const RunSpec* run : mine) {
-        if (o.resume && store.hasRecord(run->id)) {
-            ++summary.runsSkipped;
-            ++done;
-            continue;
-        }
-        if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
-        const auto runStart = WallClock::now();
-        const SceneSpec& sceneSpec = config.scenes[run->scene];
-        const TechniqueSpec& techSpec = config.techniques[run->technique];
-        progress.start(done, run->id);
-        active.load(config, run->scene);
-        const Scene& scene = *active.scene;
-        const View view = resolveView(scene, run->cameraPath, run->frame >= 0 ? std::optional<int>(run->frame) : std::nullopt, std::nullopt);
-        const FrameRequest request{view.camera, view.time, run->width, run->height};
-
-        const CachedReference ref = referenceFor(config, cache, active, *run, view, request, summary);
-        const std::string& key = ref.key;
-
-        // The technique: warm-up frames, then timed repeats (medians, min and max per stage).
-        Technique& technique = active.technique(std::to_string(run->technique) + "|" + run->parametersText, techSpec.name, run->parameters);
-        const TimedFrame timed = timeTechnique(config, technique, *active.context, request);
-        const FrameResult& result = timed.result;
-
-        const PixelMask mask = PixelMask::fromImage(ref.mask);
-        writeReferenceCopy(store, ref, mask.count() > 0);
-        MetricOptions scoring;
-        scoring.selection = config.metrics;
-        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
-        const std::string image = "images/" + run->id;
-        const ReportSources sources{image + ".exr", "references/" + key + ".exr",
-                                    mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
-        // The run's files side by side: each image's encoding is serial, and on a GPU machine
-        // they take longer than the frames.
-        std::vector<std::function<void()>> writes = {[&] { writeImageAtomically(o.outDir / (image + ".exr"), result.image); },
-                                                     [&] { writeImageAtomically(o.outDir / (image + ".png"), result.image); }};
-        std::optional<std::string> maps;
-        if (config.keepErrorMaps) {
-            writes.push_back([&] { writeReportFiles(store.mapsDir() / run->id, report, sources); });
-            maps = "maps/" + run->id;
-        }
-        std::map<std::string, std::string> debugImages;
-        if (config.keepDebugImages) {
-            for (const auto& [name, dbg] : result.debugImages) {
-                const std::string p = image + "." + name + ".png";
-                debugImages[name] = p;
-                writes.push_back([&o, p, &dbg = dbg] { writeImageAtomically(o.outDir / p, dbg); });
+    for (std::size_t first = 0; first < mine.size();) {
+        std::size_t last = first + 1;
+        while (last < mine.size() && sameGroup(*mine[first], *mine[last])) ++last;
+        const std::vector<const RunSpec*> group(mine.begin() + static_cast<std::ptrdiff_t>(first), mine.begin() + static_cast<std::ptrdiff_t>(last));
+        first = last;
+        std::vector<const RunSpec*> pending;
+        for (const RunSpec* run : group) {
+            if (o.resume && store.hasRecord(run->id)) {
+                ++summary.runsSkipped;
+                ++done;
+            } else if (o.maxRuns < 0 || static_cast<long>(summary.runsRendered + pending.size()) < o.maxRuns) {
+                pending.push_back(run);
             }
         }
-        runInParallel(writes);
-
-        RunRecord record = runRecord(*run, sceneSpec, active.stats, view, techSpec, timed, report, sources, ref, mask.count() > 0, image, maps);
-        // The run's time so far (scene load, reference, warm-up, repeats, scoring, its files): what
-        // `merge` sums per shard beside the shard's estimated cost.
-        record.runSeconds = millisecondsSince(runStart) / 1000.0;
-        if (mixed) record.device = mixed->here;
-        record.images.debug = std::move(debugImages);
-        store.recordRun(record);
-        ++summary.runsRendered;
-        ++done;
+        if (pending.empty()) continue;
+        done += renderGroup(config, o, store, cache, active, group, pending, mixed, progress, done, summary);
+        if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
     }
     progress.finish();
 

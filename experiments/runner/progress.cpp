@@ -9,7 +9,7 @@ namespace hybridlab {
 Progress::Progress(std::size_t total, bool quiet)
     : total_(total), quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0), begin_(std::chrono::steady_clock::now()) {}
 
-void Progress::start(std::size_t done, const std::string& current) {
+void Progress::start(std::size_t done, const std::string& current, std::size_t runs) {
     if (quiet_) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
     char eta[32] = "?";
@@ -17,14 +17,15 @@ void Progress::start(std::size_t done, const std::string& current) {
         const double left = elapsed / static_cast<double>(started_) * static_cast<double>(total_ - done);
         std::snprintf(eta, sizeof eta, "%dm%02ds", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
     }
-    ++started_;
+    started_ += runs;
     if (terminal_) {
         constexpr int kWidth = 30;
         const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
         std::fprintf(stderr, "\r\033[K[%.*s%*s] %zu/%zu  left %s  %s", filled, "##############################", kWidth - filled, "", done,
                      total_, eta, current.c_str());
     } else {
-        std::fprintf(stderr, "run %zu/%zu (left %s): %s\n", done + 1, total_, eta, current.c_str());
+        if (runs == 1) std::fprintf(stderr, "run %zu/%zu (left %s): %s\n", done + 1, total_, eta, current.c_str());
+        else std::fprintf(stderr, "runs %zu-%zu/%zu (left %s): %s\n", done + 1, done + runs, total_, eta, current.c_str());
     }
     std::fflush(stderr);
 }

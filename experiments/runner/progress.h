@@ -10,7 +10,8 @@ namespace hybridlab {
 class Progress {
 public:
     Progress(std::size_t total, bool quiet);
-    void start(std::size_t done, const std::string& current);
+    // `runs` runs start now (a group's, timed together), `done` before them.
+    void start(std::size_t done, const std::string& current, std::size_t runs = 1);
     void finish();
 
 private:

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "experiments/runner/parameter_json.h"
+#include "experiments/runner/timing_statistics.h"
 
 namespace hybridlab {
 using nlohmann::json;
@@ -12,12 +13,38 @@ using nlohmann::json;
 Spread spreadOf(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
-    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back()};
+    return {n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.front(), v.back(), std::nullopt, std::nullopt};
+}
+
+Spread intervalSpreadOf(std::vector<double> values) {
+    Spread s = spreadOf(values);
+    if (const MedianInterval m = medianInterval(std::move(values)); m.hasInterval) {
+        s.ciLow = m.low;
+        s.ciHigh = m.high;
+    }
+    return s;
 }
 
 namespace {
 
-json spreadJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
+json spreadJson(const Spread& s) {
+    json j = {{"median", s.median}, {"min", s.min}, {"max", s.max}};
+    if (s.ciLow) j["ci_low"] = *s.ciLow;
+    if (s.ciHigh) j["ci_high"] = *s.ciHigh;
+    return j;
+}
+
+json timingJson(const RunTiming& t) {
+    json j = {{"group", t.group}, {"rounds", t.rounds}, {"frame_ms_rounds", t.frameRounds}, {"reference_ms_rounds", t.referenceRounds},
+              {"cpu_ms", spreadJson(t.cpu)}, {"cpu_ms_rounds", t.cpuRounds}, {"precision", t.precision},
+              {"precision_reached", t.precisionReached}, {"warmup_ms", t.warmupMs}, {"steady", t.steady}};
+    if (t.device) {
+        j["device_ms"] = spreadJson(*t.device);
+        j["device_ms_rounds"] = t.deviceRounds;
+    }
+    if (t.gpuClocks) j["gpu_clocks"] = *t.gpuClocks;
+    return j;
+}
 
 json sceneStatsJson(const SceneStats& s) {
     return {{"objects", s.objects}, {"vertices", s.vertices}, {"triangles", s.triangles},
@@ -57,6 +84,15 @@ json toJson(const RunRecord& r) {
     j["sequence"] = r.sequence;
     j["frame_ms"] = spreadJson(r.frameMilliseconds);
     if (r.warmupFrames) j["warmup_frames"] = *r.warmupFrames;
+    if (r.timing) j["timing"] = timingJson(*r.timing);
+    if (!r.speedup.empty()) {
+        j["speedup"] = json::object();
+        for (const auto& [over, s] : r.speedup) {
+            j["speedup"][over] = {{"ratio", s.ratio}};
+            if (s.low) j["speedup"][over]["low"] = *s.low;
+            if (s.high) j["speedup"][over]["high"] = *s.high;
+        }
+    }
     j["stages"] = json::object();
     for (const auto& [name, s] : r.stages) j["stages"][name] = spreadJson(s);
     j["counters"] = json::object();
@@ -133,9 +169,50 @@ private:
 
 Spread spreadFrom(const json& j, const std::string& where) {
     FieldReader f(j, where);
-    Spread s{f.get<double>("median"), f.get<double>("min"), f.get<double>("max")};
+    Spread s{f.get<double>("median"), f.get<double>("min"), f.get<double>("max"), f.getOptional<double>("ci_low"), f.getOptional<double>("ci_high")};
     f.finish();
     return s;
+}
+
+std::vector<double> numbersFrom(const json& j, const std::string& where) {
+    if (!j.is_array()) FieldReader::fail(where, "expected an array of numbers");
+    std::vector<double> v;
+    for (std::size_t k = 0; k < j.size(); ++k) v.push_back(FieldReader::as<double>(j[k], where + "[" + std::to_string(k) + "]"));
+    return v;
+}
+
+RunTiming timingFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    RunTiming t;
+    t.group = f.get<std::string>("group");
+    t.rounds = f.get<int>("rounds");
+    t.frameRounds = numbersFrom(f.required("frame_ms_rounds"), f.path("frame_ms_rounds"));
+    t.referenceRounds = numbersFrom(f.required("reference_ms_rounds"), f.path("reference_ms_rounds"));
+    t.cpu = spreadFrom(f.required("cpu_ms"), f.path("cpu_ms"));
+    t.cpuRounds = numbersFrom(f.required("cpu_ms_rounds"), f.path("cpu_ms_rounds"));
+    if (const json* d = f.optional("device_ms")) {
+        t.device = spreadFrom(*d, f.path("device_ms"));
+        t.deviceRounds = numbersFrom(f.required("device_ms_rounds"), f.path("device_ms_rounds"));
+    }
+    t.precision = f.get<double>("precision");
+    t.precisionReached = f.get<bool>("precision_reached");
+    t.warmupMs = f.get<double>("warmup_ms");
+    t.steady = f.get<bool>("steady");
+    if (const json* g = f.optional("gpu_clocks")) t.gpuClocks = *g;
+    f.finish();
+    return t;
+}
+
+std::map<std::string, RatioInterval> speedupFrom(const json& j, const std::string& where) {
+    FieldReader f(j, where);
+    std::map<std::string, RatioInterval> out;
+    for (const auto& [over, value] : j.items()) {
+        FieldReader r(f.required(over), f.path(over));
+        out[over] = {r.get<double>("ratio"), r.getOptional<double>("low"), r.getOptional<double>("high")};
+        r.finish();
+    }
+    f.finish();
+    return out;
 }
 
 SceneStats sceneStatsFrom(const json& j, const std::string& where) {
@@ -224,6 +301,8 @@ RunRecord fromJson(const json& j) {
     r.images = imagesFrom(f.required("images"), f.path("images"));
     r.runSeconds = f.getOptional<double>("run_seconds");
     r.warmupFrames = f.getOptional<int>("warmup_frames");
+    if (const json* t = f.optional("timing")) r.timing = timingFrom(*t, f.path("timing"));
+    if (const json* s = f.optional("speedup")) r.speedup = speedupFrom(*s, f.path("speedup"));
     if (const json* device = f.optional("device")) r.device = *device;
     r.temporalError = f.getOptional<double>("temporal_error");
     r.temporalErrorMasked = f.getOptional<double>("temporal_error_masked");

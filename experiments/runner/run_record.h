@@ -14,11 +14,39 @@
 
 namespace hybridlab {
 
-// The median, minimum and maximum of a time over the timed repeats.
+// The median, minimum and maximum of a time over the timed rounds; for the frame's clocks also the
+// median's distribution-free 95% interval (timing_statistics.h).
 struct Spread {
     double median = 0.0, min = 0.0, max = 0.0;
+    std::optional<double> ciLow, ciHigh;
 };
-Spread spreadOf(std::vector<double> values);  // values must not be empty
+Spread spreadOf(std::vector<double> values);          // values must not be empty
+Spread intervalSpreadOf(std::vector<double> values);  // with the interval, where 6 or more values give one
+
+// A speed-up over another setting timed in the same rounds: the median over the rounds of the
+// other's time / this run's, with its 95% interval (none with fewer than 6 rounds).
+struct RatioInterval {
+    double ratio = 0.0;
+    std::optional<double> low, high;
+};
+
+// How a run was timed (experiments/README.md "Timing"): interleaved rounds with every other run of
+// its group (same scene, view, frame and size) and the reference.
+struct RunTiming {
+    std::string group;
+    int rounds = 0;
+    std::vector<double> frameRounds;      // this run's frame time (wall) in round k at [k]
+    std::vector<double> referenceRounds;  // the reference's, in the same rounds
+    Spread cpu;                           // process CPU time per frame, all threads
+    std::vector<double> cpuRounds;
+    std::optional<Spread> device;         // the device's timestamps, where it has them
+    std::vector<double> deviceRounds;
+    double precision = 0.0;
+    bool precisionReached = false;
+    double warmupMs = 0.0;
+    bool steady = false;                  // the warm-up ended on agreeing frames, not on its cap
+    std::optional<nlohmann::json> gpuClocks;  // gpu_clocks.h, on an NVIDIA GPU
+};
 
 // The reference image a run was scored against (paths relative to the result set's folder).
 struct ReferenceEntry {
@@ -52,7 +80,9 @@ struct RunRecord {
     std::string sequence;      // the frames of one path in one setting (the temporal error's pairs)
     // What it cost and produced.
     Spread frameMilliseconds;
-    std::optional<int> warmupFrames;  // rendered before the timed repeats
+    std::optional<int> warmupFrames;  // rendered before the timed rounds
+    std::optional<RunTiming> timing;  // none in result sets written before interleaved timing
+    std::map<std::string, RatioInterval> speedup;  // over "reference" and "rt_only"
     std::map<std::string, Spread> stages;
     std::map<std::string, double> counters;
     // The metric report as metrics/report_files.h's reportJson writes it: the same object is the

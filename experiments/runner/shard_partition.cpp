@@ -27,7 +27,7 @@ double scoringCost(const MetricSelection& m) { return (m.ssim ? 1.0 : 0.0) + (m.
 }  // namespace
 
 double estimatedRunCost(const ExperimentConfig& config, const RunSpec& run) {
-    const double frames = config.warmupFrames + config.repeats;
+    const double frames = config.timing.warmupFrames + config.timing.minRounds;
     const double relative = findTechnique(config.techniques.at(run.technique).name).relativeCost;
     return pixels(run) * (frames * relative + scoringCost(config.metrics));
 }
