@@ -12,6 +12,7 @@ the upload; none with lighting = "cpu"), the primary rays' stage (gbuffer.rays),
 the host (lighting.cpu), SSR's pass (ssr) and the rays traced for shading (trace)."""
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 HYBRIDS = ("heuristic_rt", "ssr_fallback")

@@ -20,6 +20,7 @@ pixels of lem-display (EM 128 texels a face), lem-display-256 and lem-display-51
 and size."""
 import statistics
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 REFERENCE = "two-term-rt"

@@ -22,6 +22,7 @@ import collections
 import statistics
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results as rs
 
 RT_ONLY = "rt_only"

@@ -13,6 +13,7 @@ the mean over its frames."""
 import statistics
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 HYBRID, RAY_TRACER = "hybrid", "rt"

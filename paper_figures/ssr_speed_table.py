@@ -14,6 +14,7 @@ and the largest speed-up the method could reach if everything else cost nothing,
 whitted / (raster + ssr + trace), beside whitted / raster (the raster stages alone)."""
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 

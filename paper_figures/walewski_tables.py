@@ -15,6 +15,7 @@ compared with rt_only and whitted on its own backend."""
 import statistics
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 LABELS = {"heuristic": "heuristic", "no_heuristic": "no-heuristic", "rt_only": "rt_only", "whitted": "whitted"}

@@ -12,7 +12,7 @@ breakdown of every technique (Walewski 2019 Table 5 as a chart) and SSIM against
 time, the error and the temporal error per frame; and "where methods fail" (failures.py): each
 technique setting's worst frames along every path against its median and against the baseline
 scene's path. Every run in the tables and every point in the
-charts links to viewer.html (paper_figures/viewer.py) opened on that run."""
+charts links to viewer.html (viewer.py) opened on that run."""
 import argparse
 import collections
 import html
