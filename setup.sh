@@ -45,7 +45,7 @@ PACKAGES=(
   python3-skimage python3-numpy
   # reports and paper figures (Debian's /usr/bin/python3)
   python3-matplotlib
-  # the viewer's browser test only (tests/viewer: headless Chromium driven by playwright-core,
+  # the viewer's browser test only (tests/report/viewer: headless Chromium driven by playwright-core,
   # and Ajv for the results schema, both from npm); the hybridlab program needs neither
   chromium nodejs
   # layered-EM inference (sparse least squares by conjugate gradient)
@@ -101,11 +101,11 @@ if ! dpkg --compare-versions "${mesa_version:-0}" ge 25; then
   "${SUDO[@]}" apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
 fi
 
-# The browser test's npm packages (playwright-core, ajv), as locked in tests/viewer/package-lock.json,
+# The browser test's npm packages (playwright-core, ajv), as locked in tests/report/viewer/package-lock.json,
 # for the tests only; npm ci deletes and reinstalls them, so only when the lock file is newer than
 # what is installed. A failing npm (no network, a broken registry) costs only that one test, which then says why.
-if ((TESTS)) && [ ! tests/viewer/node_modules/.package-lock.json -nt tests/viewer/package-lock.json ]; then
-  if ! timeout 600 npm ci --prefix tests/viewer --prefer-offline --no-audit --no-fund --loglevel=error; then
+if ((TESTS)) && [ ! tests/report/viewer/node_modules/.package-lock.json -nt tests/report/viewer/package-lock.json ]; then
+  if ! timeout 600 npm ci --prefix tests/report/viewer --prefer-offline --no-audit --no-fund --loglevel=error; then
     echo "setup: npm ci failed; the viewer's browser test (ViewerInBrowser) will be skipped" >&2
   fi
 fi

@@ -9,10 +9,14 @@ speed-up rt_only / setting measured in the same run, SSIM and FLIP against the r
 per pixel (primary rays included where the G-buffer is ray cast) and where the frame goes: the
 rasterizer's stages (results.raster_ms: the G-buffer pass, lighting and read-back, or lighting and
 the upload; none with lighting = "cpu"), the primary rays' stage (gbuffer.rays), the lighting on
-the host (lighting.cpu), SSR's pass (ssr) and the rays traced for shading (trace)."""
+the host (lighting.cpu), SSR's pass (ssr) and the rays traced for shading (trace). The speed-up is
+"1.70x (1.64-1.77)", the median and 95% interval of the per-round ratios, where the records hold
+the runner's rounds (timing.py), else the ratio of the medians."""
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
+import timing
 
 HYBRIDS = ("heuristic_rt", "ssr_fallback")
 
@@ -39,8 +43,9 @@ def table(rows):
         for r in rows:
             if r["technique"] not in HYBRIDS or key(r) != k:
                 continue
-            out.append("| %s | %s | %s | %s | %s | %.1f | %.2f | %s | %s | %.2f | %s | %s | %s | %s | %s |" % (
-                k[0], k[1], k[2], r["label"], r["parameters_text"] or "defaults", frame(r), frame(base) / frame(r),
+            out.append("| %s | %s | %s | %s | %s | %.1f | %s | %s | %s | %.2f | %s | %s | %s | %s | %s |" % (
+                k[0], k[1], k[2], r["label"], r["parameters_text"] or "defaults", frame(r),
+                timing.speedup_cell([r], [base], "%.2f" % (frame(base) / frame(r))),
                 results.fmt(results.metric(r, "whole", "ssim"), "%.4f"), results.fmt(results.metric(r, "whole", "flip"), "%.4f"),
                 r["counters"]["rays_total"] / pixels, results.fmt(results.raster_ms(r), "%.0f"),
                 results.fmt(results.stage(r, "gbuffer.rays"), "%.0f"), results.fmt(results.stage(r, "lighting.cpu"), "%.0f"),

@@ -15,6 +15,7 @@ import re
 import statistics
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
 FAMILIES = [("I", "bunnies-falling", "rigid Stanford bunnies"), ("II", "teapots-deforming", "deformable Utah teapots")]

@@ -7,7 +7,9 @@ ssr_fallback_sweep.toml).
 Per scene and size (its views and path frames pooled), one line per setting (a technique with one
 parameter set): its frame time over rt_only's at the same view and frame, measured in the same run
 (the median of those ratios over the views and frames: a ratio, not an absolute time, is what
-carries between runs on a shared machine), its SSIM on the whole image and on the reflective and
+carries between runs on a shared machine; where the records hold the runner's rounds, the median
+and 95% interval of the per-round ratios to rt_only timed in the same rounds, timing.py), whether
+it is tied in time with the next faster setting of its family (timing.py's tie rule), its SSIM on the whole image and on the reflective and
 refractive pixels (medians over the views and frames), the rays a pixel it traced and, for SSR,
 its march steps a pixel (means). The fronts are drawn within a family, the settings of one
 [[techniques]] entry of the config (its label: one parameter group swept around the defaults), so
@@ -22,7 +24,9 @@ import collections
 import statistics
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results as rs
+import timing
 
 RT_ONLY = "rt_only"
 
@@ -30,10 +34,15 @@ RT_ONLY = "rt_only"
 class Point:
     """One setting over one scene and size's runs: time ratio to rt_only, SSIM, work a pixel."""
 
-    def __init__(self, name, runs, rt_only_ms):
+    def __init__(self, name, runs, rt_only):
         self.name = name
+        self.runs = runs
         self.family = runs[0]["label"]
-        self.ratio = statistics.median(r["frame_ms"]["median"] / rt_only_ms[(r["view"], r["frame"])] for r in runs)
+        # Paired over the rounds where the records hold them; else the median of the ratios of medians.
+        self.interval = timing.paired_ratio(runs, [rt_only[(r["view"], r["frame"])] for r in runs])
+        self.ratio = self.interval.median if self.interval else statistics.median(
+            r["frame_ms"]["median"] / rt_only[(r["view"], r["frame"])]["frame_ms"]["median"] for r in runs)
+        self.tied_with = None  # the next faster setting of its family, where tied with it in time
         self.ssim = median_metric(runs, "whole")
         self.ssim_masked = median_metric(runs, "masked")
         self.rays = per_pixel(runs, "rays_total")
@@ -61,6 +70,18 @@ def does_less_work_as_well(a, b):
     return no_worse and (a.work() != b.work() or a.ssim > b.ssim)
 
 
+def mark_ties(points, tolerance):
+    """Marks, in each family, every setting tied in time with the next faster one (by time ratio)."""
+    families = collections.defaultdict(list)
+    for p in points:
+        families[p.family].append(p)
+    for family in families.values():
+        ordered = sorted(family, key=lambda p: (p.ratio, rs.natural_key(p.name)))
+        for faster, p in zip(ordered, ordered[1:]):
+            if timing.compare(p.runs, faster.runs, tolerance)[0] == timing.TIED:
+                p.tied_with = faster.name
+
+
 def mark_fronts(points):
     """Marks each family's time front (results.pareto_front on time ratio and SSIM) and work front."""
     families = collections.defaultdict(list)
@@ -82,13 +103,14 @@ def scene_points(rows):
         groups[(r["scene"], rs.resolution(r))].append(r)
     out = {}
     for key, runs in sorted(groups.items()):
-        rt_only_ms = {(r["view"], r["frame"]): r["frame_ms"]["median"] for r in runs if r["technique"] == RT_ONLY}
+        rt_only = {(r["view"], r["frame"]): r for r in runs if r["technique"] == RT_ONLY}
         by_setting = collections.defaultdict(list)
         for r in runs:
-            if (r["view"], r["frame"]) in rt_only_ms and rs.metric(r, "whole", "ssim") is not None:
+            if (r["view"], r["frame"]) in rt_only and rs.metric(r, "whole", "ssim") is not None:
                 by_setting[rs.variant(r)].append(r)
-        points = [Point(name, setting_runs, rt_only_ms) for name, setting_runs in by_setting.items()]
+        points = [Point(name, setting_runs, rt_only) for name, setting_runs in by_setting.items()]
         mark_fronts(points)
+        mark_ties(points, timing.tolerance(runs))
         out[key] = sorted(points, key=lambda p: rs.natural_key(p.name))
     return out
 
@@ -100,13 +122,15 @@ def mark(on):
 def table(by_scene):
     out = []
     for (scene, size), points in by_scene.items():
-        out += ["**%s, %s**: time ratio = frame / rt_only's frame at the same view (median over the views and frames)" % (scene, size), "",
-                "| setting | time ratio | SSIM | SSIM refl./refr. | rays / pixel | SSR steps / pixel | time front | work front |",
-                "|---|---|---|---|---|---|---|---|"]
+        out += ["**%s, %s**: time ratio = frame / rt_only's frame at the same view (median over the views and frames%s)" % (
+                    scene, size, "; paired over the rounds, with its 95% interval" if any(p.interval for p in points) else ""), "",
+                "| setting | time ratio | tied in time with | SSIM | SSIM refl./refr. | rays / pixel | SSR steps / pixel | time front | "
+                "work front |",
+                "|---|---|---|---|---|---|---|---|---|"]
         for p in points:
-            out.append("| %s | %.2f | %s | %s | %s | %s | %s | %s |" % (
-                p.name, p.ratio, rs.fmt(p.ssim, "%.4f"), rs.fmt(p.ssim_masked, "%.4f"), rs.fmt(p.rays, "%.2f"), rs.fmt(p.ssr_steps, "%.1f"),
-                mark(p.time_front), mark(p.work_front)))
+            out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                p.name, p.interval.text("%.2f") if p.interval else "%.2f" % p.ratio, p.tied_with or "", rs.fmt(p.ssim, "%.4f"),
+                rs.fmt(p.ssim_masked, "%.4f"), rs.fmt(p.rays, "%.2f"), rs.fmt(p.ssr_steps, "%.1f"), mark(p.time_front), mark(p.work_front)))
         out.append("")
     scenes = len(by_scene)
     per_setting = collections.defaultdict(list)

@@ -11,10 +11,15 @@ composite). Bound: one line per run labelled `glass-trees` (SSR on, no fallback,
 recursed: what remains in the `trace` stage is the refractive texels' ray trees, which the
 method always traces): its raster, SSR and ray-trace stages, the trees' share of whitted's frame,
 and the largest speed-up the method could reach if everything else cost nothing,
-whitted / (raster + ssr + trace), beside whitted / raster (the raster stages alone)."""
+whitted / (raster + ssr + trace), beside whitted / raster (the raster stages alone). The speed
+table's ratio is "1.70x (1.64-1.77)", the median and 95% interval of the per-round ratios, where
+the records hold the runner's rounds (timing.py), else the ratio of the medians; the bound's
+ratios are of stage times, which have no rounds."""
 import sys
 
+import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
+import timing
 
 
 def frame(r):
@@ -27,10 +32,10 @@ def key(r):
 
 
 def beside_whitted(rows, whitted, label):
-    """The runs labelled `label` with the frame time of the whitted run of their scene, size and view."""
+    """The runs labelled `label` with the whitted run of their scene, size and view."""
     for r in rows:
         if r["label"] == label and key(r) in whitted:
-            yield r, frame(whitted[key(r)])
+            yield r, whitted[key(r)]
 
 
 def speed_table(rows, whitted):
@@ -38,11 +43,13 @@ def speed_table(rows, whitted):
            "| scene | size | setting | whitted ms | ssr_fallback ms | ratio | SSIM | SSR hit rate | fallback rays | "
            "raster | ssr | trace | blend.seam_blur | blend |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r, w in beside_whitted(rows, whitted, "ssr_fallback"):
+    for r, whitted_run in beside_whitted(rows, whitted, "ssr_fallback"):
         c = r["counters"]
+        w = frame(whitted_run)
         ssim = results.metric(r, "whole", "ssim")
-        out.append("| %s | %s | %s | %.1f | %.1f | %.2f | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
-            r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r), w / frame(r),
+        out.append("| %s | %s | %s | %.1f | %.1f | %s | %s | %.3f | %d | %.1f | %.1f | %.1f | %.1f | %.1f |" % (
+            r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, frame(r),
+            timing.speedup_cell([r], [whitted_run], "%.2f" % (w / frame(r))),
             "%.4f" % ssim if ssim is not None else "-", c.get("ssr_hit_rate", 0.0), int(c.get("fallback_rays", 0)),
             results.raster_ms(r, 0.0), *(results.stage(r, s, 0.0) for s in ("ssr", "trace", "blend.seam_blur", "blend"))))
     out.append("")
@@ -55,7 +62,8 @@ def bound_table(rows, whitted):
            "| scene | size | setting | whitted ms | raster | ssr | refractive trees | trees / whitted | largest speed-up | "
            "whitted / raster |",
            "|---|---|---|---|---|---|---|---|---|---|"]
-    for r, w in beside_whitted(rows, whitted, "glass-trees"):
+    for r, whitted_run in beside_whitted(rows, whitted, "glass-trees"):
+        w = frame(whitted_run)
         raster, ssr, trees = results.raster_ms(r, 0.0), results.stage(r, "ssr", 0.0), results.stage(r, "trace", 0.0)
         out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f |" % (
             r["scene"], results.resolution(r), r["parameters_text"] or "defaults", w, raster, ssr, trees, trees / w,

@@ -2,7 +2,7 @@
 // The stage vocabulary: every technique names the stages of its frame (FrameResult::stages) from
 // this table, so that the report's stage chart has one entry per kind of work whichever technique
 // did it. A stage may add a detail after a dot (`gbuffer.rays`); charts sum it under the name
-// before the dot. paper_figures/results.py reads this table (one {"name", "meaning"} a line) and
+// before the dot. report/results.py reads this table (one {"name", "meaning"} a line) and
 // experiments/README.md lists it.
 #include <string>
 #include <string_view>

@@ -1,4 +1,4 @@
-// `hybridlab report DIR [--out DIR]`: the report of a result set, drawn by paper_figures/report.py
+// `hybridlab report DIR [--out DIR]`: the report of a result set, drawn by report/report.py
 // (matplotlib), which reads only results.json; written here first for a set whose runner was
 // killed before it wrote it.
 #include <sys/wait.h>
@@ -54,13 +54,13 @@ void addReportCommand(CLI::App& app) {
                         dir->c_str(), *written);
         if (!fs::exists(fs::path(*dir) / "results.json")) throw InputError(*dir + ": no results.json (not a result folder of `hybridlab run`)");
         const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
-        const fs::path script = fs::path(HYBRIDLAB_SOURCE_DIR) / "paper_figures" / "report.py";
+        const fs::path script = fs::path(HYBRIDLAB_SOURCE_DIR) / "report" / "report.py";
         std::vector<std::string> args = {python(), script.string(), *dir, "--out", target};
         if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
         const int status = runProgram(args);
         // report.py exits with 2 on a bad result set (an unreadable image), having said which.
-        if (status == 2) throw InputError(*dir + ": not a complete result set (paper_figures/report.py's message above)");
-        if (status != 0) throw std::runtime_error("paper_figures/report.py failed (exit status " + std::to_string(status) + ")");
+        if (status == 2) throw InputError(*dir + ": not a complete result set (report/report.py's message above)");
+        if (status != 0) throw std::runtime_error("report/report.py failed (exit status " + std::to_string(status) + ")");
     });
 }
 

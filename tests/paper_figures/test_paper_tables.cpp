@@ -63,7 +63,7 @@ std::string runAndTabulate(const test::TempDir& dir, const std::string& configTe
 
 std::vector<json> resultsOf(const test::TempDir& dir) { return test::readResults(dir.path() / "results"); }
 
-// A record's rasterizer time as the table scripts sum it (paper_figures/results.py's raster_ms):
+// A record's rasterizer time as the table scripts sum it (report/results.py's raster_ms):
 // the rasterizer frame's stages, in the record's (sorted) order.
 double rasterizerMs(const json& record) {
     double ms = 0.0;

@@ -88,7 +88,7 @@ def self_test():
         for path in ("tests/README.md", "tests/support/test_main.cpp", "tests/support/helper.h", "tests/scene/test_mesh.cpp",
                      "tests/runner/test_store.cpp", "tests/runner/end_to_end.sh", "tests/techniques/whitted/test_tree.cpp",
                      "tests/metrics/test_ssim.cpp", "tests/fuzz/fuzz_scene.cpp", "tests/fixtures/bad/scene.toml",
-                     "tests/viewer/node_modules/x/test_x.cpp"):
+                     "tests/report/viewer/node_modules/x/test_x.cpp"):
             write(path, "int x;\n")
         write("tests/test_orphan.cpp")
         write("tests/shadows/test_pcf.cpp")

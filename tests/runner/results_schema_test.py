@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """The results record's schema (experiments/results.schema.json) against its writer and a reader.
 
-1. The validator (paper_figures/results_schema.py) refuses records broken in known ways.
+1. The validator (report/results_schema.py) refuses records broken in known ways.
 2. The C++ writer (experiments/runner/run_record.h's toJson): `hybridlab run` on a small
    experiment (a camera path's two frames, so that temporal errors are added; debug images and
    error maps kept; a technique that ray traces and a hybrid with debug images) writes results.json
    and runs/<id>.json records that all validate; so do the same experiment's two shards, and their
    merge as if measured on two devices (each record then holds its "device").
-3. paper_figures/results.py reads those records: every accessor the report scripts use works.
+3. report/results.py reads those records: every accessor the report scripts use works.
 
 usage: results_schema_test.py HYBRIDLAB_BINARY SCRATCH_DIR
 """
@@ -19,7 +19,7 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "paper_figures"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 import results  # noqa: E402
 import results_schema  # noqa: E402
 

@@ -185,7 +185,7 @@ void expectReportShowsEveryRun(const fs::path& results, const fs::path& report, 
     }
     EXPECT_EQ(summarised, 5u);
     EXPECT_GE(paretoRows, 1u);
-    // Every run opens in the viewer from the table (the viewer itself: tests/viewer).
+    // Every run opens in the viewer from the table (the viewer itself: tests/report/viewer).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
     EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
     EXPECT_TRUE(fs::exists(report / "viewer" / "manifest.js"));
@@ -286,7 +286,7 @@ TEST(ExperimentRunner, KilledMidRunLeavesWholeFilesAndResumesToTheSameResults) {
     // `report` by writing results.json and results.csv first, as the runner would have.
     EXPECT_FALSE(fs::exists(killed / "results.json"));
     EXPECT_FALSE(fs::exists(killed / "results.csv"));
-    const std::string load = "/usr/bin/python3 -c 'import sys; sys.path.insert(0, \"" + (test::sourceDir() / "paper_figures").string() +
+    const std::string load = "/usr/bin/python3 -c 'import sys; sys.path.insert(0, \"" + (test::sourceDir() / "report").string() +
                              "\"); import results; print(\" \".join(str(r[\"index\"]) for r in results.load(sys.argv[1])))' '" +
                              killed.string() + "' 2>/dev/null";
     std::string indices;

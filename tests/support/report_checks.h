@@ -1,5 +1,5 @@
 #pragma once
-// Checks of a report folder written by `hybridlab report` (paper_figures/report.py): that every
+// Checks of a report folder written by `hybridlab report` (report/report.py): that every
 // link of its page resolves to a file and that its figures have content.
 #include <cstddef>
 #include <filesystem>

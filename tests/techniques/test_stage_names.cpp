@@ -1,7 +1,7 @@
 // The stage vocabulary (techniques/stage_names.h): every technique in the registry, at its
 // defaults and with each parameter that changes its stages (the G-buffer from rays, occlusion
 // queries, rays on the Vulkan device, the G-buffer from rays on that device, lighting on the CPU),
-// names its frame's stages from it, once each; the report's reader (paper_figures/results.py) reads
+// names its frame's stages from it, once each; the report's reader (report/results.py) reads
 // the same vocabulary, and old result sets under it, and experiments/README.md lists it.
 #include <gtest/gtest.h>
 
@@ -112,9 +112,9 @@ TEST(StageNames, EveryTechniqueNamesItsStagesFromTheVocabulary) {
     }
 }
 
-// What paper_figures/results.py prints running `code` (Debian's python3, as the report).
+// What report/results.py prints running `code` (Debian's python3, as the report).
 std::string resultsPy(const std::string& code) {
-    const std::string command = "cd '" + (test::sourceDir() / "paper_figures").string() + "' && /usr/bin/python3 -c 'import results; " + code + "'";
+    const std::string command = "cd '" + (test::sourceDir() / "report").string() + "' && /usr/bin/python3 -c 'import results; " + code + "'";
     FILE* pipe = ::popen(command.c_str(), "r");
     EXPECT_NE(pipe, nullptr);
     if (!pipe) return "";

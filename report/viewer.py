@@ -2,7 +2,7 @@
 styles, manifest of the result set, pixel scripts). Works from the file system and from any static
 web server.
 
-The viewer's source is ES modules in experiments/viewer/. Browsers refuse module scripts (and
+The viewer's source is ES modules in report/viewer/. Browsers refuse module scripts (and
 fetch()) from file:// pages, so the modules are joined here into one classic script, each module
 in its own function scope, and the manifest is written both as manifest.json and as manifest.js (a
 classic script that sets window.HYBRIDLAB_MANIFEST).
@@ -23,7 +23,7 @@ import matplotlib
 import exr
 import results as rs
 
-VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "viewer")
+VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewer")
 ENTRY_MODULE = "main.js"
 
 IMPORT = re.compile(r"^import\s*\{([^}]*)\}\s*from\s*'\./([\w.]+\.js)';\s*$", re.M)
@@ -56,7 +56,7 @@ def bundle(source_dir, entry):
 
     visit(entry, [])
     var = lambda name: "module_" + re.sub(r"\W", "_", name)  # noqa: E731
-    parts = ["// Built by paper_figures/viewer.py from experiments/viewer/*.js: do not edit.", "'use strict';"]
+    parts = ["// Built by report/viewer.py from report/viewer/*.js: do not edit.", "'use strict';"]
     for name, text in order:
         if re.search(r"^\s*import\b", IMPORT.sub("", text), re.M):
             raise BundleError("%s: only `import { a, b } from './module.js';` imports are understood" % name)

@@ -1,6 +1,6 @@
 """Reading a hybridlab result set (results.json, else runs/) for the figure and report scripts.
 
-Every script in paper_figures/ reads only the records, never the renderer."""
+Every script of the report and of paper_figures/ reads only the records, never the renderer."""
 import argparse
 import json
 import os

@@ -15,7 +15,7 @@ import sys
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "paper_figures"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 
 import figure_files  # noqa: E402,F401  (selects matplotlib's file backend first)
 import matplotlib.pyplot as plt  # noqa: E402

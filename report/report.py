@@ -4,15 +4,17 @@ the figures as SVG and PDF.
 
     report.py RESULT_DIR --out REPORT_DIR [--baseline SCENE]
 
-Figures: per scene and resolution, frame time against SSIM and against FLIP for every run with
-the Pareto front drawn and labelled and the reference's frame time marked (on the whole image, and
-on the reflective and refractive pixels where a scene has them); per scene the stage-time
+Figures: per scene and resolution, frame time (wall clock: the records' frame_ms) against SSIM and
+against FLIP for every setting, a bar over its median's 95% interval, with the Pareto front drawn
+and labelled and the reference's frame time marked (on the whole image, and on the reflective and
+refractive pixels where a scene has them), and the same on the process's CPU time and on the
+device's time where the records hold them (timing.cpu_ms, timing.device_ms); per scene the stage-time
 breakdown of every technique (Walewski 2019 Table 5 as a chart) and SSIM against rays per pixel
 (the work, which carries over between machines); along each camera path the frame
 time, the error and the temporal error per frame; and "where methods fail" (failures.py): each
 technique setting's worst frames along every path against its median and against the baseline
 scene's path. Every run in the tables and every point in the
-charts links to viewer.html (paper_figures/viewer.py) opened on that run."""
+charts links to viewer.html (viewer.py) opened on that run."""
 import argparse
 import collections
 import html
@@ -28,6 +30,7 @@ import matplotlib.pyplot as plt
 import palette
 import point_labels
 import results as rs
+import timing
 import verdict
 import viewer
 from figure_files import point_links, save
@@ -54,17 +57,40 @@ def log_ticks(axis):
 
 
 def speed_accuracy(v, out_dir, key, title):
-    return save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key, [r for s in v.settings.values() for r in s.records])
+    """The speed-accuracy figures of a scene and size: on the wall clock, and on each other clock
+    (CPU time, device time) that one of its settings' records hold."""
+    records = [r for s in v.settings.values() for r in s.records]
+    figures = [save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key, records)]
+    for clock in timing.CLOCKS[1:]:
+        if any(timing.setting_time(s.records, clock) for s in v.applicable()):
+            figures.append(save(speed_accuracy_figure(v, "%s, on %s" % (title, clock.what), clock), out_dir,
+                                "speed-accuracy-%s-%s" % (clock.key.replace("_ms", ""), key), records))
+    return figures
 
 
-def speed_accuracy_figure(v, title):
-    """Frame time against SSIM and FLIP, a point per applicable setting (its median over the runs,
-    a bar from its best to its worst run), the Pareto front through the settings, the points
-    numbered with the key beside the axes; a row per region scored (the whole image, then the
-    reflective and refractive pixels)."""
+def bar_words(times):
+    """What the bars of a speed-accuracy chart span."""
+    if all(t.is_interval for t in times):
+        return "bar: 95% interval of the median"
+    if not any(t.is_interval for t in times):
+        return "bar: best to worst run"
+    return "bar: 95% interval of the median (runs' range where none)"
+
+
+def speed_accuracy_figure(v, title, clock=timing.WALL):
+    """Time on `clock` (the wall clock's frame_ms by default) against SSIM and FLIP, a point per
+    applicable setting that has that clock (its median over the runs, a bar over that median's 95%
+    interval, or from its best to its worst run in a result set without intervals), the Pareto
+    front through the settings, the reference's frame time (wall clock only: it has no other), the
+    points numbered with the key beside the axes; a row per region scored (the whole image, then
+    the reflective and refractive pixels)."""
     regions = [rg for rg in REGIONS if rg[0] in dict(v.regions)] or [REGIONS[0]]
-    settings = sorted(v.applicable(), key=lambda s: (s.technique, rs.natural_key(s.name)))
-    number = {s.name: i + 1 for i, s in enumerate(settings)}
+    ordered = sorted(v.applicable(), key=lambda s: (s.technique, rs.natural_key(s.name)))
+    number = {s.name: i + 1 for i, s in enumerate(ordered)}  # the same numbers on every clock's chart
+    time = {s.name: timing.setting_time(s.records, clock) for s in ordered}
+    settings = [s for s in ordered if time[s.name]]
+    untimed = [s.name for s in ordered if not time[s.name]]
+    wall = clock is timing.WALL
     col = palette.setting_colours([r for s in settings for r in s.records])
     fig, axes = plt.subplots(len(regions), 2, figsize=(13, 4.6 * len(regions)), squeeze=False)
     fig.subplots_adjust(left=0.06, right=0.70, top=0.9 if len(regions) > 1 else 0.86, bottom=0.1, hspace=0.32, wspace=0.25)
@@ -77,9 +103,10 @@ def speed_accuracy_figure(v, title):
             y = s.score(region, name)
             if y is None:
                 continue
-            ax.errorbar([s.ms], [y], xerr=[[s.ms - s.best_ms], [s.worst_ms - s.ms]], fmt="none", ecolor=col[s.name], elinewidth=0.8,
+            t = time[s.name]
+            ax.errorbar([t.ms], [y], xerr=[[t.ms - t.low], [t.high - t.ms]], fmt="none", ecolor=col[s.name], elinewidth=0.8,
                         capsize=2, alpha=0.7)
-            points.append((s.ms, y, s.name))
+            points.append((t.ms, y, s.name))
         # One scatter for the panel's points, each linked to its setting's first run: matplotlib's SVG
         # writer drops the link of a scatter of one point, so a lone point is drawn twice.
         shown = points * (2 if len(points) == 1 else 1)
@@ -87,25 +114,29 @@ def speed_accuracy_figure(v, title):
                    linewidths=0.3, zorder=3).set_urls([point_links(v.settings[p[2]].records[:1])[0] for p in shown])
         front = rs.pareto_front(points, better_high)
         handles["Pareto front"] = ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1)[0]
-        handles["reference"] = ax.axvline(v.reference_ms, color="grey", ls="--", lw=1)
+        if wall:
+            handles["reference"] = ax.axvline(v.reference_ms, color="grey", ls="--", lw=1)
         ax.set_xscale("log")
         log_ticks(ax.xaxis)
-        lo = min([s.best_ms for s in settings] + [v.reference_ms])
-        hi = max([s.worst_ms for s in settings] + [v.reference_ms])
+        lo = min([time[s.name].low for s in settings] + ([v.reference_ms] if wall else []))
+        hi = max([time[s.name].high for s in settings] + ([v.reference_ms] if wall else []))
         ax.set_xlim(lo / 1.25, hi * 1.25)
-        ax.set_xlabel("frame time (ms, median over runs; bar: best to worst run; log scale)", fontsize=8)
+        ax.set_xlabel("%s per frame (ms, log scale)\nmedian over runs; %s" % (clock.what, bar_words([time[s.name] for s in settings])),
+                      fontsize=8)
         ax.set_ylabel(("SSIM%s (higher is better)" if name == "ssim" else "FLIP mean%s (lower is better)") % suffix)
         ax.grid(alpha=0.3, which="both")
         ax.points = points
     for ax, *_ in panels:
         point_labels.place(ax, [(t, y) for t, y, _ in ax.points], [str(number[n]) for _, _, n in ax.points])
     names = [n for n in number if any(n == p[2] for ax, *_ in panels for p in ax.points)]
-    fig.legend([handles[n] for n in names] + [handles["Pareto front"], handles["reference"]],
-               ["%d  %s" % (number[n], n) for n in names] + ["Pareto front", "reference %.1f ms" % v.reference_ms],
+    extra = ["Pareto front"] + (["reference"] if wall else [])
+    fig.legend([handles[n] for n in names] + [handles[n] for n in extra],
+               ["%d  %s" % (number[n], n) for n in names] + ["Pareto front"] + (["reference %.1f ms" % v.reference_ms] if wall else []),
                loc="upper left", bbox_to_anchor=(0.71, 0.9), fontsize=7, frameon=False)
-    if v.excluded():
-        fig.text(0.71, 0.06, "not applicable here (not drawn):\n" + "\n".join(s.name for s in v.excluded()), fontsize=7, va="bottom",
-                 color="dimgrey")
+    notes = (["not applicable here (not drawn):"] + [s.name for s in v.excluded()] if v.excluded() else []) + (
+        ["no %s recorded (not drawn):" % clock.what] + untimed if untimed else [])
+    if notes:
+        fig.text(0.71, 0.06, "\n".join(notes), fontsize=7, va="bottom", color="dimgrey")
     fig.suptitle(title)
     return fig
 
@@ -296,7 +327,7 @@ def main():
         by_scene[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(by_scene.items()):
         key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
-        figs = [speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res)),
+        figs = speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res)) + [
                 stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res)),
                 work_accuracy(rows, a.out, key, "%s at %s: rays per pixel against accuracy" % (scene, res))]
         paths = collections.defaultdict(list)
@@ -322,9 +353,9 @@ def main():
             "table.verdict{margin:0.4em 0 1em}</style></head><body>"
             "<h1>%s</h1>%s%s<p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
             "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
-            "opens it there. Click a column header to sort.%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
+            "opens it there. Click a column header to sort. %s%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
             % (html.escape(title), html.escape(title), device_html, verdict_html, len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
-               html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
+               html.escape(rs.result_link(a.out, a.result_dir, "results.json")), html.escape(timing.clock_note(records)),
                ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
                "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
                TABLE_SCRIPT))
@@ -333,7 +364,8 @@ def main():
     viewer.write_viewer(records, a.out, a.result_dir, title,
                         {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()})
     md = ["# " + title] + device_md + verdict_md + ["", "## Every setting", "",
-                                                    "%d runs; figures in figures/ (SVG and PDF); every run in index.html." % len(records),
+                                                    "%d runs; figures in figures/ (SVG and PDF); every run in index.html. %s" % (
+                                                        len(records), timing.clock_note(records)),
                                                     markdown_summary(records)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]

@@ -2,13 +2,17 @@
 
 A setting (a technique with one parameter set) is summarised over the runs of one scene and size
 (every view and frame): its frame time is the median over those runs of each run's median frame
-time, with the best and the worst run beside it; its SSIM, FLIP (LDR) and HDR-FLIP (on the whole
-image and on the reflective/refractive pixels) are medians over the same runs. From these:
+time, with the 95% interval of that median beside it (timing.py; the best and the worst run in a
+result set without intervals); its SSIM, FLIP (LDR) and HDR-FLIP (on the whole image and on the
+reflective/refractive pixels) are medians over the same runs. From these:
 
 - the Pareto-optimal settings: no other setting is at least as fast and at least as good on every
-  score (SSIM and FLIP; HDR-FLIP is shown beside them), and strictly better in one;
+  score (SSIM and FLIP; HDR-FLIP is shown beside them), and strictly better in one; each marked
+  where it is tied in time with the next faster one;
 - per quality threshold (SSIM >= 0.99, 0.97, 0.95, whole image and reflective/refractive pixels)
-  the fastest setting reaching it, with its speed-up over the reference and over `rt_only`;
+  the fastest setting reaching it, with its speed-up over the reference and over `rt_only`; where
+  others reaching it are tied with it in time (timing.py's tie rule: paired rounds, beyond the
+  noise and by more than the set's precision), the row names them all, in name order;
 - one sentence per scene saying it in words.
 
 A setting that changes nothing on a scene is not applicable there (`not_applicable`): left off the
@@ -21,6 +25,7 @@ import statistics
 
 import exr
 import results as rs
+import timing
 
 THRESHOLDS = (0.99, 0.97, 0.95)
 REGIONS = (("whole", "whole image"), ("masked", "refl./refr. pixels"))
@@ -39,9 +44,8 @@ class Setting:
         self.name = name
         self.records = records
         self.technique = records[0]["technique"]
-        times = [r["frame_ms"]["median"] for r in records]
-        self.ms = statistics.median(times)
-        self.best_ms, self.worst_ms = min(times), max(times)
+        self.time = timing.setting_time(records)  # the median of the runs' medians, and its bar
+        self.ms = self.time.ms
         self.scores = {(region, name): self._median(region, name) for region, name, _ in SHOWN}
         self.not_applicable = None  # the reason, where the setting changes nothing on the scene
 
@@ -105,10 +109,47 @@ def pareto(settings):
     return sorted((s for s in live if not any(dominates(o, s) for o in live if o is not s)), key=lambda s: s.ms)
 
 
-def fastest_reaching(settings, region, threshold):
-    """The fastest applicable setting whose median SSIM on `region` is at least `threshold`."""
+def by_name(s):
+    return rs.natural_key(s.name)
+
+
+def fastest_of(candidates, tolerance):
+    """The fastest of `candidates` and those tied with it (timing.fastest), in name order."""
+    return timing.fastest(candidates, lambda s: s.records, tolerance, key=by_name)
+
+
+def fastest_reaching(settings, region, threshold, tolerance=timing.DEFAULT_TOLERANCE):
+    """The fastest applicable settings whose median SSIM on `region` is at least `threshold`: one,
+    or several tied in time; [] when none reaches it."""
     ok = [s for s in settings.values() if not s.not_applicable and (s.score(region, "ssim") or 0.0) >= threshold]
-    return min(ok, key=lambda s: s.ms) if ok else None
+    return fastest_of(ok, tolerance)
+
+
+class Tie:
+    """Settings tied in time, named together in name order: "a and b, tied within 3% or the noise"."""
+
+    def __init__(self, settings, tolerance):
+        self.settings, self.tolerance = settings, tolerance
+
+    def words(self, about):
+        """The tie in a sentence: "X at 10.1 ms (what)" for one setting, "X and Y, tied ... (X: 10.1
+        ms, what; Y: ...)" for several; `about(s)`: a setting's "what"."""
+        if len(self.settings) == 1:
+            s = self.settings[0]
+            return "%s at %.1f ms (%s)" % (s.name, s.ms, about(s))
+        return "%s (%s)" % (self.text(), "; ".join("%s: %.1f ms, %s" % (s.name, s.ms, about(s)) for s in self.settings))
+
+    def noun(self):
+        """"setting ... is" or "settings ... are": the sentence's subject and verb."""
+        return ("setting", "is") if len(self.settings) == 1 else ("settings", "are")
+
+    def suffix(self):
+        return ", tied within %.0f%% or the noise" % (100.0 * self.tolerance) if len(self.settings) > 1 else ""
+
+    def text(self, name=lambda s: s.name):
+        names = [name(s) for s in self.settings]
+        joined = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+        return joined + self.suffix()
 
 
 def rt_only_setting(settings):
@@ -127,10 +168,13 @@ class SceneVerdict:
         self.settings = settings_of(records)
         mark_not_applicable(self.settings, result_dir)
         self.reference_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
+        self.tolerance = timing.tolerance(records)
         self.rt_only = rt_only_setting(self.settings)
         self.pareto = pareto(self.settings)
         self.regions = [(rg, label) for rg, label in REGIONS if any(s.score(rg, "ssim") is not None for s in self.settings.values())]
-        self.thresholds = [(rg, label, t, fastest_reaching(self.settings, rg, t)) for rg, label in self.regions for t in THRESHOLDS]
+        # Per row: the settings reaching the threshold that none reaching it beats ([] for none).
+        self.thresholds = [(rg, label, t, fastest_reaching(self.settings, rg, t, self.tolerance))
+                           for rg, label in self.regions for t in THRESHOLDS]
 
     def applicable(self):
         return [s for s in self.settings.values() if not s.not_applicable]
@@ -139,8 +183,24 @@ class SceneVerdict:
         return [s for s in self.settings.values() if s.not_applicable]
 
     def speedups(self, s):
-        """(over the reference, over rt_only or None)."""
-        return self.reference_ms / s.ms, (self.rt_only.ms / s.ms if self.rt_only else None)
+        """(over the reference, over rt_only or None): each a timing.Interval where the records hold
+        rounds (the record's own `speedup` for a setting of one run, else its rounds pooled), else
+        the ratio of the medians."""
+        ref = timing.speedup_over_reference(s.records) or self.reference_ms / s.ms
+        if not self.rt_only:
+            return ref, None
+        recorded = RT_ONLY if not self.rt_only.records[0]["parameters_text"] else None  # the runner pairs the default
+        return ref, timing.speedup_over(s.records, self.rt_only.records, recorded) or self.rt_only.ms / s.ms
+
+    def tied_with_faster(self, settings):
+        """For each of `settings` (fastest first), the one before it where the two are tied in time."""
+        return [prev if prev and timing.compare(s.records, prev.records, self.tolerance)[0] == timing.TIED else None
+                for prev, s in zip([None] + settings[:-1], settings)]
+
+    def speed_words(self, s):
+        """"2.10x (2.00-2.20) the reference's speed, 1.30x rt_only's"."""
+        ref, rt = self.speedups(s)
+        return "%s the reference's speed%s" % (speedup_text(ref, "%.2fx"), "" if rt is None else ", %s rt_only's" % speedup_text(rt, "%.2fx"))
 
     def sentence(self):
         """The verdict in words, from the numbers of the tables."""
@@ -151,19 +211,20 @@ class SceneVerdict:
         if not self.regions:
             parts.append("no run has an SSIM score (the config's metrics leave it out)")
         for region, label in self.regions:
-            reached = [(t, s) for rg, _, t, s in self.thresholds if rg == region and s]
+            reached = [(t, tied) for rg, _, t, tied in self.thresholds if rg == region and tied]
             if not reached:
                 best = max(self.applicable(), key=lambda s: s.score(region, "ssim") or 0.0)
                 parts.append("no setting reaches SSIM %.2f on the %s (best: %s, %s)" % (THRESHOLDS[-1], label, best.name,
                                                                                       rs.fmt(best.score(region, "ssim"), "%.4f")))
                 continue
-            t, s = reached[0]
-            ref, rt = self.speedups(s)
-            parts.append("the fastest setting reaching SSIM %.2f on the %s is %s at %.1f ms (%.2fx the reference's speed%s)"
-                         % (t, label, s.name, s.ms, ref, ", %.2fx rt_only's" % rt if rt is not None else ""))
-        fastest = min(self.applicable(), key=lambda s: s.ms)
-        text = head + ", " + "; ".join(parts) + ". The fastest setting of all is %s at %.1f ms (SSIM %s)" % (
-            fastest.name, fastest.ms, rs.fmt(fastest.score("whole", "ssim"), "%.4f"))
+            t, tied = reached[0]
+            tie = Tie(tied, self.tolerance)
+            noun, verb = tie.noun()
+            parts.append("the fastest %s reaching SSIM %.2f on the %s %s %s" % (noun, t, label, verb, tie.words(self.speed_words)))
+        fastest = Tie(fastest_of(self.applicable(), self.tolerance), self.tolerance)
+        noun, verb = fastest.noun()
+        text = head + ", " + "; ".join(parts) + ". The fastest %s of all %s %s" % (noun, verb, fastest.words(
+            lambda s: "SSIM %s" % rs.fmt(s.score("whole", "ssim"), "%.4f")))
         if self.excluded():
             text += "; not applicable here: " + ", ".join(s.name for s in self.excluded())
         return text + "."
@@ -176,30 +237,48 @@ def verdicts(records, result_dir):
     return [SceneVerdict(scene, size, rows, result_dir) for (scene, size), rows in sorted(groups.items())]
 
 
-# Tables as (header, rows of cells); `link` is the setting's name as HTML or Markdown.
+def speedup_text(value, spec="%.2f"):
+    """A speed-up as text: "1.70x (1.64-1.77)" for a timing.Interval, `spec` for a ratio of
+    medians (a result set without rounds), "-" for none."""
+    if value is None:
+        return "-"
+    return value.text("%.2f", "x") if isinstance(value, timing.Interval) else spec % value
+
+
+def time_bar_text(s, as_interval):
+    """A setting's bar: its median's 95% interval, or (without one) its best and worst run's."""
+    text = "%.2f-%.2f" % (s.time.low, s.time.high)
+    return text + " (runs' range)" if as_interval and not s.time.is_interval else text
+
+
+# Tables as (header, rows of cells); a cell is text, a Setting or a Tie (linked by `link`).
 def pareto_table(v):
     regions = ["whole"] + (["masked"] if any(rg == "masked" for rg, _ in v.regions) else [])
     suffix = {"whole": "", "masked": " refl./refr."}
     scores = [(region, name) for region in regions for name in ("ssim", "flip", "flip_hdr")]
-    header = ["setting", "frame ms (median)", "best-worst ms", "x ref.", "x rt_only"] + [
-        rs.METRIC_LABELS[name] + suffix[region] for region, name in scores]
+    as_interval = any(s.time.is_interval for s in v.pareto)
+    header = ["setting", "frame ms (median)", "95% interval ms" if as_interval else "best-worst ms", "tied in time with", "x ref.",
+              "x rt_only"] + [rs.METRIC_LABELS[name] + suffix[region] for region, name in scores]
     rows = []
-    for s in v.pareto:
+    for s, tied in zip(v.pareto, v.tied_with_faster(v.pareto)):
         ref, rt = v.speedups(s)
-        rows.append([s, "%.2f" % s.ms, "%.2f-%.2f" % (s.best_ms, s.worst_ms), "%.2f" % ref, rs.fmt(rt, "%.2f")]
+        rows.append([s, "%.2f" % s.ms, time_bar_text(s, as_interval), tied or "", speedup_text(ref), speedup_text(rt)]
                     + [rs.fmt(s.score(region, name), "%.4f") for region, name in scores])
     return header, rows
 
 
 def threshold_table(v):
+    """A row per threshold: the fastest setting reaching it, or the settings tied for fastest (each
+    one's time and speed-ups, in the order the row names them)."""
     header = ["quality reached", "fastest setting", "frame ms", "x ref.", "x rt_only"]
     rows = []
-    for _, label, t, s in v.thresholds:
-        if s is None:
+    for _, label, t, tied in v.thresholds:
+        if not tied:
             rows.append(["SSIM >= %.2f, %s" % (t, label), "none", "-", "-", "-"])
             continue
-        ref, rt = v.speedups(s)
-        rows.append(["SSIM >= %.2f, %s" % (t, label), s, "%.2f" % s.ms, "%.2f" % ref, rs.fmt(rt, "%.2f")])
+        speeds = [v.speedups(s) for s in tied]
+        rows.append(["SSIM >= %.2f, %s" % (t, label), Tie(tied, v.tolerance), " / ".join("%.2f" % s.ms for s in tied),
+                     " / ".join(speedup_text(ref) for ref, _ in speeds), " / ".join(speedup_text(rt) for _, rt in speeds)])
     return header, rows
 
 
@@ -207,11 +286,20 @@ def excluded_table(v):
     return ["setting", "not applicable because"], [[s, s.not_applicable] for s in v.excluded()]
 
 
+def cell_text(c, link, escape):
+    """A cell as HTML or Markdown: a Setting linked, a Tie's settings each linked, text escaped."""
+    if isinstance(c, Setting):
+        return link(c)
+    if isinstance(c, Tie):
+        return c.text(link)
+    return escape(c)
+
+
 def html_table(table, link, cls):
     header, rows = table
     out = ['<table class="%s"><thead><tr>%s</tr></thead><tbody>' % (cls, "".join("<th>%s</th>" % html.escape(h) for h in header))]
     for cells in rows:
-        out.append("<tr>" + "".join("<td>%s</td>" % (link(c) if isinstance(c, Setting) else html.escape(c)) for c in cells) + "</tr>")
+        out.append("<tr>" + "".join("<td>%s</td>" % cell_text(c, link, html.escape) for c in cells) + "</tr>")
     return "\n".join(out) + "</tbody></table>"
 
 
@@ -219,7 +307,7 @@ def markdown_table(table, link):
     header, rows = table
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for cells in rows:
-        lines.append("| " + " | ".join(link(c) if isinstance(c, Setting) else c.replace("|", "/") for c in cells) + " |")
+        lines.append("| " + " | ".join(cell_text(c, link, lambda text: text.replace("|", "/")) for c in cells) + " |")
     return lines
 
 
@@ -234,10 +322,12 @@ def setting_link(viewer_link, markdown):
 def write(verdict_list, viewer_link):
     """The verdict section as (HTML, Markdown lines)."""
     page, md = ['<h2 id="verdict">Verdict</h2>'], ["", "## Verdict"]
+    records = [r for v in verdict_list for s in v.settings.values() for r in s.records]
     intro = ("Per scene and size, each setting's median over its runs (every view and frame): the Pareto-optimal settings "
              "(none faster and at least as good on SSIM and FLIP (LDR); HDR-FLIP is shown beside them), and the fastest "
              "setting reaching each SSIM threshold, with "
-             "its speed-up over the reference (whitted) and over rt_only.")
+             "its speed-up over the reference (whitted) and over rt_only. " + timing.describe_rule(records)
+             + "".join(" " + c for c in timing.caveats(records)))
     page.append("<p>%s</p>" % html.escape(intro))
     md += ["", intro]
     for v in verdict_list:

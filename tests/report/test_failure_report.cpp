@@ -1,4 +1,4 @@
-// The report's "where methods fail" section (paper_figures/failures.py) on a small result set: a
+// The report's "where methods fail" section (report/failures.py) on a small result set: a
 // failure scene of SSR (offscreen-reflection) and a baseline path, SSR with and without its
 // ray-traced fallback and raster. Its summary table must hold the worst frame, median and spike
 // computed here from results.json, beside the baseline's median; its links must resolve and its

@@ -1,6 +1,6 @@
 // The results record's JSON Schema (experiments/results.schema.json) on the JavaScript side: Ajv
 // validates the records the viewer reads (results.json, which report.py turns into the viewer's
-// manifest) against the same file as the C++ writer's tests and paper_figures/results.py, so the
+// manifest) against the same file as the C++ writer's tests and report/results.py, so the
 // three readers cannot drift apart. The schema is draft 2020-12, hence Ajv's Ajv2020 class (the
 // default class is draft-07 and refuses the "$schema" line).
 import fs from 'node:fs';
@@ -9,7 +9,7 @@ import { fileURLToPath } from 'node:url';
 
 import Ajv2020 from 'ajv/dist/2020.js';
 
-export const SCHEMA_PATH = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'experiments', 'results.schema.json');
+export const SCHEMA_PATH = path.join(path.dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'experiments', 'results.schema.json');
 
 // "path: what" for one Ajv error, the path written as results_schema.py writes it ($.frame_ms.median,
 // $.images.debug[0]) and naming the property that a missing or unexpected key is.

@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""report/verdict.py with timed rounds: a threshold row names settings tied in time together, the
+same whatever the records' order; speed-ups carry their intervals; the Pareto table marks ties and
+shows the median's interval; a result set written before rounds still gets its verdict, saying it
+has no intervals. On made-up records (tests/support/synthetic_records.py).
+
+    verdict_test.py        (standard library unittest; no hybridlab program needed)"""
+import os
+import random
+import re
+import sys
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
+sys.path.insert(0, os.path.join(HERE, "..", "support"))
+import synthetic_records as sr  # noqa: E402
+import timing  # noqa: E402
+import verdict  # noqa: E402
+
+# The records have no images: each run's own id stands for its pixels' digest (no two identical).
+verdict.image_digest = lambda result_dir, r: r["id"]
+
+DEPTH = "whitted-depth [max_depth=2]"
+CUTOFF = "whitted-cutoff [importance_cutoff=0.2]"
+INTERVAL = re.compile(r"^\d+\.\d\dx \(\d+\.\d\d-\d+\.\d\d\)$")
+
+
+def timed_set(seed=5):
+    """One scene at one size, two views timed in 8 rounds each: two settings 1% apart reaching SSIM
+    0.99 (a tie), one 30% faster reaching only 0.95, one 25% slower reaching 0.99, and rt_only."""
+    reference = sr.drifting_rounds(100.0, 8, seed)
+    records = []
+    for view, frame in (("camera", -1), ("path", 0)):
+        g = sr.Group("scene", reference, view=view, frame=frame)
+        records.append(sr.timed_record(g, "rt_only", "", sr.drifting_rounds(60.0, 8, seed), ssim=0.999))
+        records.append(sr.timed_record(g, "whitted", "max_depth=2", sr.drifting_rounds(40.0, 8, seed), ssim=0.992, label="whitted-depth"))
+        records.append(sr.timed_record(g, "whitted", "importance_cutoff=0.2", sr.drifting_rounds(40.4, 8, seed), ssim=0.993,
+                                       label="whitted-cutoff"))
+        records.append(sr.timed_record(g, "raster", "", sr.drifting_rounds(28.0, 8, seed), ssim=0.95))
+        records.append(sr.timed_record(g, "hyb", "k=slow", sr.drifting_rounds(50.0, 8, seed), ssim=0.995))
+    return records
+
+
+def verdict_of(records):
+    (v,) = verdict.verdicts(records, "unused")
+    return v
+
+
+def row(v, threshold, region="whole image"):
+    header, rows = verdict.threshold_table(v)
+    (found,) = [cells for cells in rows if cells[0] == "SSIM >= %.2f, %s" % (threshold, region)]
+    return dict(zip(header, found))
+
+
+def plain(cell):
+    return cell.text() if isinstance(cell, verdict.Tie) else cell.name if isinstance(cell, verdict.Setting) else cell
+
+
+class TiedRows(unittest.TestCase):
+    def test_a_tie_is_named_together_whatever_the_record_order(self):
+        records = timed_set()
+        texts = set()
+        for seed in range(6):
+            shuffled = list(records)
+            random.Random(seed).shuffle(shuffled)
+            v = verdict_of(shuffled)
+            cells = row(v, 0.99)
+            texts.add((plain(cells["fastest setting"]), v.sentence().split(". The fastest")[0].split(" (")[0]))
+            self.assertEqual([s.name for s in cells["fastest setting"].settings], [CUTOFF, DEPTH])
+        self.assertEqual(len(texts), 1, texts)
+        name, _ = texts.pop()
+        self.assertEqual(name, "%s and %s, tied within 3%% or the noise" % (CUTOFF, DEPTH))
+
+    def test_the_row_gives_each_tied_settings_time_and_speedups(self):
+        cells = row(verdict_of(timed_set()), 0.99)
+        self.assertEqual(len(cells["frame ms"].split(" / ")), 2)
+        for column in ("x ref.", "x rt_only"):
+            parts = cells[column].split(" / ")
+            self.assertEqual(len(parts), 2)
+            for p in parts:
+                self.assertRegex(p, INTERVAL)
+
+    def test_a_clear_winner_stands_alone(self):
+        v = verdict_of(timed_set())
+        self.assertEqual(plain(row(v, 0.95)["fastest setting"]), "raster")
+        self.assertIn("The fastest setting of all is raster at ", v.sentence())
+
+    def test_the_sentence_names_the_tie(self):
+        s = verdict_of(timed_set()).sentence()
+        self.assertIn("the fastest settings reaching SSIM 0.99 on the whole image are %s and %s, tied within 3%% or the noise (" % (
+            CUTOFF, DEPTH), s)
+        self.assertRegex(s, r"%s: \d+\.\d ms, \d+\.\d\dx \(\d+\.\d\d-\d+\.\d\d\) the reference's speed" % re.escape(DEPTH))
+
+    def test_markdown_links_each_tied_setting(self):
+        v = verdict_of(timed_set())
+        lines = verdict.markdown_table(verdict.threshold_table(v), verdict.setting_link(lambda i: "viewer.html#run=" + i, True))
+        (line,) = [l for l in lines if l.startswith("| SSIM >= 0.99, whole image |")]
+        self.assertRegex(line, r"\| \[%s\]\(viewer\.html#run=\S+\) and \[%s\]\(viewer\.html#run=\S+\), tied within 3%% or the noise \|"
+                         % (re.escape(CUTOFF), re.escape(DEPTH)))
+
+
+class SpeedUpsAndPareto(unittest.TestCase):
+    def test_speedups_over_the_reference_pool_the_rounds(self):
+        v = verdict_of(timed_set())
+        depth = v.settings[DEPTH]
+        ref, rt = v.speedups(depth)
+        self.assertEqual(ref, timing.median_interval(timing.reference_ratios(depth.records)))
+        self.assertAlmostEqual(ref.median, 100.0 / 40.0, delta=0.05)
+        self.assertAlmostEqual(rt.median, 60.0 / 40.0, delta=0.05)
+        self.assertLess(ref.low, ref.median)
+
+    def test_pareto_table_shows_the_interval_and_the_tie(self):
+        v = verdict_of(timed_set())
+        header, rows = verdict.pareto_table(v)
+        self.assertEqual(header[:6], ["setting", "frame ms (median)", "95% interval ms", "tied in time with", "x ref.", "x rt_only"])
+        by_name = {cells[0].name: dict(zip(header, cells)) for cells in rows}
+        self.assertEqual(list(by_name), ["raster", DEPTH, CUTOFF, "hyb [k=slow]", "rt_only"])
+        tied = {name: plain(cells["tied in time with"]) for name, cells in by_name.items()}
+        # The cut-off is the slower of the tied two by its median; it names the faster.
+        self.assertEqual(tied, {"raster": "", DEPTH: "", CUTOFF: DEPTH, "hyb [k=slow]": "", "rt_only": ""})
+        depth = v.settings[DEPTH]
+        self.assertEqual(by_name[DEPTH]["95% interval ms"], "%.2f-%.2f" % (depth.time.low, depth.time.high))
+        self.assertLess(depth.time.low, depth.ms)
+        self.assertRegex(by_name[DEPTH]["x ref."], INTERVAL)
+
+    def test_the_intro_says_which_test_decides_ties(self):
+        html, md = verdict.write([verdict_of(timed_set())], lambda i: "viewer.html#run=" + i)
+        intro = md[3]
+        self.assertIn("ratio of their times in the same round", intro)
+        self.assertIn("wholly below 1", intro)
+        self.assertIn("3%", intro)
+
+
+class OldResultSets(unittest.TestCase):
+    """Records without intervals, rounds or speed-ups: the verdict as before, saying so."""
+
+    def records(self):
+        return [sr.old_record("scene", "rt_only", "", 60.0, ssim=0.999),
+                sr.old_record("scene", "whitted", "max_depth=2", 40.0, ssim=0.992, label="whitted-depth"),
+                sr.old_record("scene", "whitted", "importance_cutoff=0.2", 40.4, ssim=0.993, label="whitted-cutoff"),
+                sr.old_record("scene", "raster", "", 28.0, ssim=0.95)]
+
+    def test_the_verdict_is_todays(self):
+        v = verdict_of(self.records())
+        cells = row(v, 0.99)
+        self.assertEqual(plain(cells["fastest setting"]), DEPTH)  # the lower median, however close
+        self.assertEqual(cells["frame ms"], "40.00")
+        self.assertEqual(cells["x ref."], "2.50")
+        self.assertEqual(cells["x rt_only"], "1.50")
+        self.assertIn("is %s at 40.0 ms (2.50x the reference's speed, 1.50x rt_only's)" % DEPTH, v.sentence())
+        header, rows = verdict.pareto_table(v)
+        self.assertIn("best-worst ms", header)
+        self.assertEqual(rows[0][2], "28.00-28.00")
+
+    def test_the_report_says_the_set_has_no_intervals(self):
+        _, md = verdict.write([verdict_of(self.records())], lambda i: "viewer.html#run=" + i)
+        self.assertIn("This result set has no intervals", md[3])
+
+
+if __name__ == "__main__":
+    unittest.main()
