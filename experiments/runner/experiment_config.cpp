@@ -229,7 +229,7 @@ void readTimingProtocol(const TomlTable& e, TimingProtocol& t) {
     t.minRounds = static_cast<int>(e.integer("repeats", t.minRounds, 1, 1000));
     t.maxRounds = static_cast<int>(e.integer("max_rounds", t.maxRounds, 1, 100000));
     t.precision = e.number("precision", t.precision, {0.0, 10.0});
-    t.groupBudgetMs = 1000.0 * e.number("group_budget_s", t.groupBudgetMs / 1000.0, {0.0, 86400.0});
+    t.sceneBudgetMs = 1000.0 * e.number("budget_s", t.sceneBudgetMs / 1000.0, {0.0, 86400.0});
     if (t.maxRounds < t.minRounds) e.fail("max_rounds", "expected at least repeats (" + std::to_string(t.minRounds) + ")");
 }
 
@@ -256,6 +256,7 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
             checkParameters(*p, "whitted", c.referenceParameters);
             p->rejectUnknownKeys();
         }
+        c.timeReference = r->boolean("timed", c.timeReference);
         r->rejectUnknownKeys();
     }
 

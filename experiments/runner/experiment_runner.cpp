@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -343,7 +344,8 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
 // the runs recorded.
 std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, const ResultsStore& store, const ReferenceCache& cache,
                         ActiveScene& active, const std::vector<const RunSpec*>& group, const std::vector<const RunSpec*>& pending,
-                        const std::optional<MixedDevices>& mixed, Progress& progress, std::size_t done, RunnerSummary& summary) {
+                        const TimingProtocol& protocol, const std::optional<MixedDevices>& mixed, Progress& progress, std::size_t done,
+                        RunnerSummary& summary) {
     const auto groupStart = WallClock::now();
     const RunSpec& head = *pending.front();
     const std::string name = groupName(config, head);
@@ -357,14 +359,14 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
     std::vector<const RunSpec*> timedRuns = pending;
     const RunSpec* rtOnly = rtOnlyOf(config, group);
     if (rtOnly && std::find(pending.begin(), pending.end(), rtOnly) == pending.end()) timedRuns.push_back(rtOnly);
-    std::vector<TimedSetting> settings(timedRuns.size() + 1);
+    std::vector<TimedSetting> settings(timedRuns.size() + (config.timeReference ? 1 : 0));
     for (std::size_t i = 0; i < timedRuns.size(); ++i) {
         const RunSpec& run = *timedRuns[i];
         settings[i].technique = &active.technique(std::to_string(run.technique) + "|" + run.parametersText, config.techniques[run.technique].name,
                                                   run.parameters);
     }
     const std::size_t referenceIndex = timedRuns.size();
-    settings[referenceIndex].technique = &active.technique("\x01reference", "whitted", config.referenceParameters);
+    if (config.timeReference) settings[referenceIndex].technique = &active.technique("\x01reference", "whitted", config.referenceParameters);
     std::vector<TimedRender> renders;
     for (TimedSetting& s : settings) {
         renders.push_back([&s, &active, &request] {
@@ -374,14 +376,14 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         });
     }
     const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
-    GroupTiming timing = timeInterleaved(renders, config.timing);
+    GroupTiming timing = timeInterleaved(renders, protocol);
     const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
     // Only the rounds' stage times: the warm-up's are not the setting's steady state.
     for (TimedSetting& s : settings) {
         for (auto& [stage, times] : s.stageTimes)
             times.erase(times.begin(), times.end() - std::min<std::ptrdiff_t>(timing.rounds, static_cast<std::ptrdiff_t>(times.size())));
     }
-    const std::vector<double> referenceRounds = wallTimes(timing.settings[referenceIndex]);
+    const std::vector<double> referenceRounds = config.timeReference ? wallTimes(timing.settings[referenceIndex]) : std::vector<double>{};
     const double timingSeconds = millisecondsSince(groupStart) / 1000.0;
 
     const PixelMask mask = PixelMask::fromImage(ref.mask);
@@ -438,12 +440,12 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         t.steady = st.steady;
         if (clocksBefore && clocksAfter) t.gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
         record.timing = std::move(t);
-        record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
+        if (config.timeReference) record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
         const auto speedupOver = [&](const std::vector<double>& other) {
             const MedianInterval m = pairedRatio(other, wall);
             return m.hasInterval ? RatioInterval{m.median, m.low, m.high} : RatioInterval{m.median, std::nullopt, std::nullopt};
         };
-        record.speedup["reference"] = speedupOver(referenceRounds);
+        if (config.timeReference) record.speedup["reference"] = speedupOver(referenceRounds);
         if (rtOnly) {
             const std::size_t k = static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) - timedRuns.begin());
             record.speedup["rt_only"] = speedupOver(wallTimes(timing.settings[k]));
@@ -482,6 +484,10 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     Progress progress(mine.size(), o.quiet);
     ActiveScene active;
     std::size_t done = 0;
+    // Each scene and size's budget, shared by its groups (interleaved_timing.h).
+    std::map<std::tuple<std::size_t, int, int>, int> groupsOfScene;
+    for (std::size_t k = 0; k < mine.size(); ++k)
+        if (k == 0 || !sameGroup(*mine[k - 1], *mine[k])) ++groupsOfScene[{mine[k]->scene, mine[k]->width, mine[k]->height}];
     for (std::size_t first = 0; first < mine.size();) {
         std::size_t last = first + 1;
         while (last < mine.size() && sameGroup(*mine[first], *mine[last])) ++last;
@@ -497,7 +503,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             }
         }
         if (pending.empty()) continue;
-        done += renderGroup(config, o, store, cache, active, group, pending, mixed, progress, done, summary);
+        TimingProtocol protocol = config.timing;
+        protocol.groupBudgetMs = protocol.sceneBudgetMs / groupsOfScene.at({group.front()->scene, group.front()->width, group.front()->height});
+        done += renderGroup(config, o, store, cache, active, group, pending, protocol, mixed, progress, done, summary);
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
     }
     progress.finish();

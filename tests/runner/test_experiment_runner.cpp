@@ -218,7 +218,7 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     // The same experiment again: every reference from the cache, identical metrics.
     RunnerSummary second = runExperiment(config, test::quietRunnerOptions(dir.path() / "b", cache));
     EXPECT_EQ(second.referencesRendered, 0u);
-    EXPECT_EQ(second.referenceCacheHits, 20u);
+    EXPECT_EQ(second.referenceCacheHits, 4u);  // one a group (scene, view, frame, size), timed with its runs
     expectSameResults(dir.path() / "a", dir.path() / "b");
 
     // Interrupted after 7 runs, then resumed: the same result set as the uninterrupted run.
@@ -415,8 +415,11 @@ params = { max_depth = 1 }
         EXPECT_EQ(records.size(), 1u);
         return records.empty() ? json() : records[0];
     };
+    // 3 frames, then on until the last two agree within 10%, 5 at most (interleaved_timing.h).
     const json frames = run("frames", "warmup_frames = 3\n");
-    EXPECT_EQ(frames.at("warmup_frames"), 3);
+    EXPECT_GE(frames.at("warmup_frames"), 3);
+    EXPECT_LE(frames.at("warmup_frames"), 5);
+    if (frames.at("warmup_frames") < 5) EXPECT_TRUE(frames.at("timing").at("steady").get<bool>());  // it stopped on agreeing frames
     const json timed = run("timed", "warmup_frames = 1\nwarmup_ms = 250\n");
     const double frameMs = timed.at("frame_ms").at("median").get<double>();
     // At least as many frames as fit in 250 ms at the slowest timed frame's pace, and the run took that long.
