@@ -17,6 +17,7 @@
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
@@ -267,6 +268,18 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
     return ref;
 }
 
+// A run's image scored against its reference. Its pixels holding a NaN or an infinity are counted
+// (`nonFinite`, for the record) and scored as black in both images, so that the metrics stay
+// numbers (non_finite_pixels.h).
+MetricReport scoreImage(const Image& image, const Image& reference, const MetricOptions& options, const PixelMask* mask,
+                        std::size_t& nonFinite) {
+    nonFinite = findNonFinite(image).count;
+    if (nonFinite == 0) return computeMetrics(image, reference, options, mask);
+    Image finiteImage = image, finiteReference = reference;
+    blackOutNonFinite(finiteImage, finiteReference);
+    return computeMetrics(finiteImage, finiteReference, options, mask);
+}
+
 // One setting of a group as the protocol times it (interleaved_timing.h): each frame's clocks, its
 // stage times by round, and its last frame, which is scored (renders are deterministic, so every
 // timed frame's image is the same).
@@ -393,7 +406,8 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         const FrameResult& result = settings[i].last;
         MetricOptions scoring;
         scoring.selection = config.metrics;
-        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
+        std::size_t nonFinite = 0;
+        const MetricReport report = scoreImage(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr, nonFinite);
         const std::string image = "images/" + run->id;
         const ReportSources sources{image + ".exr", "references/" + ref.key + ".exr",
                                     mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
@@ -418,6 +432,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
 
         RunRecord record = runRecord(*run, config.scenes[run->scene], active.stats, view, config.techniques[run->technique], settings[i], report,
                                      sources, ref, mask.count() > 0, image, maps);
+        record.counters["nonfinite_pixels"] = static_cast<double>(nonFinite);
         const std::vector<double> wall = wallTimes(st);
         record.frameMilliseconds = intervalSpreadOf(wall);
         record.warmupFrames = st.warmupFrames;
