@@ -154,7 +154,26 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                                                    std::size_t runsInShard, double estimatedCost, RunnerSummary& summary,
                                                    std::optional<MixedDevices>& mixed) {
     const fs::path meta = o.outDir / "experiment.json";
-    if (fs::exists(o.outDir)) {
+    // The folder is looked at under its lock: a runner that started a moment earlier may be
+    // setting it up, and the one who loses the race is told who holds it. A folder that is plainly
+    // not an experiment's (a file, or files and no lock) is refused without writing into it.
+    const auto notExperimentFolder = [&] { return InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out"); };
+    // Files other than a lock and the temporaries of the runners that try to take it.
+    const auto holdsOtherFiles = [&] {
+        return std::any_of(fs::directory_iterator(o.outDir), fs::directory_iterator(), [](const fs::directory_entry& e) {
+            const std::string name = e.path().filename().string();
+            return name != DirectoryLock::kFileName && name.rfind(".tmp-", 0) != 0;
+        });
+    };
+    // In this order: a runner setting the folder up takes the lock, then makes files, then writes
+    // experiment.json, then releases the lock; so other files seen first mean the lock or
+    // experiment.json is there when looked for after them.
+    if (fs::exists(o.outDir) &&
+        (!fs::is_directory(o.outDir) || (holdsOtherFiles() && !fs::exists(o.outDir / DirectoryLock::kFileName) && !fs::exists(meta))))
+        throw notExperimentFolder();
+    createDirectories(o.outDir);
+    auto lock = std::make_unique<DirectoryLock>(o.outDir);
+    {
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
@@ -185,13 +204,12 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                 devices.push_back(here);
             }
             if (devices.size() > 1) mixed = MixedDevices{m.value("device", json()), devices, here};
-        } else if (!fs::is_directory(o.outDir) || !fs::is_empty(o.outDir)) {
-            throw InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out");
+        } else if (holdsOtherFiles()) {
+            throw notExperimentFolder();
         }
     }
     const ResultsStore store(o.outDir);
     store.createLayout();
-    auto lock = std::make_unique<DirectoryLock>(o.outDir);
     // Records are about to be added: results.json/csv are written again when the runner stops.
     store.removeResults();
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
