@@ -8,11 +8,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "experiments/cli/commands.h"
 #include "metrics/metrics.h"
 #include "metrics/report_files.h"
@@ -32,7 +34,27 @@ struct CompareOptions {
     bool perChannel = false;
     double pixelsPerDegree = kDefaultPixelsPerDegree;
     bool timing = false;
+    bool ignoreNonFinite = false;
 };
+
+// A NaN or an infinity makes every metric NaN (and SSIM's window spreads it): such pixels are bad
+// input unless --ignore-nonfinite, which blacks them out in both images (no error there) and says
+// so. Returns the lines to print.
+std::vector<std::string> handleNonFinite(Image& test, const std::string& testName, Image& reference, const std::string& referenceName,
+                                         bool ignore) {
+    std::vector<std::string> notes;
+    for (const auto& [image, name] : {std::pair{&test, &testName}, std::pair{&reference, &referenceName}}) {
+        const NonFinitePixels found = findNonFinite(*image);
+        if (found.count == 0) continue;
+        if (!ignore) {
+            throw InputError(*name + ": " + found.description() + ": every metric would be NaN (pass --ignore-nonfinite to score the "
+                                     "other pixels, with these black in both images)");
+        }
+        notes.push_back(*name + ": " + found.description() + ", ignored: black in both images");
+    }
+    blackOutNonFinite(test, reference);
+    return notes;
+}
 
 void printReport(const MetricReport& r) {
     const bool masked = r.masked.has_value();
@@ -106,9 +128,10 @@ void run(const CompareOptions& o) {
     // writes with File_Gamma=1.0, stays linear; none: sRGB), so that every input is what a
     // technique renders; the metrics then see the display values again.
     std::string testSpace, referenceSpace;
-    const Image test = readImage(o.test, ColorEncoding::Tagged, &testSpace);
-    const Image reference = readImage(o.reference, ColorEncoding::Tagged, &referenceSpace);
+    Image test = readImage(o.test, ColorEncoding::Tagged, &testSpace);
+    Image reference = readImage(o.reference, ColorEncoding::Tagged, &referenceSpace);
     requireSameSize(test, o.test, reference, o.reference);
+    const std::vector<std::string> nonFiniteNotes = handleNonFinite(test, o.test, reference, o.reference, o.ignoreNonFinite);
     std::optional<PixelMask> mask;
     if (!o.mask.empty()) {
         mask = PixelMask::fromImage(readImage(o.mask));
@@ -123,6 +146,7 @@ void run(const CompareOptions& o) {
     std::printf("test       %s  [%s]\nreference  %s  [%s]\n", o.test.c_str(), testSpace.c_str(), o.reference.c_str(),
                 referenceSpace.c_str());
     if (mask) std::printf("mask       %s\n", o.mask.c_str());
+    for (const std::string& note : nonFiniteNotes) std::printf("note: %s\n", note.c_str());
     std::printf("%dx%d; SSIM on %s; RMSE and PSNR on %s values; FLIP at %g pixels per degree\n", report.width, report.height,
                 o.perChannel ? "R, G, B (mean)" : "luma", valueSpaceName(options.errorSpace), options.pixelsPerDegree);
     printReport(report);
@@ -148,6 +172,9 @@ void addCompareCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     cmd->add_flag("--timing", o->timing, "Also time each metric (median of 5 runs)");
+    cmd->add_flag("--ignore-nonfinite", o->ignoreNonFinite,
+                  "Score images holding NaN or infinite pixels: those pixels are made black in both images (and named); "
+                  "without it they are refused (exit status 2)");
     cmd->callback([o] { run(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
@@ -71,6 +72,8 @@ void run(const RenderOptions& o) {
 
     writeImageAtomically(exrPath, result.image);
     writeImageAtomically(pngPath, result.image);
+    if (const NonFinitePixels nonFinite = findNonFinite(result.image); nonFinite.count > 0)
+        std::fprintf(stderr, "hybridlab: warning: %s: %s\n", exrPath.string().c_str(), nonFinite.description().c_str());
 
     std::printf("scene %s, technique %s, %dx%d, view %s, time %.4g s, %d threads\n", scene.name.c_str(), o.technique.c_str(),
                 o.view.width, o.view.height, view.label.c_str(), view.time, o.threads > 0 ? o.threads : tbb::info::default_concurrency());

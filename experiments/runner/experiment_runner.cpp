@@ -18,6 +18,7 @@
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
@@ -154,7 +155,26 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                                                    std::size_t runsInShard, double estimatedCost, RunnerSummary& summary,
                                                    std::optional<MixedDevices>& mixed) {
     const fs::path meta = o.outDir / "experiment.json";
-    if (fs::exists(o.outDir)) {
+    // The folder is looked at under its lock: a runner that started a moment earlier may be
+    // setting it up, and the one who loses the race is told who holds it. A folder that is plainly
+    // not an experiment's (a file, or files and no lock) is refused without writing into it.
+    const auto notExperimentFolder = [&] { return InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out"); };
+    // Files other than a lock and the temporaries of the runners that try to take it.
+    const auto holdsOtherFiles = [&] {
+        return std::any_of(fs::directory_iterator(o.outDir), fs::directory_iterator(), [](const fs::directory_entry& e) {
+            const std::string name = e.path().filename().string();
+            return name != DirectoryLock::kFileName && name.rfind(".tmp-", 0) != 0;
+        });
+    };
+    // In this order: a runner setting the folder up takes the lock, then makes files, then writes
+    // experiment.json, then releases the lock; so other files seen first mean the lock or
+    // experiment.json is there when looked for after them.
+    if (fs::exists(o.outDir) &&
+        (!fs::is_directory(o.outDir) || (holdsOtherFiles() && !fs::exists(o.outDir / DirectoryLock::kFileName) && !fs::exists(meta))))
+        throw notExperimentFolder();
+    createDirectories(o.outDir);
+    auto lock = std::make_unique<DirectoryLock>(o.outDir);
+    {
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
@@ -185,13 +205,12 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                 devices.push_back(here);
             }
             if (devices.size() > 1) mixed = MixedDevices{m.value("device", json()), devices, here};
-        } else if (!fs::is_directory(o.outDir) || !fs::is_empty(o.outDir)) {
-            throw InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out");
+        } else if (holdsOtherFiles()) {
+            throw notExperimentFolder();
         }
     }
     const ResultsStore store(o.outDir);
     store.createLayout();
-    auto lock = std::make_unique<DirectoryLock>(o.outDir);
     // Records are about to be added: results.json/csv are written again when the runner stops.
     store.removeResults();
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
@@ -266,6 +285,18 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
     cache.store(ref);
     ++summary.referencesRendered;
     return ref;
+}
+
+// A run's image scored against its reference. Its pixels holding a NaN or an infinity are counted
+// (`nonFinite`, for the record) and scored as black in both images, so that the metrics stay
+// numbers (non_finite_pixels.h).
+MetricReport scoreImage(const Image& image, const Image& reference, const MetricOptions& options, const PixelMask* mask,
+                        std::size_t& nonFinite) {
+    nonFinite = findNonFinite(image).count;
+    if (nonFinite == 0) return computeMetrics(image, reference, options, mask);
+    Image finiteImage = image, finiteReference = reference;
+    blackOutNonFinite(finiteImage, finiteReference);
+    return computeMetrics(finiteImage, finiteReference, options, mask);
 }
 
 // One setting of a group as the protocol times it (interleaved_timing.h): each frame's clocks, its
@@ -395,7 +426,8 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         const FrameResult& result = settings[i].last;
         MetricOptions scoring;
         scoring.selection = config.metrics;
-        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
+        std::size_t nonFinite = 0;
+        const MetricReport report = scoreImage(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr, nonFinite);
         const std::string image = "images/" + run->id;
         const ReportSources sources{image + ".exr", "references/" + ref.key + ".exr",
                                     mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
@@ -420,6 +452,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
 
         RunRecord record = runRecord(*run, config.scenes[run->scene], active.stats, view, config.techniques[run->technique], settings[i], report,
                                      sources, ref, mask.count() > 0, image, maps);
+        record.counters["nonfinite_pixels"] = static_cast<double>(nonFinite);
         const std::vector<double> wall = wallTimes(st);
         record.frameMilliseconds = intervalSpreadOf(wall);
         record.warmupFrames = st.warmupFrames;
