@@ -8,13 +8,16 @@ and technique variant, over the frames of the camera path: the scene's triangle 
 dynamic triangles (the ray scene's counters: rigid instances moved, deformed meshes refitted), the
 frame time mean +/- standard deviation, min and max (each frame's time is the median over the run's
 repeats), the `bvh_update` stage's mean, and SSIM and FLIP against the `whitted` reference per frame
-(mean +/- standard deviation, worst). Below each table: how the `bvh_update` stage grows with the
-number of dynamic triangles (least-squares slope and correlation over the table's lines)."""
+(mean +/- standard deviation, worst). Below each table: how the frame time and the `bvh_update`
+stage grow with the number of dynamic triangles (least-squares slope and correlation over the
+table's lines, and the frame at the largest N over the frame at the smallest), beside the same for
+the paper's CUDA and OptiX rows; then the scenes' counts beside the paper's (paper_scenes.py)."""
 import os
 import re
 import statistics
 import sys
 
+import paper_scenes
 import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 
@@ -51,21 +54,36 @@ def table(rows, number, family, what):
         flip = [results.metric(r, "whole", "flip") for r in rs]
         c = rs[0]["counters"]
         dynamic = c.get("bvh_moving_triangles", 0.0) + c.get("bvh_refit_triangles", 0.0)
-        growth.setdefault(variant, []).append((dynamic, statistics.mean(bvh)))
+        growth.setdefault(variant, []).append((dynamic, statistics.mean(frame), statistics.mean(bvh)))
         out.append("| %s | %d | %.1f | %.1f | %.1f +/- %.1f | %.1f, %.1f | %.2f +/- %.2f | %.4f +/- %.4f (%.4f) | %.4f +/- %.4f (%.4f) |" % (
             variant, n, c.get("bvh_triangles", 0.0) / 1e3, dynamic / 1e3, *spread(frame), min(frame), max(frame),
             *spread(bvh), *spread(ssim), min(ssim), *spread(flip), max(flip)))
     out.append("")
     for variant, points in sorted(growth.items()):
-        if len(points) < 2 or len({p[0] for p in points}) < 2:
-            continue
-        xs, ys = [p[0] / 1e3 for p in points], [p[1] for p in points]
-        fit = statistics.linear_regression(xs, ys)
-        r = statistics.correlation(xs, ys) if len(set(ys)) > 1 else float("nan")
-        out.append("`bvh_update` of %s: %.3g ms per 1000 dynamic triangles (+ %.3g ms), correlation %.3f over N = %s" % (
-            variant, fit.slope, fit.intercept, r, ", ".join(str(n) for (v, n) in sorted(lines) if v == variant)))
-    out.append("")
-    return out
+        ns = ", ".join(str(n) for (v, n) in sorted(lines) if v == variant)
+        for what, column in (("Frame time", 1), ("`bvh_update`", 2)):
+            fit = growth_fit([(p[0], p[column]) for p in points])
+            if fit:
+                out.append("%s of %s: %s over N = %s" % (what, variant, fit, ns))
+    for implementation in ("CUDA", "OptiX"):
+        rows = [r for r in paper_scenes.macedo_rows(number) if r.implementation == implementation]
+        out.append("Frame time of the paper's %s rows: %s" % (implementation, growth_fit([(r.dynamic_k * 1e3, r.mean_ms) for r in rows])))
+    family_rows = [r for rs in lines.values() for r in rs]
+    return out + paper_scenes.scene_count_lines(family_rows, "macedo2019")
+
+
+def growth_fit(points):
+    """How a time grows with the dynamic triangles over (triangles, ms) points in N's order: the
+    least-squares slope per 1000 triangles and intercept, the correlation, and the time at the
+    largest N over the time at the smallest; None with fewer than two triangle counts."""
+    if len(points) < 2 or len({p[0] for p in points}) < 2:
+        return None
+    xs, ys = [p[0] / 1e3 for p in points], [p[1] for p in points]
+    fit = statistics.linear_regression(xs, ys)
+    r = statistics.correlation(xs, ys) if len(set(ys)) > 1 else float("nan")
+    ratio = ("%.2fx" % (ys[-1] / ys[0])) if ys[0] > 0 else "-"
+    return "%.3g ms per 1000 dynamic triangles (+ %.3g ms), correlation %.3f, largest N / smallest %s" % (
+        fit.slope, fit.intercept, r, ratio)
 
 
 def main():
