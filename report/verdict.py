@@ -222,7 +222,7 @@ class SceneVerdict:
             return "no setting reaches it"
         if not any(self.beats_reference(s) for s in tied):
             return "nothing reaching it beats the reference"
-        if self.rt_only and not any(self.beats_rt_only(s) for s in tied):
+        if self.rt_only and self.rt_only not in tied and not any(self.beats_rt_only(s) for s in tied):
             return "beats the reference; nothing reaching it beats rt_only"
         return "beats the reference" + (" and rt_only" if self.rt_only else "")
 

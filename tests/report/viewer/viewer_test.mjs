@@ -483,6 +483,9 @@ try {
   });
 
   await check('a link restores the whole view: panes, differences, zoom, position, exposure, display, rectangle', async () => {
+    // Pane 3 shows the other setting than pane 2, differenced against pane 2.
+    await page.selectOption('#panes .bar[data-pane="1"] select.variant', variants[1]);
+    await page.selectOption('#panes .bar[data-pane="2"] select.variant', variants[0]);
     await page.selectOption('#panes .bar[data-pane="2"] select.against', '1');
     await page.selectOption('#panes .bar[data-pane="2"] select.layer', 'rel');
     await page.selectOption('#transform', 'false');
@@ -545,7 +548,9 @@ try {
       assert.ok(fills.length > 0, chart);
       assert.deepEqual([...new Set(fills)], [colour], chart);
     }
-    const swatch = await page.$eval(`#panes .bar[data-pane="${1 + variants.indexOf(v)}"] .swatch`, (s) => getComputedStyle(s).backgroundColor);
+    const pane = await page.$$eval('#panes .bar select.variant', (ss, name) => ss.findIndex((s) => s.value === name), v);
+    assert.ok(pane > 0, `no pane shows ${v}`);
+    const swatch = await page.$eval(`#panes .bar[data-pane="${pane}"] .swatch`, (s) => getComputedStyle(s).backgroundColor);
     const [r, g, b] = [1, 3, 5].map((i) => parseInt(colour.slice(i, i + 2), 16));
     assert.equal(swatch, `rgb(${r}, ${g}, ${b})`);
   });
