@@ -43,8 +43,9 @@ PACKAGES=(
   vulkan-validationlayers
   # metrics cross-check (tests)
   python3-skimage python3-numpy
-  # reports and paper figures (Debian's /usr/bin/python3)
-  python3-matplotlib
+  # reports and paper figures (Debian's /usr/bin/python3), and zlib for the report's viewer (pako,
+  # copied beside it: the browser inflates the result set's EXRs with it)
+  python3-matplotlib node-pako
   # the viewer's browser test only (tests/report/viewer: headless Chromium driven by playwright-core,
   # and Ajv for the results schema, both from npm); the hybridlab program needs neither
   chromium nodejs

@@ -17,5 +17,6 @@ void addExportPovCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addBakeEmCommand(CLI::App& app);
 void addBundleCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 
 }  // namespace hybridlab::cli

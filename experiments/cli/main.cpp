@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addCompareCommand(app);
     hybridlab::cli::addBakeEmCommand(app);
     hybridlab::cli::addBundleCommand(app);
+    hybridlab::cli::addViewCommand(app);
     app.add_flag("--version")->description("Print the program version and this machine's device record (as result sets store it), then exit");
     if (argc == 2 && std::string(argv[1]) == "--version") {
         std::printf("hybridlab %s\n%s\n", hybridlab::programVersion().c_str(), hybridlab::deviceRecord().dump(1).c_str());

@@ -134,7 +134,7 @@ void expectReportShowsEveryRun(const fs::path& results, const fs::path& report, 
     test::CliResult r = test::runHybridlab({"report", results.string(), "--out", report.string()});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     EXPECT_CONTAINS(r.out, "report: " + (report / "index.html").string() + "\n");
-    EXPECT_CONTAINS(r.out, "viewer: " + (report / "viewer.html").string() + "\n");
+    EXPECT_CONTAINS(r.out, "viewer: " + (report / "viewer.html").string() + " (hybridlab view ");
     const std::string page = test::readReportPage(report);
     EXPECT_GT(test::expectReportLinksResolve(report), 20u * 4);  // per run at least: thumbnail, image, exr, reference (+ maps)
     // SVG + PDF of: 2 scenes x (speed-accuracy, stages) + 1 path (+ its "where methods fail" figure)
@@ -187,8 +187,8 @@ void expectReportShowsEveryRun(const fs::path& results, const fs::path& report, 
     EXPECT_GE(paretoRows, 1u);
     // Every run opens in the viewer from the table (the viewer itself: tests/report/viewer).
     for (const auto& row : rows) EXPECT_NE(page.find("viewer.html#run=" + row.at("id").get<std::string>()), std::string::npos);
-    EXPECT_TRUE(fs::exists(report / "viewer" / "viewer.js"));
-    EXPECT_TRUE(fs::exists(report / "viewer" / "manifest.js"));
+    EXPECT_TRUE(fs::exists(report / "viewer" / "main.js"));
+    EXPECT_TRUE(fs::exists(report / "viewer" / "settings.json"));
 }
 
 TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {

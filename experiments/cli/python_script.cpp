@@ -1,0 +1,44 @@
+#include "experiments/cli/python_script.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace hybridlab::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3"; }
+
+}  // namespace
+
+int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt) {
+    std::vector<std::string> command = {python(), (fs::path(HYBRIDLAB_SOURCE_DIR) / "report" / script).string()};
+    command.insert(command.end(), args.begin(), args.end());
+    pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("cannot start " + command[0]);
+    if (pid == 0) {
+        std::vector<char*> argv;
+        for (const auto& a : command) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        execvp(argv[0], argv.data());
+        std::perror(command[0].c_str());
+        _exit(127);
+    }
+    // Ctrl-C reaches both processes (one process group); ignored here, the script alone decides.
+    auto previous = interrupt == Interrupt::ScriptOnly ? std::signal(SIGINT, SIG_IGN) : SIG_DFL;
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (interrupt == Interrupt::ScriptOnly) std::signal(SIGINT, previous);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+}  // namespace hybridlab::cli

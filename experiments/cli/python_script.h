@@ -1,0 +1,17 @@
+#pragma once
+// The report's Python scripts (report/*.py, in the source folder compiled into the program), run
+// by Debian's python3, which has the packages the set-up script installs (matplotlib); a python3
+// found first on the PATH (pyenv, a virtualenv) may not.
+#include <string>
+#include <vector>
+
+namespace hybridlab::cli {
+
+// How a script's run treats Ctrl-C: stop the program with it (the default), or leave it to the
+// script alone (a server that stops on Ctrl-C and says so), the program returning its status.
+enum class Interrupt { StopsBoth, ScriptOnly };
+
+// Runs report/SCRIPT with `args` and returns its exit status (128 + the signal where one ended it).
+int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth);
+
+}  // namespace hybridlab::cli
