@@ -370,6 +370,42 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
     return r;
 }
 
+// A run's timing fields (run_record.h's RunTiming), its frame time's interval and its speed-ups
+// over the reference and rt_only, paired over the group's rounds.
+void addTiming(RunRecord& record, const ExperimentConfig& config, const std::string& group, const GroupTiming& timing, const SettingTiming& st,
+               const std::vector<double>& referenceRounds, const std::optional<std::vector<double>>& rtOnlyRounds,
+               const std::optional<nlohmann::json>& gpuClocks) {
+    const std::vector<double> wall = wallTimes(st);
+    record.frameMilliseconds = intervalSpreadOf(wall);
+    record.warmupFrames = st.warmupFrames;
+    RunTiming t;
+    t.group = group;
+    t.rounds = timing.rounds;
+    t.frameRounds = wall;
+    t.referenceRounds = referenceRounds;
+    t.cpuRounds = cpuTimes(st);
+    t.cpu = intervalSpreadOf(t.cpuRounds);
+    if (const auto device = deviceTimes(st)) {
+        t.deviceRounds = *device;
+        t.device = intervalSpreadOf(*device);
+    }
+    t.precision = config.timing.precision;
+    t.precisionReached = timing.precisionReached;
+    t.warmupMs = st.warmupMs;
+    t.steady = st.steady;
+    t.gpuClocks = gpuClocks;
+    record.timing = std::move(t);
+    const auto speedupOver = [&](const std::vector<double>& other) {
+        const MedianInterval m = pairedRatio(other, wall);
+        return m.hasInterval ? RatioInterval{m.median, m.low, m.high} : RatioInterval{m.median, std::nullopt, std::nullopt};
+    };
+    if (config.timeReference) {
+        record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
+        record.speedup["reference"] = speedupOver(referenceRounds);
+    }
+    if (rtOnlyRounds) record.speedup["rt_only"] = speedupOver(*rtOnlyRounds);
+}
+
 // Times a group's pending runs and the reference in interleaved rounds (with the group's default
 // rt_only, recorded or not, for the speed-ups over it), then scores and records each run. Returns
 // the runs recorded.
@@ -453,36 +489,13 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         RunRecord record = runRecord(*run, config.scenes[run->scene], active.stats, view, config.techniques[run->technique], settings[i], report,
                                      sources, ref, mask.count() > 0, image, maps);
         record.counters["nonfinite_pixels"] = static_cast<double>(nonFinite);
-        const std::vector<double> wall = wallTimes(st);
-        record.frameMilliseconds = intervalSpreadOf(wall);
-        record.warmupFrames = st.warmupFrames;
-        RunTiming t;
-        t.group = name;
-        t.rounds = timing.rounds;
-        t.frameRounds = wall;
-        t.referenceRounds = referenceRounds;
-        t.cpuRounds = cpuTimes(st);
-        t.cpu = intervalSpreadOf(t.cpuRounds);
-        if (const auto device = deviceTimes(st)) {
-            t.deviceRounds = *device;
-            t.device = intervalSpreadOf(*device);
-        }
-        t.precision = config.timing.precision;
-        t.precisionReached = timing.precisionReached;
-        t.warmupMs = st.warmupMs;
-        t.steady = st.steady;
-        if (clocksBefore && clocksAfter) t.gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
-        record.timing = std::move(t);
-        if (config.timeReference) record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
-        const auto speedupOver = [&](const std::vector<double>& other) {
-            const MedianInterval m = pairedRatio(other, wall);
-            return m.hasInterval ? RatioInterval{m.median, m.low, m.high} : RatioInterval{m.median, std::nullopt, std::nullopt};
-        };
-        if (config.timeReference) record.speedup["reference"] = speedupOver(referenceRounds);
-        if (rtOnly) {
-            const std::size_t k = static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) - timedRuns.begin());
-            record.speedup["rt_only"] = speedupOver(wallTimes(timing.settings[k]));
-        }
+        const std::optional<std::vector<double>> rtOnlyRounds =
+            rtOnly ? std::optional(wallTimes(timing.settings[static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) -
+                                                                                      timedRuns.begin())]))
+                   : std::nullopt;
+        std::optional<nlohmann::json> gpuClocks;
+        if (clocksBefore && clocksAfter) gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
+        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, gpuClocks);
         // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
         // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = timingSeconds / static_cast<double>(pending.size()) + millisecondsSince(runStart) / 1000.0;

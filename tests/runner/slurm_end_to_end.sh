@@ -186,7 +186,7 @@ import filecmp, json, pathlib, sys
 a, b = (pathlib.Path(p) for p in sys.argv[1:])
 
 def comparable(r):
-    for k in ("frame_ms", "stages", "run_seconds"):
+    for k in ("frame_ms", "stages", "run_seconds", "timing", "speedup", "warmup_frames"):
         r.pop(k, None)
     for k in ("cache_hit", "frame_ms"):
         r["reference"].pop(k, None)
