@@ -14,9 +14,9 @@ COUNT_NAMES = {"triangles": "triangles", DYNAMIC: "dynamic triangles", "vertices
 RATIO_COUNTS = ("triangles", DYNAMIC, "vertices")
 
 # A paper's scene: its name there, its counts (None where the paper does not give one), why the
-# testbed's scene of that name differs, and the name that line gives the scene (one for a family
-# of scenes that differ alike).
-PaperScene = collections.namedtuple("PaperScene", "name counts differs group")
+# testbed's scene of that name differs, and the name that line gives the scene where it is one of
+# a family that differs alike (else the scene's own).
+PaperScene = collections.namedtuple("PaperScene", "name counts differs group", defaults=(None,))
 # A paper's scenes by the testbed's scene names; `thousands`: the paper gives counts in thousands to
 # one decimal.
 Paper = collections.namedtuple("Paper", "title scenes thousands")
@@ -30,16 +30,15 @@ def _walewski():
         "sponza-spheres": PaperScene(
             "Sponza Spheres", {"triangles": 272144, "vertices": 150704, "objects": 29, "reflective": 3, "refractive": 23},
             (_SPONZA % "scene (272,144 triangles with the spheres)") + "; the 3 mirror and 23 glass spheres are the paper's, "
-            "and Sponza is one object here where the paper counts 29 objects in all", "sponza-spheres"),
+            "and Sponza is one object here where the paper counts 29 objects in all"),
         "sponza-armadillo": PaperScene(
             "Sponza Armadillo", {"triangles": 292544, "vertices": 160896, "objects": 25, "reflective": 0, "refractive": 21},
             "the same Sponza, and the full-resolution Stanford armadillo (345,944 triangles) where the paper's is about 30k "
-            "(its 292,544 less Sponza's); the paper counts 21 refractive objects without naming them, here the armadillo is the one",
-            "sponza-armadillo"),
+            "(its 292,544 less Sponza's); the paper counts 21 refractive objects without naming them, here the armadillo is the one"),
         "dining-room": PaperScene(
             "Dining Room", {"triangles": 139378, "vertices": 71697, "objects": 27, "reflective": 0, "refractive": 1},
-            "the paper's dining room is not public: Bitterli's breakfast room (Wig42, 269,538 triangles in 53 meshes, one "
-            "object here) stands in for it, with the paper's one glass object, a ball", "dining-room"),
+            "the paper's dining room model is not available here: Bitterli's breakfast room (Wig42, 269,538 triangles in 53 "
+            "meshes, one object here) stands in for it, with one glass object (a ball) as the paper counts one refractive object"),
     }, False)
 
 
@@ -47,15 +46,14 @@ def _sabino():
     return Paper("Sabino 2012 Tables 3 and 4", {
         "sponza-spheres": PaperScene(
             "Sponza (Table 3)", {"triangles": 262187, "vertices": 145173},
-            (_SPONZA % "Sponza (262,187 triangles)") + "; the spheres give it the reflective and refractive objects the paper's Figure 5(a) shows",
-            "sponza-spheres"),
+            (_SPONZA % "Sponza (262,187 triangles)") + "; the spheres give it the reflective and refractive objects the paper's Figure 5(a) shows"),
         "sponza-armadillo": PaperScene(
             "Armadillo (Table 3)", {"triangles": 380655, "vertices": 193737},
             "the paper's armadillo stands in an open environment (its Section 8: rays escape), here the full-resolution "
-            "glass armadillo stands in the closed Sponza atrium", "sponza-armadillo"),
+            "glass armadillo stands in the closed Sponza atrium"),
         "dining-room": PaperScene(
             "Dining Room (Table 4)", {"triangles": 224954, "vertices": 386541},
-            "the paper's is Brigade's demo scene, not public: Bitterli's breakfast room stands in for it", "dining-room"),
+            "the paper's is the Dining Room of Brigade's demo, not available here: Bitterli's breakfast room stands in for it"),
     }, False)
 
 
@@ -114,7 +112,7 @@ def _hakura():
             "a glass teapot, a reflective cup, a ring of columns and distant walls",
             {"triangles": None, "vertices": None, "objects": None, "reflective": 1, "refractive": 1},
             "the paper gives no triangle, vertex or column counts; here the full-resolution teapot (15,704 triangles), "
-            "a cup, 8 columns and 4 walls", "teapot-lens"),
+            "a cup, 8 columns and 4 walls"),
     }, False)
 
 
@@ -172,7 +170,7 @@ def scene_count_lines(rows, paper):
         out.append("- %s / %s: %s" % (scene, s.name, count_cells(counts_here(r), s.counts, p.thousands)))
     differs = []
     for scene in first:
-        line = "%s: %s" % (p.scenes[scene].group, p.scenes[scene].differs)
+        line = "%s: %s" % (p.scenes[scene].group or scene, p.scenes[scene].differs)
         if line not in differs:
             differs.append(line)
     out += ["", "What differs and why: %s." % "; ".join(differs), ""]

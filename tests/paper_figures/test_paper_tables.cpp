@@ -167,7 +167,7 @@ label = "rt"
     const std::string counts = "- dining-room / Dining Room (Table 4): " + countCell("triangles", stats, "triangles", 224954) + ", " +
                                countCell("vertices", stats, "vertices", 386541) + "\n";
     EXPECT_NE(text.find("Scene counts, here / Sabino 2012 Tables 3 and 4:\n\n" + counts), std::string::npos) << counts << "\n" << text;
-    EXPECT_NE(text.find("What differs and why: dining-room: the paper's is Brigade's demo scene"), std::string::npos) << text;
+    EXPECT_NE(text.find("What differs and why: dining-room: the paper's is the Dining Room of Brigade's demo"), std::string::npos) << text;
     EXPECT_EQ(text.find("- whitted-classic"), std::string::npos) << text;
 }
 
