@@ -15,7 +15,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "report"))
-import exr  # noqa: E402  (the project's reader of the runner's EXRs)
+import images  # noqa: E402  (the report's reader of the runner's images, on OpenImageIO)
 
 CONSTANT_RAYGEN = """#version 460
 #extension GL_GOOGLE_include_directive : require
@@ -66,8 +66,8 @@ def main():
     if replaced.returncode != 0:
         failures.append(f"the constant shader: exit {replaced.returncode} {replaced.stderr[-300:]}")
     else:
-        pixels = exr.read(work / "constant.exr")
-        colours = {c: sorted(set(pixels[c].ravel().tolist())) for c in ("R", "G", "B")}
+        pixels = images.rgb(str(work / "constant.exr"))
+        colours = {c: sorted(set(pixels[:, :, i].ravel().tolist())) for i, c in enumerate(("R", "G", "B"))}
         rays = primary_rays(replaced.stdout)
         print(f"constant shader: values {colours}, primary rays {rays}")
         # Every pixel the shader's colour, and no rays counted.
