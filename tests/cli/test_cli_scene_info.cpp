@@ -1,5 +1,6 @@
 // The `scenes` and `scene-info` commands on good input: exit status 0, the counts on stdout,
-// nothing on stderr.
+// nothing on stderr but warnings, each once.
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -81,6 +82,11 @@ TEST(CliScenes, PaperScenesWithTheRepositorysAssets) {
     EXPECT_EQ(reflective, 3u);
     EXPECT_EQ(refractive, 23u);
     EXPECT_CONTAINS(r.err, "dropped 4 degenerate triangle(s)") << "Sponza's zero-area triangles are reported";
+    // Each warning once, though sponza-spheres and sponza-armadillo both load Sponza.
+    std::map<std::string, int> seen;
+    std::istringstream lines(r.err);
+    for (std::string line; std::getline(lines, line);) ++seen[line];
+    for (const auto& [line, count] : seen) EXPECT_EQ(count, 1) << line;
 }
 
 }  // namespace
