@@ -25,8 +25,9 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   # scene core and images
   libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR
-  libopenexr-dev libpng-dev libjpeg-dev libstb-dev
+  # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR; OpenImageIO for
+  # the rest (TIFF, PFM, DDS, WebP, ...), in a plugin the program loads only when it meets such a file
+  libopenexr-dev libpng-dev libjpeg-dev libstb-dev libopenimageio-dev
   # metrics (SSIM's filtering)
   libopencv-dev
   # tests and benchmarks
