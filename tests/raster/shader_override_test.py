@@ -7,9 +7,9 @@ name; a folder without the shader leaves the embedded one in place.
     shader_override_test.py HYBRIDLAB SHADER_INCLUDE_DIR WORK_DIR
 
 Exit 77 (skipped) without glslc or without a ray-tracing Vulkan device (Mesa 25's lavapipe has one)."""
+import json
 import os
 import pathlib
-import re
 import shutil
 import subprocess
 import sys
@@ -29,12 +29,15 @@ void main() {
 
 def render(hybridlab, out, env):
     return subprocess.run([hybridlab, "render", "--scene", "whitted-classic", "--width", "32", "--height", "18", "--technique", "whitted",
-                           "--param", "rays=vulkan", "--out", str(out)], env=env, capture_output=True, text=True, timeout=600)
+                           "--param", "rays=vulkan", "--out", str(out), "--json"], env=env, capture_output=True, text=True, timeout=600)
 
 
 def primary_rays(stdout):
-    match = re.search(r"^rays_primary\s+(\d+)", stdout, re.MULTILINE)
-    return int(match.group(1)) if match else None
+    """The frame's rays_primary counter (render --json holds every counter, 0 included)."""
+    try:
+        return int(json.loads(stdout)["counters"]["rays_primary"])
+    except (ValueError, KeyError):
+        return None
 
 
 def main():
