@@ -44,8 +44,10 @@ PACKAGES=(
   vulkan-validationlayers
   # metrics cross-check (tests)
   python3-skimage python3-numpy
-  # reports and paper figures (Debian's /usr/bin/python3): charts, the result set's images, its records' schema
-  python3-matplotlib python3-openimageio python3-jsonschema
+  # reports and paper figures (Debian's /usr/bin/python3): charts, the result set's images, its records'
+  # schema; and zlib for the report's viewer (pako, copied beside it: the browser inflates the result
+  # set's EXRs with it)
+  python3-matplotlib python3-openimageio python3-jsonschema node-pako
   # the viewer's browser test only (tests/report/viewer: headless Chromium driven by playwright-core,
   # and Ajv for the results schema, both from npm); the hybridlab program needs neither
   chromium nodejs

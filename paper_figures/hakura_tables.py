@@ -19,9 +19,10 @@ them (two-term-rt, lem-tau3, lem-tau5, lem-single, lem-no-prevention; lem-displa
 lem-display-single, the bake at the display's resolution, where present). From a result set of
 experiments/configs/hakura2001_em_size.toml, the EM resolution table: SSIM and FLIP on the lens
 pixels of lem-display (EM 128 texels a face), lem-display-256 and lem-display-512-3vp at each view
-and size."""
+and size. Under the tables, teapot-lens beside what the paper says of its scene (paper_scenes.py)."""
 import statistics
 
+import paper_scenes
 import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 import timing
@@ -193,7 +194,8 @@ def main():
     sizes = sorted({results.resolution(r) for r in rows if r["scene"] == "teapot-lens" and r["view"] == "camera"},
                    key=lambda s: int(s.split("x")[0]))
     tables = [line for size in sizes for line in results_table(rows, size)]
-    results.write_table(tables + figure8(rows) + figure9(rows) + em_resolution(rows), a.out, results.device_line(a.result_dir, rows))
+    results.write_table(tables + figure8(rows) + figure9(rows) + em_resolution(rows) + paper_scenes.scene_count_lines(rows, "hakura2001"),
+                        a.out, results.device_line(a.result_dir, rows))
 
 
 if __name__ == "__main__":

@@ -13,10 +13,12 @@ run's repeats; means along a path are over its frames. The technique entries are
 (a `rays` parameter, walewski2019_backends.toml) get one pair of tables per backend, each run
 compared with rt_only and whitted on its own backend. A speed-up is "1.70x (1.64-1.77)", the median
 and 95% interval of the per-round ratios, where the records hold the runner's rounds (timing.py),
-else the ratio of the two medians."""
+else the ratio of the two medians. Under the tables, the scenes' counts beside Table 4's
+(paper_scenes.py)."""
 import statistics
 import sys
 
+import paper_scenes
 import report_modules  # noqa: F401  (puts report/ on sys.path)
 import results
 import timing
@@ -141,6 +143,7 @@ def main():
             lines += table5(same, scenes)
             if len(backends) == 1 or any(r["frame"] >= 0 for r in same):  # Table 6 needs camera-path runs
                 lines += table6(same, scenes)
+        lines += paper_scenes.scene_count_lines(rows, "walewski2019")
     results.write_table(lines, a.out, results.device_line(a.result_dir, rows))
 
 

@@ -45,11 +45,17 @@ def lines(result_dir, records):
 
 
 def write(result_dir, records):
-    """The device block as (HTML, Markdown lines)."""
+    """The device block as (HTML, Markdown lines); the HTML's warning is warning_html's, which the
+    page shows at its top."""
     rows, warning = lines(result_dir, records)
     page = '<table class="device">' + "".join("<tr><th>%s</th><td>%s</td></tr>" % (html.escape(k), html.escape(v)) for k, v in rows) + "</table>"
     md = ["", "Measured on: " + "; ".join("%s: %s" % kv for kv in rows) + "."]
     if warning:
-        page += '<p class="warning">Warning: %s</p>' % html.escape(warning)
         md += ["", "**Warning:** " + warning]
     return page, md
+
+
+def warning_html(result_dir, records):
+    """The device's warning as a paragraph for the top of the page ("" without one)."""
+    _, warning = lines(result_dir, records)
+    return '<p class="warning">Warning: %s</p>' % html.escape(warning) if warning else ""

@@ -20,7 +20,9 @@ import os
 import statistics
 
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import axis_format
 import matplotlib.pyplot as plt
+import palette
 import results as rs
 import viewer
 from figure_files import point_links, save
@@ -126,45 +128,81 @@ def summary_rows(seqs, baseline, baseline_scene):
     return [(k, sequence_summary(rows), baseline.get((k[1], k[4]))) for k, rows in sorted(seqs.items(), key=lambda item: rs.natural_key(item[0])) if k[0] != baseline_scene]
 
 
-def along_path_by_technique(seqs, out_dir, name, title, baseline):
-    """Rows: techniques; columns: frame time, SSIM, FLIP, temporal error per frame. Each setting's
-    worst frame is marked (the largest frame time, the lowest SSIM, the highest FLIP) and its median
-    drawn dotted; the same setting's median SSIM on the baseline scene is drawn dashed."""
+def worst_beyond_noise(rows, value, higher_is_better=True):
+    """(value, record) of the sequence's worst frame on `value` where it stands out from the
+    sequence by more than the noise, else None: for the frame time, a spike beyond the timing noise
+    (spike_beyond_noise); for a score, worse than the sequence's median by more than
+    axis_format.SCORE_TOLERANCE (a dip of 2e-6 in SSIM is no failure)."""
+    w = worst(rows, value, higher_is_better)
+    if w is None:
+        return None
+    if value is frame_ms:
+        return w if spike_beyond_noise(rows) else None
+    return w if abs(w[0] - median_of(rows, value)) > axis_format.SCORE_TOLERANCE else None
+
+
+PANELS = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP (LDR) mean", False),
+          (temporal, "temporal error", False))
+NO_MARK = {frame_ms: "no frame time beyond the timing noise", ssim: "no frame worse than its median by more than %g" % axis_format.SCORE_TOLERANCE,
+           flip: "no frame worse than its median by more than %g" % axis_format.SCORE_TOLERANCE}
+
+
+def failure_figure(seqs, title, baseline, colours):
+    """Rows: techniques; columns: frame time, SSIM, FLIP, temporal error per frame, each setting in
+    its report-wide colour (`colours`). Each setting's worst frame is marked where it stands out by
+    more than the noise (worst_beyond_noise), a panel without any mark says so, and each setting's
+    median is drawn dotted; the same setting's median SSIM on the baseline scene is drawn dashed.
+    The value axes are plain numbers, a score axis at least the tolerance wide (axis_format)."""
     techniques = sorted({k[3] for k in seqs})
     fig, axes = plt.subplots(len(techniques), 4, figsize=(17, 2.9 * len(techniques)), squeeze=False)
-    cmap = plt.get_cmap("tab10")
-    panels = ((frame_ms, "frame time (ms, median)", False), (ssim, "SSIM", True), (flip, "FLIP (LDR) mean", False),
-              (temporal, "temporal error", False))
     for row, technique in zip(axes, techniques):
         variants = sorted((k for k in seqs if k[3] == technique), key=rs.natural_key)
-        for i, k in enumerate(variants):
-            rows, colour = seqs[k], cmap(i % cmap.N)
-            for ax, (value, _, higher_is_better) in zip(row, panels):
-                pts = [r for r in rows if value(r) is not None]
+        for ax, (value, _, higher_is_better) in zip(row, PANELS):
+            drawn, marked = [], False
+            for k in variants:
+                pts = [r for r in seqs[k] if value(r) is not None]
                 if not pts:
                     continue
+                colour = colours[k[4]]
                 frames, ys = [r["frame"] for r in pts], [value(r) for r in pts]
+                drawn += ys
                 ax.plot(frames, ys, lw=1.2, color=colour, label=k[4] if value is frame_ms else None)
                 ax.scatter(frames, ys, s=9, color=colour).set_urls(point_links(pts))
                 ax.axhline(statistics.median(ys), color=colour, ls=":", lw=0.8)
-                if value is not temporal and (value is not frame_ms or sequence_summary(rows)["spike_beyond_noise"]):
-                    y, r = worst(pts, value, higher_is_better)
-                    ax.scatter([r["frame"]], [y], s=70, marker="v" if higher_is_better else "^", facecolors="none",
-                               edgecolors="red", linewidths=1.3, zorder=5)
-            base = baseline.get((k[1], k[4]))
-            if base and base["median_ssim"] is not None:
-                row[1].axhline(base["median_ssim"], color=colour, ls="--", lw=0.8)
-        for ax, (_, label, _) in zip(row, panels):
+                w = worst_beyond_noise(seqs[k], value, higher_is_better) if value in NO_MARK else None
+                if w:
+                    marked = True
+                    ax.scatter([w[1]["frame"]], [w[0]], s=70, marker="v" if higher_is_better else "^", facecolors="none",
+                               edgecolors="red", linewidths=1.3, zorder=5, label=WORST_MARK)
+                if value is ssim:
+                    base = baseline.get((k[1], k[4]))
+                    if base and base["median_ssim"] is not None:
+                        ax.axhline(base["median_ssim"], color=colour, ls="--", lw=0.8)
+                        drawn.append(base["median_ssim"])
+            if value in (ssim, flip):
+                axis_format.score_axis(ax, drawn)
+            else:
+                axis_format.plain(ax.yaxis)
+            if drawn and value in NO_MARK and not marked:
+                ax.text(0.5, 0.03, NO_MARK[value], transform=ax.transAxes, ha="center", va="bottom", fontsize=7, color="dimgrey")
+        for ax, (_, label, _) in zip(row, PANELS):
             ax.set_xlabel("frame")
             ax.set_ylabel(label, fontsize=8)
             ax.grid(alpha=0.3)
         row[0].set_title(technique, loc="left", fontsize=9, fontweight="bold")
         # The settings' key beside the row, not over its data.
-        row[-1].legend(*row[0].get_legend_handles_labels(), fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
-    fig.suptitle(title + "\nred: each setting's worst frame (frame time: only a spike beyond the timing noise); dotted: its median along "
-                 "the path" + ("; dashed (SSIM): its median on the baseline scene" if baseline else ""), fontsize=10)
+        handles, labels = row[0].get_legend_handles_labels()
+        keep = [(h, lab) for h, lab in zip(handles, labels) if lab != WORST_MARK]
+        row[-1].legend([h for h, _ in keep], [lab for _, lab in keep], fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                       frameon=False)
+    fig.suptitle(title + "\nred: a setting's worst frame where it stands out by more than the noise (frame time: the timing "
+                 "intervals; scores: %g); dotted: its median along the path" % axis_format.SCORE_TOLERANCE
+                 + ("; dashed (SSIM): its median on the baseline scene" if baseline else ""), fontsize=10)
     fig.tight_layout()
-    return save(fig, out_dir, name, [r for rows in seqs.values() for r in rows])
+    return fig
+
+
+WORST_MARK = "worst frame"
 
 
 def worst_cell(w, spec):
@@ -204,18 +242,20 @@ def markdown_table(rows, link, with_baseline):
 
 def html_table(rows, link, with_baseline):
     header = HEADER + (BASELINE_HEADER if with_baseline else [])
-    out = ['<table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in header) + "</tr></thead><tbody>"]
+    out = ['<div class="wide"><table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in header) + "</tr></thead><tbody>"]
     for key, s, b in rows:
         cells = [html.escape(c) for c in row_cells(key, s, b, with_baseline)]
         if s["worst_ssim"]:
             cells[6] = '<a href="%s" title="the worst frame in the viewer">%s</a>' % (html.escape(link(s["worst_ssim"][1]["id"])), cells[6])
         out.append("<tr>" + "".join("<td>%s</td>" % c for c in cells) + "</tr>")
-    return "\n".join(out) + "\n</tbody></table>"
+    return "\n".join(out) + "\n</tbody></table></div>"
 
 
-def write_section(records, out_dir, baseline_scene=BASELINE_SCENE):
-    """Writes the figures; returns the section as (HTML, Markdown lines), or None when no path has
-    two frames."""
+def write_section(records, out_dir, baseline_scene=BASELINE_SCENE, colours=None):
+    """Writes the figures, each setting in its report-wide colour (`colours`, palette.py's, by
+    default those of `records`); returns the section as (HTML, Markdown lines), or None when no
+    path has two frames."""
+    colours = colours or palette.setting_colours(records)
     seqs = sequences(records)
     if not seqs:
         return None
@@ -227,7 +267,8 @@ def write_section(records, out_dir, baseline_scene=BASELINE_SCENE):
     for (scene, res, path), group in sorted(by_path.items()):
         name = "failures-%s-%s-%s" % (os.path.basename(scene).replace(".toml", ""), res, path)
         title = "%s at %s along %s: per technique and frame" % (scene, res, path)
-        figures.append(((scene, res, path), along_path_by_technique(group, out_dir, name, title, baseline)))
+        rows = [r for seq in group.values() for r in seq]
+        figures.append(((scene, res, path), save(failure_figure(group, title, baseline, colours), out_dir, name, rows)))
     rows = summary_rows(seqs, baseline, baseline_scene)
     with_baseline = bool(baseline)
     beyond = ("the slowest frame's 95% interval lies wholly above the path's median" if all("ci_low" in r["frame_ms"] for rows in seqs.values()

@@ -59,7 +59,8 @@ def point_links(records):
 
 
 def embed_html(svg, out_dir):
-    """The figure in index.html: an <object>, not an <img>, so that its points link to the viewer."""
+    """The figure in index.html: an <object>, not an <img>, so that its points link to the viewer,
+    with its files (SVG and PDF) named beside it."""
     r = os.path.relpath(svg, out_dir)
-    return ('<p><object data="%s" type="image/svg+xml" style="max-width:100%%"></object><br><a href="%s">svg</a> <a href="%s">pdf</a></p>'
-            % (html.escape(r), html.escape(r), html.escape(r[:-4] + ".pdf")))
+    return ('<figure><object data="%s" type="image/svg+xml"></object><figcaption>%s: <a href="%s">SVG</a>, <a href="%s">PDF</a>'
+            '</figcaption></figure>' % (html.escape(r), html.escape(os.path.basename(r)[:-4]), html.escape(r), html.escape(r[:-4] + ".pdf")))

@@ -1,6 +1,8 @@
 """The report's colours: one hue per technique, and per technique one shade per setting (darker to
 lighter in the settings' name order), so that a chart with a dozen settings still reads as a few
-techniques."""
+techniques. The colours are chosen once for the whole result set (setting_colours on every
+record), so that a setting has the same colour on every chart and in the viewer, whichever
+settings a chart shows."""
 import colorsys
 
 import matplotlib.colors as mcolors
@@ -19,7 +21,8 @@ def shades(rgb, n):
 
 
 def setting_colours(records):
-    """{setting name (results.variant): colour} for the records' settings."""
+    """{setting name (results.variant): colour} for the records' settings: pass every record of the
+    result set, so that each setting keeps its colour whichever subset a chart draws."""
     by_technique = {}
     for r in records:
         by_technique.setdefault(r["technique"], set()).add(rs.variant(r))
@@ -30,3 +33,8 @@ def setting_colours(records):
         names = sorted(by_technique[technique], key=rs.natural_key)
         colours.update(zip(names, shades(base, len(names))))
     return colours
+
+
+def hex_colours(colours):
+    """The same colours as "#rrggbb" (the viewer's, and the SVGs' fill)."""
+    return {name: mcolors.to_hex(c) for name, c in colours.items()}

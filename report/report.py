@@ -23,6 +23,7 @@ import statistics
 import sys
 
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
+import axis_format
 import device
 import failures
 import images
@@ -56,14 +57,14 @@ def log_ticks(axis):
     axis.set_minor_formatter(NullFormatter())
 
 
-def speed_accuracy(v, out_dir, key, title):
+def speed_accuracy(v, out_dir, key, title, colours=None):
     """The speed-accuracy figures of a scene and size: on the wall clock, and on each other clock
     (CPU time, device time) that one of its settings' records hold."""
     records = [r for s in v.settings.values() for r in s.records]
-    figures = [save(speed_accuracy_figure(v, title), out_dir, "speed-accuracy-" + key, records)]
+    figures = [save(speed_accuracy_figure(v, title, colours=colours), out_dir, "speed-accuracy-" + key, records)]
     for clock in timing.CLOCKS[1:]:
         if any(timing.setting_time(s.records, clock) for s in v.applicable()):
-            figures.append(save(speed_accuracy_figure(v, "%s, on %s" % (title, clock.what), clock), out_dir,
+            figures.append(save(speed_accuracy_figure(v, "%s, on %s" % (title, clock.what), clock, colours), out_dir,
                                 "speed-accuracy-%s-%s" % (clock.key.replace("_ms", ""), key), records))
     return figures
 
@@ -77,13 +78,14 @@ def bar_words(times):
     return "bar: 95% interval of the median (runs' range where none)"
 
 
-def speed_accuracy_figure(v, title, clock=timing.WALL):
+def speed_accuracy_figure(v, title, clock=timing.WALL, colours=None):
     """Time on `clock` (the wall clock's frame_ms by default) against SSIM and FLIP, a point per
     applicable setting that has that clock (its median over the runs, a bar over that median's 95%
     interval, or from its best to its worst run in a result set without intervals), the Pareto
     front through the settings, the reference's frame time (wall clock only: it has no other), the
     points numbered with the key beside the axes; a row per region scored (the whole image, then
-    the reflective and refractive pixels)."""
+    the reflective and refractive pixels). Each setting in its report-wide colour (`colours`,
+    palette.py's; by default those of the scene's records)."""
     regions = [rg for rg in REGIONS if rg[0] in dict(v.regions)] or [REGIONS[0]]
     ordered = sorted(v.applicable(), key=lambda s: (s.technique, rs.natural_key(s.name)))
     number = {s.name: i + 1 for i, s in enumerate(ordered)}  # the same numbers on every clock's chart
@@ -91,7 +93,7 @@ def speed_accuracy_figure(v, title, clock=timing.WALL):
     settings = [s for s in ordered if time[s.name]]
     untimed = [s.name for s in ordered if not time[s.name]]
     wall = clock is timing.WALL
-    col = palette.setting_colours([r for s in settings for r in s.records])
+    col = colours or palette.setting_colours([r for s in v.settings.values() for r in s.records])
     fig, axes = plt.subplots(len(regions), 2, figsize=(13, 4.6 * len(regions)), squeeze=False)
     fig.subplots_adjust(left=0.06, right=0.70, top=0.9 if len(regions) > 1 else 0.86, bottom=0.1, hspace=0.32, wspace=0.25)
     panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix, _) in enumerate(regions)
@@ -125,6 +127,7 @@ def speed_accuracy_figure(v, title, clock=timing.WALL):
                       fontsize=8)
         ax.set_ylabel(("SSIM%s (higher is better)" if name == "ssim" else "FLIP mean%s (lower is better)") % suffix)
         ax.grid(alpha=0.3, which="both")
+        axis_format.score_axis(ax, [p[1] for p in points])
         ax.points = points
     for ax, *_ in panels:
         point_labels.place(ax, [(t, y) for t, y, _ in ax.points], [str(number[n]) for _, _, n in ax.points])
@@ -147,15 +150,19 @@ def rays_per_pixel(r):
     return None if rays is None else rays / float(r["width"] * r["height"])
 
 
-def work_accuracy(records, out_dir, key, title):
+def work_accuracy(records, out_dir, key, title, col):
     """SSIM against rays per pixel: the speed-accuracy chart's second view, by work that carries over
-    between machines instead of this machine's milliseconds (runs without rays sit at 0)."""
-    col = palette.setting_colours(records)
+    between machines instead of this machine's milliseconds (runs without rays sit at 0); each
+    setting in its report-wide colour (`col`)."""
+    scores = []
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    for v in sorted(col, key=rs.natural_key):
+    for v in sorted({rs.variant(r) for r in records}, key=rs.natural_key):
         rows = [r for r in records if rs.variant(r) == v and rays_per_pixel(r) is not None and rs.metric(r, "whole", "ssim") is not None]
         ax.scatter([rays_per_pixel(r) for r in rows], [rs.metric(r, "whole", "ssim") for r in rows], color=col[v], label=v, s=22,
                    alpha=0.85).set_urls(point_links(rows))
+        scores += [rs.metric(r, "whole", "ssim") for r in rows]
+    axis_format.score_axis(ax, scores)
+    axis_format.plain(ax.xaxis)
     ax.set_xlabel("rays per pixel")
     ax.set_ylabel("SSIM (higher is better)")
     ax.grid(alpha=0.3)
@@ -193,13 +200,14 @@ def stage_breakdown(records, out_dir, key, title):
     return save(fig, out_dir, "stages-" + key, records)
 
 
-def along_path(records, out_dir, key, title):
-    """Frame time, FLIP and temporal error per frame along a camera path, one series a variant; a
-    second row of FLIP and temporal error on the reflective and refractive pixels where scored."""
+def along_path(records, out_dir, key, title, col):
+    """Frame time, FLIP and temporal error per frame along a camera path, one series a variant in
+    its report-wide colour (`col`); a second row of FLIP and temporal error on the reflective and
+    refractive pixels where scored."""
     regions = regions_of(records) or [REGIONS[0]]
     fig, axes = plt.subplots(len(regions), 3, figsize=(15, 4 * len(regions)), squeeze=False)
-    col = palette.setting_colours(records)
-    for v in sorted(col, key=rs.natural_key):
+    flip_values = {i: [] for i in range(len(regions))}
+    for v in sorted({rs.variant(r) for r in records}, key=rs.natural_key):
         rows = sorted((r for r in records if rs.variant(r) == v), key=lambda r: r["frame"])
         axes[0][0].plot([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], marker="o", ms=3, color=col[v], label=v)
         axes[0][0].scatter([r["frame"] for r in rows], [r["frame_ms"]["median"] for r in rows], s=12, color=col[v]).set_urls(point_links(rows))
@@ -208,6 +216,7 @@ def along_path(records, out_dir, key, title):
             flips = [rs.metric(r, region, "flip") for r in scored]
             axes[i][1].plot([r["frame"] for r in scored], flips, marker="o", ms=3, color=col[v])
             axes[i][1].scatter([r["frame"] for r in scored], flips, s=12, color=col[v]).set_urls(point_links(scored))
+            flip_values[i] += flips
             temporal = [(r["frame"], r[temporal_key]) for r in rows if temporal_key in r]
             if temporal:
                 axes[i][2].plot([f for f, _ in temporal], [t for _, t in temporal], marker="o", ms=3, color=col[v])
@@ -216,6 +225,8 @@ def along_path(records, out_dir, key, title):
             ax.set_xlabel("frame")
             ax.set_ylabel(label)
             ax.grid(alpha=0.3)
+            axis_format.plain(ax.yaxis)
+        axis_format.score_axis(axes[i][1], flip_values[i])
     for i in range(1, len(regions)):
         axes[i][0].set_visible(False)  # frame time is one per run, not per region
     axes[0][0].legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncol=2, frameon=False)
@@ -301,6 +312,43 @@ def markdown_summary(records):
     return "\n".join(lines)
 
 
+# The page: a table of contents, the verdict first, and nothing wider than the window (at 800 px
+# too): tables too wide for it scroll inside their own box, figures shrink to the column.
+PAGE = """<!doctype html><html><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
+<link rel="icon" href="data:,">
+<title>%(title)s</title><style>
+body{font-family:sans-serif;margin:1em;max-width:1400px} h1{font-size:1.5em;overflow-wrap:anywhere}
+h2,h3{overflow-wrap:anywhere} p{max-width:60em;overflow-wrap:anywhere}
+nav.contents{border:1px solid #ccc;padding:0.3em 1em;margin:0.5em 0 1em;font-size:14px;max-width:40em}
+nav.contents ul{margin:0.2em 0;padding-left:1.2em} nav.contents li.sub{margin-left:1.2em;list-style:circle}
+.wide{max-width:100%%;overflow-x:auto} table{border-collapse:collapse;font-size:12px}
+th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee}
+table.device th{text-align:left;cursor:auto} .warning{color:#a40;font-weight:bold} .sentence{font-size:15px}
+table.verdict{margin:0.4em 0 1em} figure{margin:0.5em 0 1.5em;max-width:100%%}
+figure object{display:block;max-width:100%%;height:auto} figcaption{font-size:13px}
+</style></head><body>
+<h1>%(title)s</h1>
+%(contents)s
+%(warning)s
+%(verdict)s
+<h2 id="device">Measured on</h2>%(device)s
+<p>%(runs)d runs. Data: <a href="%(csv)s">results.csv</a>, <a href="%(json)s">results.json</a>. The viewer shows techniques side by
+side with their differences; a run's number in the table or its point in a chart opens it there. It reads the result set's own
+images, which a browser lets a page read only from a web server: run <code>%(viewer)s</code> and open the address it prints.
+%(clock)s</p>
+%(figures)s
+%(failures)s
+<h2 id="runs">Every run</h2><p>Click a column header to sort.</p><div class="wide">%(table)s</div>
+%(script)s</body></html>"""
+
+
+def contents_html(entries):
+    """The table of contents: (id, heading) or (id, heading, depth) entries, depth 1 indented."""
+    items = ['<li class="%s"><a href="#%s">%s</a></li>' % ("sub" if (e[2] if len(e) > 2 else 0) else "", html.escape(e[0]),
+                                                         html.escape(e[1])) for e in entries]
+    return '<nav class="contents"><b>Contents</b><ul>%s</ul></nav>' % "".join(items)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("result_dir")
@@ -311,6 +359,8 @@ def main():
     records = rs.load(a.result_dir)
     if not records:
         sys.exit("report: %s holds no runs" % a.result_dir)
+    if viewer.missing():
+        sys.exit("report: " + viewer.missing())
     # Every image the report reads, checked before anything is written.
     try:
         for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
@@ -320,6 +370,7 @@ def main():
         print("report: %s" % e, file=sys.stderr)
         sys.exit(2)
     os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
+    colours = palette.setting_colours(records)  # one colour per setting for the whole report
 
     sections = []
     by_scene = collections.defaultdict(list)
@@ -327,53 +378,53 @@ def main():
         by_scene[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(by_scene.items()):
         key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
-        figs = speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res)) + [
+        figs = speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res), colours) + [
                 stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res)),
-                work_accuracy(rows, a.out, key, "%s at %s: rays per pixel against accuracy" % (scene, res))]
+                work_accuracy(rows, a.out, key, "%s at %s: rays per pixel against accuracy" % (scene, res), colours)]
         paths = collections.defaultdict(list)
         for r in rows:
             if r["frame"] >= 0:
                 paths[r["view"]].append(r)
         for path, prs in sorted(paths.items()):
-            figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path)))
+            figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path), colours))
         sections.append((scene, res, figs))
-    failure_html, failure_md = failures.write_section(records, a.out, a.baseline) or ("", [])
+    failure_html, failure_md = failures.write_section(records, a.out, a.baseline, colours) or ("", [])
     device_html, device_md = device.write(a.result_dir, records)
     verdict_html, verdict_md = verdict.write(list(verdicts.values()), viewer.link)
 
-    figure_html = []
-    for scene, res, figs in sections:
-        figure_html.append("<h2>%s at %s</h2>" % (html.escape(scene), res))
-        figure_html += [figure_files.embed_html(f, a.out) for f in figs]
     title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
-    page = ("<!doctype html><html><head><meta charset=\"utf-8\"><title>%s</title><style>"
-            "body{font-family:sans-serif;margin:1.5em} table{border-collapse:collapse;font-size:12px} "
-            "th,td{border:1px solid #ccc;padding:2px 5px} th{cursor:pointer;background:#eee} "
-            "table.device th{text-align:left;cursor:auto} .warning{color:#a40;font-weight:bold} .sentence{font-size:15px;max-width:60em} "
-            "table.verdict{margin:0.4em 0 1em}</style></head><body>"
-            "<h1>%s</h1>%s%s<p>%d runs. Data: <a href=\"%s\">results.csv</a>, <a href=\"%s\">results.json</a>. "
-            "<a href=\"viewer.html\">The viewer</a> shows techniques side by side; a run's number in the table or its point in a chart "
-            "opens it there. Click a column header to sort. %s%s</p>%s%s<h2>Every run</h2>%s%s</body></html>"
-            % (html.escape(title), html.escape(title), device_html, verdict_html, len(records), html.escape(rs.result_link(a.out, a.result_dir, "results.csv")),
-               html.escape(rs.result_link(a.out, a.result_dir, "results.json")), html.escape(timing.clock_note(records)),
-               ' <a href="#failures">Where methods fail</a>: each technique\'s worst frames along the camera paths.' if failure_html else "",
-               "\n".join(figure_html), failure_html, runs_table(records, a.out, a.result_dir),
-               TABLE_SCRIPT))
+    chart_sections = [("charts-%s-%s" % (rs.anchor(scene), res), "%s at %s" % (scene, res), figs) for scene, res, figs in sections]
+    contents = ([("verdict", "Verdict")] + [("verdict-%s-%s" % (rs.anchor(v.scene), v.size), "%s at %s" % (v.scene, v.size), 1)
+                                            for v in verdicts.values()]
+                + [("device", "Measured on")] + [(i, t, 0) for i, t, _ in chart_sections]
+                + ([("failures", "Where methods fail")] if failure_html else []) + [("runs", "Every run")])
+    figure_html = []
+    for section_id, heading, figs in chart_sections:
+        figure_html.append('<h2 id="%s">%s</h2>' % (section_id, html.escape(heading)))
+        figure_html += [figure_files.embed_html(f, a.out) for f in figs]
+    page = PAGE % dict(
+        title=html.escape(title), contents=contents_html(contents), warning=device.warning_html(a.result_dir, records),
+        verdict=verdict_html, device=device_html, runs=len(records),
+        csv=html.escape(rs.result_link(a.out, a.result_dir, "results.csv")), json=html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
+        viewer=html.escape(viewer.serve_command(a.result_dir, a.out)), clock=html.escape(timing.clock_note(records)),
+        figures="\n".join(figure_html), failures=failure_html, table=runs_table(records, a.out, a.result_dir), script=TABLE_SCRIPT)
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
     viewer.write_viewer(records, a.out, a.result_dir, title,
-                        {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()})
-    md = ["# " + title] + device_md + verdict_md + ["", "## Every setting", "",
+                        {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()},
+                        palette.hex_colours(colours))
+    md = ["# " + title] + verdict_md + ["", "## Measured on"] + device_md + ["", "## Every setting", "",
                                                     "%d runs; figures in figures/ (SVG and PDF); every run in index.html. %s" % (
                                                         len(records), timing.clock_note(records)),
                                                     markdown_summary(records)]
     for scene, res, figs in sections:
-        md += ["", "## %s at %s" % (scene, res)] + ["![](%s)" % os.path.relpath(f, a.out) for f in figs]
+        md += ["", "## %s at %s" % (scene, res)] + ["![](%s) ([PDF](%s))" % (os.path.relpath(f, a.out), os.path.relpath(f, a.out)[:-4] + ".pdf")
+                                                    for f in figs]
     md += failure_md
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("report: %s" % os.path.join(a.out, "index.html"))
-    print("viewer: %s" % os.path.join(a.out, "viewer.html"))
+    print("viewer: %s (%s)" % (os.path.join(a.out, "viewer.html"), viewer.serve_command(a.result_dir, a.out)))
 
 
 if __name__ == "__main__":

@@ -68,6 +68,12 @@ def natural_key(value):
     return [float(p) if i % 2 else p for i, p in enumerate(parts)]
 
 
+def anchor(text):
+    """A fragment id for a page section: `text` with every character but letters, digits and dashes
+    made a dash."""
+    return "".join(c if c.isalnum() or c == "-" else "-" for c in text)
+
+
 def view_name(r):
     return r["view"] + ("@%d" % r["frame"] if r["frame"] >= 0 else "")
 

@@ -12,8 +12,11 @@ reflective/refractive pixels) are medians over the same runs. From these:
 - per quality threshold (SSIM >= 0.99, 0.97, 0.95, whole image and reflective/refractive pixels)
   the fastest setting reaching it, with its speed-up over the reference and over `rt_only`; where
   others reaching it are tied with it in time (timing.py's tie rule: paired rounds, beyond the
-  noise and by more than the set's precision), the row names them all, in name order;
-- one sentence per scene saying it in words.
+  noise and by more than the set's precision), the row names them all, in name order; thresholds
+  whose answer is the same settings share one row; each row says in words whether what reaches
+  the threshold beats the reference and rt_only at all (by the same rule: a speed-up whose
+  interval lies wholly above 1 and whose median is above 1 / (1 - precision));
+- one sentence per scene saying it in words, "nothing ... beats the reference" where nothing does.
 
 A setting that changes nothing on a scene is not applicable there (`not_applicable`): left off the
 verdict and the scene's speed-accuracy chart, and listed with the reason.
@@ -201,10 +204,51 @@ class SceneVerdict:
         return [prev if prev and timing.compare(s.records, prev.records, self.tolerance)[0] == timing.TIED else None
                 for prev, s in zip([None] + settings[:-1], settings)]
 
+    def beats_reference(self, s):
+        """Whether `s` is faster than the reference by the tie rule (its speed-up's interval wholly
+        above 1 and its median above 1 / (1 - precision)); by the ratio of the medians alone in a
+        result set without rounds."""
+        ref, _ = self.speedups(s)
+        if isinstance(ref, timing.Interval):
+            return ref.low > 1.0 and ref.median > 1.0 / (1.0 - self.tolerance)
+        return ref > 1.0
+
+    def beats_rt_only(self, s):
+        """Whether `s` is faster than rt_only by the tie rule (False without rt_only, and for rt_only)."""
+        return bool(self.rt_only) and s is not self.rt_only and timing.compare(s.records, self.rt_only.records,
+                                                                               self.tolerance)[0] == timing.FASTER
+
+    def beaten(self, tied):
+        """In words, what of the reference and rt_only the settings `tied` (reaching a threshold)
+        beat: "nothing reaching it beats the reference", "beats the reference; nothing reaching it
+        beats rt_only", or "beats the reference and rt_only"."""
+        if not tied:
+            return "no setting reaches it"
+        if not any(self.beats_reference(s) for s in tied):
+            return "nothing reaching it beats the reference"
+        if self.rt_only and self.rt_only not in tied and not any(self.beats_rt_only(s) for s in tied):
+            return "beats the reference; nothing reaching it beats rt_only"
+        return "beats the reference" + (" and rt_only" if self.rt_only else "")
+
+    def threshold_rows(self):
+        """The threshold rows with their answers joined: [(the (region label, threshold) pairs a row
+        covers, the settings that answer them)], in the order of the first pair; thresholds whose
+        fastest settings are the same share one row."""
+        rows = []
+        for _, label, t, tied in self.thresholds:
+            names = [s.name for s in tied]
+            same = [row for row in rows if [s.name for s in row[1]] == names]
+            if same:
+                same[0][0].append((label, t))
+            else:
+                rows.append(([(label, t)], tied))
+        return rows
+
     def speed_words(self, s):
         """"2.10x (2.00-2.20) the reference's speed, 1.30x rt_only's"."""
         ref, rt = self.speedups(s)
-        return "%s the reference's speed%s" % (speedup_text(ref, "%.2fx"), "" if rt is None else ", %s rt_only's" % speedup_text(rt, "%.2fx"))
+        own = rt is None or s is self.rt_only  # rt_only's speed-up over itself says nothing
+        return "%s the reference's speed%s" % (speedup_text(ref, "%.2fx"), "" if own else ", %s rt_only's" % speedup_text(rt, "%.2fx"))
 
     def sentence(self):
         """The verdict in words, from the numbers of the tables."""
@@ -223,8 +267,15 @@ class SceneVerdict:
                 continue
             t, tied = reached[0]
             tie = Tie(tied, self.tolerance)
+            if not any(self.beats_reference(s) for s in tied):
+                parts.append("nothing reaching SSIM %.2f on the %s beats the reference (%.1f ms): the fastest, %s" % (
+                    t, label, self.reference_ms, tie.words(self.speed_words)))
+                continue
             noun, verb = tie.noun()
-            parts.append("the fastest %s reaching SSIM %.2f on the %s %s %s" % (noun, t, label, verb, tie.words(self.speed_words)))
+            part = "the fastest %s reaching SSIM %.2f on the %s %s %s" % (noun, t, label, verb, tie.words(self.speed_words))
+            if self.rt_only and self.rt_only not in tied and not any(self.beats_rt_only(s) for s in tied):
+                part += ", and nothing reaching it beats rt_only"
+            parts.append(part)
         fastest = Tie(fastest_of(self.applicable(), self.tolerance), self.tolerance)
         noun, verb = fastest.noun()
         text = head + ", " + "; ".join(parts) + ". The fastest %s of all %s %s" % (noun, verb, fastest.words(
@@ -271,18 +322,33 @@ def pareto_table(v):
     return header, rows
 
 
+def qualities_text(covers):
+    """The thresholds a row covers: "SSIM >= 0.99, whole image", "SSIM >= 0.99, >= 0.97 and >= 0.95,
+    whole image; SSIM >= 0.99, refl./refr. pixels"."""
+    by_region = collections.OrderedDict()
+    for label, t in covers:
+        by_region.setdefault(label, []).append(">= %.2f" % t)
+    parts = []
+    for label, ts in by_region.items():
+        joined = ts[0] if len(ts) == 1 else ", ".join(ts[:-1]) + " and " + ts[-1]
+        parts.append("SSIM %s, %s" % (joined, label))
+    return "; ".join(parts)
+
+
 def threshold_table(v):
-    """A row per threshold: the fastest setting reaching it, or the settings tied for fastest (each
-    one's time and speed-ups, in the order the row names them)."""
-    header = ["quality reached", "fastest setting", "frame ms", "x ref.", "x rt_only"]
+    """A row per answer: the thresholds it covers, the fastest setting reaching them or the settings
+    tied for fastest (each one's time and speed-ups, in the order the row names them), and whether
+    they beat the reference and rt_only, in words."""
+    header = ["quality reached", "fastest setting", "frame ms", "x ref.", "x rt_only", "in words"]
     rows = []
-    for _, label, t, tied in v.thresholds:
+    for covers, tied in v.threshold_rows():
         if not tied:
-            rows.append(["SSIM >= %.2f, %s" % (t, label), "none", "-", "-", "-"])
+            rows.append([qualities_text(covers), "none", "-", "-", "-", v.beaten(tied)])
             continue
         speeds = [v.speedups(s) for s in tied]
-        rows.append(["SSIM >= %.2f, %s" % (t, label), Tie(tied, v.tolerance), " / ".join("%.2f" % s.ms for s in tied),
-                     " / ".join(speedup_text(ref) for ref, _ in speeds), " / ".join(speedup_text(rt) for _, rt in speeds)])
+        rows.append([qualities_text(covers), Tie(tied, v.tolerance), " / ".join("%.2f" % s.ms for s in tied),
+                     " / ".join(speedup_text(ref) for ref, _ in speeds), " / ".join(speedup_text(rt) for _, rt in speeds),
+                     v.beaten(tied)])
     return header, rows
 
 
@@ -301,10 +367,10 @@ def cell_text(c, link, escape):
 
 def html_table(table, link, cls):
     header, rows = table
-    out = ['<table class="%s"><thead><tr>%s</tr></thead><tbody>' % (cls, "".join("<th>%s</th>" % html.escape(h) for h in header))]
+    out = ['<div class="wide"><table class="%s"><thead><tr>%s</tr></thead><tbody>' % (cls, "".join("<th>%s</th>" % html.escape(h) for h in header))]
     for cells in rows:
         out.append("<tr>" + "".join("<td>%s</td>" % cell_text(c, link, html.escape) for c in cells) + "</tr>")
-    return "\n".join(out) + "</tbody></table>"
+    return "\n".join(out) + "</tbody></table></div>"
 
 
 def markdown_table(table, link):
@@ -336,7 +402,7 @@ def write(verdict_list, viewer_link):
     md += ["", intro]
     for v in verdict_list:
         h, m = setting_link(viewer_link, False), setting_link(viewer_link, True)
-        page += ['<h3>%s at %s</h3>' % (html.escape(v.scene), v.size), '<p class="sentence">%s</p>' % html.escape(v.sentence()),
+        page += ['<h3 id="verdict-%s-%s">%s at %s</h3>' % (html.escape(rs.anchor(v.scene)), v.size, html.escape(v.scene), v.size), '<p class="sentence">%s</p>' % html.escape(v.sentence()),
                  "<p>Reference: %.2f ms.</p>" % v.reference_ms, html_table(threshold_table(v), h, "verdict thresholds"),
                  html_table(pareto_table(v), h, "verdict pareto")]
         md += ["", "### %s at %s" % (v.scene, v.size), "", v.sentence(), "", "Reference: %.2f ms." % v.reference_ms, ""]

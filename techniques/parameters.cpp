@@ -58,28 +58,40 @@ const ParamValue& ParameterSet::at(const std::string& name) const {
 
 namespace {
 
-ParamValue coerce(const ParamSpec& spec, const ParamValue& value, const std::string& owner) {
-    auto fail = [&](const std::string& got) -> ParamValue {
-        throw InputError(owner + ": parameter '" + spec.name + "': expected " + spec.typeDescription() + ", got " + got);
+// The given value as a message quotes it: as written when known, strings in quotes.
+std::string quoted(const ParamValue& value, const std::string& written) {
+    if (!written.empty()) return written;
+    if (auto text = std::get_if<std::string>(&value)) return "'" + *text + "'";
+    return formatParamValue(value);
+}
+
+ParamValue coerce(const ParamSpec& spec, const ParamValue& value, const std::string& owner, ParameterSource source,
+                  const std::string& written) {
+    auto fail = [&]() -> ParamValue {
+        const bool typedString = source == ParameterSource::Typed && std::holds_alternative<std::string>(value) &&
+                                 spec.type != ParamSpec::Type::Choice;
+        throw InputError(owner + ": parameter '" + spec.name + "': expected " + spec.typeDescription() + ", got " +
+                         (typedString ? "the string " : "") + quoted(value, written));
     };
-    const std::string* text = std::get_if<std::string>(&value);
+    // Command-line text converts; a typed file's string is a string.
+    const std::string* text = source == ParameterSource::Text || spec.type == ParamSpec::Type::Choice ? std::get_if<std::string>(&value) : nullptr;
     switch (spec.type) {
     case ParamSpec::Type::Bool:
         if (auto b = std::get_if<bool>(&value)) return *b;
         if (text && (*text == "true" || *text == "1")) return true;
         if (text && (*text == "false" || *text == "0")) return false;
-        return fail(formatParamValue(value));
+        return fail();
     case ParamSpec::Type::Int: {
         long long v;
         if (auto i = std::get_if<long long>(&value)) {
             v = *i;
         } else if (text) {
             auto [p, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
-            if (ec != std::errc() || p != text->data() + text->size()) return fail("'" + *text + "'");
+            if (ec != std::errc() || p != text->data() + text->size()) return fail();
         } else {
-            return fail(formatParamValue(value));
+            return fail();
         }
-        if (v < spec.min || v > spec.max) return fail(std::to_string(v));
+        if (v < spec.min || v > spec.max) return fail();
         return v;
     }
     case ParamSpec::Type::Float: {
@@ -93,13 +105,13 @@ ParamValue coerce(const ParamSpec& spec, const ParamValue& value, const std::str
             try {
                 v = std::stod(*text, &used);
             } catch (const std::exception&) {
-                return fail("'" + *text + "'");
+                return fail();
             }
-            if (used != text->size()) return fail("'" + *text + "'");
+            if (used != text->size()) return fail();
         } else {
-            return fail(formatParamValue(value));
+            return fail();
         }
-        if (!std::isfinite(v) || v < spec.min || v > spec.max) return fail(number(v));
+        if (!std::isfinite(v) || v < spec.min || v > spec.max) return fail();
         return v;
     }
     case ParamSpec::Type::Choice:
@@ -107,7 +119,7 @@ ParamValue coerce(const ParamSpec& spec, const ParamValue& value, const std::str
             for (const auto& c : spec.choices)
                 if (c == *text) return *text;
         }
-        return fail(formatParamValue(value));
+        return fail();
     }
     return value;
 }
@@ -115,10 +127,11 @@ ParamValue coerce(const ParamSpec& spec, const ParamValue& value, const std::str
 }  // namespace
 
 ParameterSet resolveParameters(const std::vector<ParamSpec>& specs, const std::vector<std::pair<std::string, ParamValue>>& given,
-                               const std::string& owner) {
+                               const std::string& owner, ParameterSource source, const std::vector<std::string>& written) {
     ParameterSet set;
     for (const auto& s : specs) set.set(s.name, s.defaultValue);
-    for (const auto& [name, value] : given) {
+    for (std::size_t k = 0; k < given.size(); ++k) {
+        const auto& [name, value] = given[k];
         const ParamSpec* spec = nullptr;
         for (const auto& s : specs)
             if (s.name == name) spec = &s;
@@ -127,7 +140,7 @@ ParameterSet resolveParameters(const std::vector<ParamSpec>& specs, const std::v
             for (const auto& s : specs) known += (known.empty() ? "" : ", ") + s.name;
             throw InputError(owner + ": unknown parameter '" + name + "'" + (known.empty() ? " (it has no parameters)" : " (parameters: " + known + ")"));
         }
-        set.set(name, coerce(*spec, value, owner));
+        set.set(name, coerce(*spec, value, owner, source, k < written.size() ? written[k] : std::string()));
     }
     return set;
 }

@@ -48,12 +48,18 @@ private:
     std::map<std::string, ParamValue> values_;
 };
 
+// Where given values come from: command-line text, each string converted to the declared type, or
+// a typed file (an experiment config's TOML), whose values must have the declared type (a string
+// "3" is not an integer; an integer is accepted for a Float).
+enum class ParameterSource { Text, Typed };
+
 // Checks `given` against `specs` (unknown names, types, ranges, choices) and fills in defaults.
-// Strings are converted to the declared type (command-line text); typed values (from TOML) must
-// match it (an integer is accepted for a Float). Throws InputError naming the parameter and what
-// was expected; `owner` (e.g. "technique whitted") leads the message.
+// Throws InputError naming the parameter and what was expected; `owner` (e.g. "technique whitted")
+// leads the message. `written`, when not empty, holds each given value as its file writes it
+// (parallel to `given`), which the message quotes ("got 2.0", not the double's "2").
 ParameterSet resolveParameters(const std::vector<ParamSpec>& specs, const std::vector<std::pair<std::string, ParamValue>>& given,
-                               const std::string& owner);
+                               const std::string& owner, ParameterSource source = ParameterSource::Text,
+                               const std::vector<std::string>& written = {});
 
 // Splits "key=value" command-line text.
 std::pair<std::string, ParamValue> parseParamAssignment(const std::string& text);

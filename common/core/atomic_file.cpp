@@ -99,7 +99,10 @@ fs::path temporaryPathFor(const fs::path& path) {
     return path.parent_path() / (std::string(kTemporaryPrefix) + std::to_string(::getpid()) + "-" + path.filename().string());
 }
 
-void writeFileAtomically(const fs::path& path, std::string_view bytes) {
+namespace {
+
+// `bytes` written whole under `path`'s temporary name, which is returned; failures name `path`.
+fs::path writeTemporary(const fs::path& path, std::string_view bytes) {
     checkTarget(path);
     fs::path tmp;
     const int fd = createTemporary(path, tmp);
@@ -112,7 +115,27 @@ void writeFileAtomically(const fs::path& path, std::string_view bytes) {
         ::unlink(tmp.c_str());
         throw IoError::fromErrno(path, "write", error);
     }
-    renameOver(tmp, path);
+    return tmp;
+}
+
+}  // namespace
+
+void writeFileAtomically(const fs::path& path, std::string_view bytes) { renameOver(writeTemporary(path, bytes), path); }
+
+FileGroup::~FileGroup() {
+    for (const auto& [tmp, path] : staged_) ::unlink(tmp.c_str());
+}
+
+void FileGroup::write(const fs::path& path, std::string_view bytes) { staged_.emplace_back(writeTemporary(path, bytes), path); }
+
+std::vector<fs::path> FileGroup::commit() {
+    std::vector<fs::path> files;
+    for (const auto& [tmp, path] : staged_) {
+        renameOver(tmp, path);
+        files.push_back(path);
+    }
+    staged_.clear();
+    return files;
 }
 
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {

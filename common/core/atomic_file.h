@@ -10,6 +10,8 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace hybridlab {
 
@@ -20,6 +22,25 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
 // the complete file at the temporary path it is given and throws on failure; the file it leaves
 // must exist and be a regular file, else the target is not touched.
 void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+
+// Files that appear together or not at all (a scene file and the images it names): each is
+// written whole under its temporary name as writeFileAtomically writes one (a failure names the
+// file, not its temporary), and commit() renames them all into place; whatever is not committed
+// is removed.
+class FileGroup {
+public:
+    FileGroup() = default;
+    ~FileGroup();
+    FileGroup(const FileGroup&) = delete;
+    FileGroup& operator=(const FileGroup&) = delete;
+
+    void write(const std::filesystem::path& path, std::string_view bytes);
+    // The files, in the order written.
+    std::vector<std::filesystem::path> commit();
+
+private:
+    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // (temporary, file)
+};
 
 // fs::create_directories, failing with IoError naming `dir` and the reason.
 void createDirectories(const std::filesystem::path& dir);

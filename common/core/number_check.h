@@ -6,14 +6,17 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace hybridlab {
 
-// Empty when `v` is finite and in [min, max]; else "expected a number in [min, max], got v".
-std::string numberProblem(double v, double min, double max);
+// Empty when `v` is finite and in [min, max]; else "expected a number in [min, max], got v", with
+// v as `written` when given (the text the user wrote: "1e400", not the "inf" it became).
+std::string numberProblem(double v, double min, double max, std::string_view written = {});
 
-// Empty when `v` is in [min, max]; else "expected an integer in [min, max], got v".
-std::string integerProblem(long long v, long long min, long long max);
+// Empty when `v` is in [min, max]; else "expected an integer in [min, max], got v" (v as `written`
+// when given).
+std::string integerProblem(long long v, long long min, long long max, std::string_view written = {});
 
 // `v` as messages print numbers (shortest of %g's forms: 1e+06, 0.5, 30).
 std::string formatNumber(double v);
@@ -25,6 +28,7 @@ inline constexpr double kSceneTime = 1e6;           // |seconds| of scene time (
 inline constexpr int kTessellation = 4096;          // slices or stacks of a sphere or cylinder
 inline constexpr long long kPrimitiveVertices = 4'000'000;  // one tessellated primitive's vertices
 inline constexpr int kFrame = 10'000'000;           // a frame number on a camera path
+inline constexpr float kSceneCoordinate = 1e12f;    // |world coordinate| of a vertex (as far as a camera's far plane)
 }  // namespace limits
 
 }  // namespace hybridlab

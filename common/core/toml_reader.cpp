@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string_view>
 
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/number_check.h"
 
 namespace hybridlab {
@@ -32,20 +35,19 @@ std::string commaSeparated(const std::vector<std::string>& items) {
 }
 
 TomlDocument::TomlDocument(const fs::path& file) : file_(file) {
-    if (!fs::exists(file)) throw InputError(file.string() + ": file not found");
-    if (fs::is_directory(file)) throw InputError(file.string() + ": is a directory, expected a TOML file");
+    text_ = std::make_shared<const std::string>(readInputFile(file, "a TOML file"));
     try {
-        table_ = std::make_shared<toml::table>(toml::parse_file(file.string()));
+        table_ = std::make_shared<toml::table>(toml::parse(*text_, file.string()));
     } catch (const toml::parse_error& e) {
         throw InputError::at(file, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
                              "TOML syntax error: " + std::string(e.description()));
     }
 }
 
-TomlTable TomlDocument::root() const { return TomlTable(*table_, "", file_); }
+TomlTable TomlDocument::root() const { return TomlTable(*table_, "", file_, text_); }
 
-TomlTable::TomlTable(const toml::table& table, std::string path, fs::path file)
-    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+TomlTable::TomlTable(const toml::table& table, std::string path, fs::path file, std::shared_ptr<const std::string> text)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)), text_(std::move(text)) {}
 
 bool TomlTable::has(const std::string& key) const {
     asked_.insert(key);
@@ -94,15 +96,22 @@ double TomlTable::parseNumber(const std::string& key, const toml::node& n) const
     if (auto i = n.as_integer()) v = static_cast<double>(i->get());
     else if (auto f = n.as_floating_point()) v = f->get();
     else fail(key, std::string("expected a number, got ") + typeName(n));
-    if (!std::isfinite(v)) fail(key, "expected a finite number, got " + std::to_string(v));
+    if (!std::isfinite(v)) fail(key, "expected a finite number, got " + written(n));
     return v;
+}
+
+float TomlTable::parseFloat(const std::string& key, const toml::node& n) const {
+    const double v = parseNumber(key, n);
+    constexpr double kMax = std::numeric_limits<float>::max();
+    if (std::string problem = numberProblem(v, -kMax, kMax, written(n)); !problem.empty()) fail(key, problem + " (beyond a float's range)");
+    return static_cast<float>(v);
 }
 
 double TomlTable::number(const std::string& key, double fallback, NumberRange range) const {
     const toml::node* n = get(key);
     if (!n) return fallback;
     double v = parseNumber(key, *n);
-    if (std::string problem = numberProblem(v, range.min, range.max); !problem.empty()) fail(key, problem);
+    if (std::string problem = numberProblem(v, range.min, range.max, written(*n)); !problem.empty()) fail(key, problem);
     return v;
 }
 
@@ -119,7 +128,7 @@ int TomlTable::integer(const std::string& key, int fallback, int min, int max) c
 int TomlTable::integerValue(const std::string& key, const toml::node& n, int min, int max) const {
     auto i = n.as_integer();
     if (!i) fail(key, std::string("expected an integer, got ") + typeName(n));
-    if (std::string problem = integerProblem(i->get(), min, max); !problem.empty()) fail(key, problem);
+    if (std::string problem = integerProblem(i->get(), min, max, written(n)); !problem.empty()) fail(key, problem);
     return static_cast<int>(i->get());
 }
 
@@ -133,8 +142,7 @@ bool TomlTable::boolean(const std::string& key, bool fallback) const {
 glm::vec3 TomlTable::parseVec3(const std::string& key, const toml::node& n) const {
     auto a = n.as_array();
     if (!a || a->size() != 3) fail(key, std::string("expected an array of 3 numbers, got ") + (a ? "an array of " + std::to_string(a->size()) : typeName(n)));
-    return {static_cast<float>(parseNumber(key, *a->get(0))), static_cast<float>(parseNumber(key, *a->get(1))),
-            static_cast<float>(parseNumber(key, *a->get(2)))};
+    return {parseFloat(key, *a->get(0)), parseFloat(key, *a->get(1)), parseFloat(key, *a->get(2))};
 }
 
 glm::vec2 TomlTable::vec2(const std::string& key, glm::vec2 fallback) const {
@@ -142,7 +150,7 @@ glm::vec2 TomlTable::vec2(const std::string& key, glm::vec2 fallback) const {
     if (!n) return fallback;
     auto a = n->as_array();
     if (!a || a->size() != 2) fail(key, std::string("expected an array of 2 numbers, got ") + (a ? "an array of " + std::to_string(a->size()) : typeName(*n)));
-    return {static_cast<float>(parseNumber(key, *a->get(0))), static_cast<float>(parseNumber(key, *a->get(1)))};
+    return {parseFloat(key, *a->get(0)), parseFloat(key, *a->get(1))};
 }
 
 glm::vec3 TomlTable::vec3(const std::string& key, glm::vec3 fallback) const {
@@ -158,7 +166,7 @@ glm::vec3 TomlTable::requiredVec3(const std::string& key) const {
 glm::vec3 TomlTable::scalarOrVec3(const std::string& key, glm::vec3 fallback) const {
     const toml::node* n = get(key);
     if (!n) return fallback;
-    if (n->is_number()) return glm::vec3(static_cast<float>(parseNumber(key, *n)));
+    if (n->is_number()) return glm::vec3(parseFloat(key, *n));
     return parseVec3(key, *n);
 }
 
@@ -188,7 +196,7 @@ std::optional<TomlTable> TomlTable::table(const std::string& key) const {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;
     if (!n->is_table()) fail(key, std::string("expected a table, got ") + typeName(*n));
-    return TomlTable(*n->as_table(), keyPath(key), file_);
+    return TomlTable(*n->as_table(), keyPath(key), file_, text_);
 }
 
 std::vector<TomlTable> TomlTable::tableArray(const std::string& key) const {
@@ -200,7 +208,7 @@ std::vector<TomlTable> TomlTable::tableArray(const std::string& key) const {
     for (std::size_t i = 0; i < a->size(); ++i) {
         const toml::node& e = *a->get(i);
         if (!e.is_table()) fail(key, "element " + std::to_string(i) + ": expected a table, got " + typeName(e));
-        out.emplace_back(*e.as_table(), keyPath(key) + "[" + std::to_string(i) + "]", file_);
+        out.emplace_back(*e.as_table(), keyPath(key) + "[" + std::to_string(i) + "]", file_, text_);
     }
     return out;
 }
@@ -213,7 +221,7 @@ std::vector<std::pair<std::string, TomlTable>> TomlTable::namedTables(const std:
         std::string name(k.str());
         t->used_.insert(name);
         if (!v.is_table()) t->fail(name, std::string("expected a table, got ") + typeName(v));
-        out.emplace_back(name, TomlTable(*v.as_table(), t->keyPath(name), file_));
+        out.emplace_back(name, TomlTable(*v.as_table(), t->keyPath(name), file_, text_));
     }
     // toml++ keeps keys sorted; order by position in the file instead.
     std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
@@ -239,6 +247,27 @@ const toml::node& TomlTable::node(const std::string& key) const {
     const toml::node* n = get(key);
     if (!n) fail(key, "missing");
     return *n;
+}
+
+std::string TomlTable::written(const toml::node& n) const {
+    if (auto s = n.as_string()) return "\"" + s->get() + "\"";
+    // The value's text from its first character to the next delimiter: numbers, booleans and dates
+    // hold none of these. Columns count code points.
+    const toml::source_position at = n.source().begin;
+    std::size_t i = 0;
+    for (std::size_t line = 1; line < at.line && i < text_->size(); ++i)
+        if ((*text_)[i] == '\n') ++line;
+    for (std::size_t column = 1; column < at.column && i < text_->size(); ++i)
+        if ((static_cast<unsigned char>((*text_)[i]) & 0xC0) != 0x80) ++column;
+    while (i < text_->size() && (static_cast<unsigned char>((*text_)[i]) & 0xC0) == 0x80) ++i;
+    std::size_t end = i;
+    while (end < text_->size() && std::string_view(" \t\r\n,]}#").find((*text_)[end]) == std::string_view::npos) ++end;
+    if (at.line != 0 && end > i) return text_->substr(i, end - i);
+    // A value without a position (none that the parser makes): as its type prints it.
+    if (auto f = n.as_floating_point()) return formatNumber(f->get());
+    if (auto k = n.as_integer()) return std::to_string(k->get());
+    if (auto b = n.as_boolean()) return b->get() ? "true" : "false";
+    return typeName(n);
 }
 
 void TomlTable::rejectUnknownKeys() const {

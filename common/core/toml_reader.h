@@ -22,7 +22,7 @@ std::string commaSeparated(const std::vector<std::string>& items);
 
 class TomlTable;
 
-// Parses a file; a syntax error becomes an InputError at its position.
+// Parses a file (input_file.h's checks first); a syntax error becomes an InputError at its position.
 class TomlDocument {
 public:
     explicit TomlDocument(const std::filesystem::path& file);
@@ -31,6 +31,7 @@ public:
 
 private:
     std::filesystem::path file_;
+    std::shared_ptr<const std::string> text_;  // the file as read: messages quote values as written
     std::shared_ptr<toml::table> table_;
 };
 
@@ -41,7 +42,7 @@ struct NumberRange {
 
 class TomlTable {
 public:
-    TomlTable(const toml::table& table, std::string path, std::filesystem::path file);
+    TomlTable(const toml::table& table, std::string path, std::filesystem::path file, std::shared_ptr<const std::string> text);
 
     const std::string& path() const { return path_; }
     const std::filesystem::path& file() const { return file_; }
@@ -83,6 +84,10 @@ public:
     // Every key of this table that no getter asked for is an error.
     void rejectUnknownKeys() const;
 
+    // A value as the file writes it ("2.0", "1e400", "\"3\""), for messages: a number converted to
+    // a double would print 2, inf.
+    std::string written(const toml::node& n) const;
+
     // An error at `key`'s value (or at the table when the key is absent).
     [[noreturn]] void fail(const std::string& key, const std::string& message) const;
     [[noreturn]] void failHere(const std::string& message) const;
@@ -91,11 +96,14 @@ private:
     const toml::node* get(const std::string& key) const;
     glm::vec3 parseVec3(const std::string& key, const toml::node& node) const;
     double parseNumber(const std::string& key, const toml::node& node) const;
+    // parseNumber within a float's range (glm vectors are float: 1e39 would become inf).
+    float parseFloat(const std::string& key, const toml::node& node) const;
     std::string keyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
     const toml::table* table_;
     std::string path_;
     std::filesystem::path file_;
+    std::shared_ptr<const std::string> text_;
     mutable std::set<std::string> used_;
     mutable std::set<std::string> asked_;  // keys has() checked: valid keys, listed in unknown-key errors
 };

@@ -10,6 +10,7 @@
 #include <Iex.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -107,10 +108,49 @@ auto translatingErrors(Call&& call) {
 
 }  // namespace
 
+namespace {
+
+// The greatest ratio of a compression whose bound is known (0: not known): RLE codes a run of up
+// to 127 bytes in two, ZIP is deflate's 1032:1, PXR24 deflates floats cut to 24 bits, B44 packs
+// a flat 4 x 4 block of halves into 3 bytes.
+double greatestRatio(Imf::Compression compression) {
+    switch (compression) {
+    case Imf::NO_COMPRESSION: return 1.0;
+    case Imf::RLE_COMPRESSION: return 64.0;
+    case Imf::ZIPS_COMPRESSION:
+    case Imf::ZIP_COMPRESSION: return 1032.0;
+    case Imf::PXR24_COMPRESSION: return 1032.0 * 4.0 / 3.0;
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION: return 11.0;
+    default: return 0.0;
+    }
+}
+
+// Refuses a header whose pixels the file cannot hold at its compression's greatest ratio.
+void checkClaimedSize(const Imf::Header& header, std::size_t fileSize) {
+    const double ratio = greatestRatio(header.compression());
+    if (ratio == 0.0) return;
+    const Imath::Box2i window = header.dataWindow();
+    const double width = static_cast<double>(window.max.x) - window.min.x + 1.0, height = static_cast<double>(window.max.y) - window.min.y + 1.0;
+    double sampleBytes = 0.0;
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+        const Imf::Channel& channel = c.channel();
+        const double samples = std::ceil(width / std::max(1, channel.xSampling)) * std::ceil(height / std::max(1, channel.ySampling));
+        sampleBytes += samples * (channel.type == Imf::HALF ? 2.0 : 4.0);
+    }
+    char message[256];
+    if (claimExceedsFile(static_cast<long long>(width), static_cast<long long>(height), sampleBytes / ratio, fileSize,
+                         "its compression's greatest ratio", message, sizeof message))
+        throw ImageCodecError(std::string("EXR: ") + message);
+}
+
+}  // namespace
+
 ImageHeader readExrHeader(const unsigned char* bytes, std::size_t size) {
     return translatingErrors([&] {
         MemoryInput in(bytes, size);
         Imf::InputFile file(in);
+        checkClaimedSize(file.header(), size);
         return headerOf(file.header());
     });
 }

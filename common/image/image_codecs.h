@@ -5,7 +5,9 @@
 // decode from and encode to memory, so that a file, an image embedded in a glTF buffer and an
 // atomic write all go through the same code. Errors throw ImageCodecError with the library's words;
 // image_io.cpp names the file.
+#include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -52,6 +54,19 @@ std::vector<float> unitFloats(const Sample* samples, std::size_t count) {
     std::vector<float> values(count);
     for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<float>(samples[i]) * scale;
     return values;
+}
+
+// A header's claim against the file that holds it, where the compression has a greatest ratio: a
+// 1 KB PNG whose header claims 16384 x 16384 pixels would otherwise be refused only after the
+// decoder allocated them. True, with `message` filled, when the claim of width x height pixels
+// needs `leastFileBytes` (its samples over the greatest ratio, which `why` states) and the file
+// is smaller. C-style, for the codecs whose error handling jumps over destructors.
+inline bool claimExceedsFile(long long width, long long height, double leastFileBytes, std::size_t fileSize, const char* why,
+                             char* message, std::size_t messageSize) {
+    if (leastFileBytes <= static_cast<double>(fileSize)) return false;
+    std::snprintf(message, messageSize, "header claims %lldx%lld pixels, which take at least %.0f bytes (%s), more than the file's %zu",
+                  width, height, std::ceil(leastFileBytes), why, fileSize);
+    return true;
 }
 
 enum class ImageFormat { Exr, Png, Jpeg, OpenImageIo, Other };

@@ -2,10 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <system_error>
 #include <vector>
 
@@ -14,9 +11,11 @@
 
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/number_check.h"
 #include "common/image/color.h"
 #include "common/image/image_codecs.h"
+#include "common/image/non_finite_pixels.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
@@ -126,28 +125,26 @@ Image decode(const unsigned char* bytes, std::size_t size, const std::string& na
 }
 
 // The file's bytes: a regular file (a device or a pipe, /dev/zero, would never end).
-std::vector<unsigned char> readImageBytes(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path.string() + ": image file not found");
-    if (fs::is_directory(path, ec)) throw InputError(path.string() + ": is a directory, expected an image file");
-    if (!fs::is_regular_file(path, ec)) throw InputError(path.string() + ": is not a regular file (a device or a pipe), expected an image file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot read image (" + std::strerror(errno) + ")");
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path.string() + ": cannot read image (read error)");
-    return bytes;
+std::string readImageBytes(const fs::path& path) {
+    if (inputPathKind(path) == InputPathKind::Missing) throw InputError(path.string() + ": image file not found");
+    return readInputFile(path, "an image file");
 }
+
+const unsigned char* unsignedBytes(const std::string& bytes) { return reinterpret_cast<const unsigned char*>(bytes.data()); }
 
 }  // namespace
 
 Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed) {
-    const std::vector<unsigned char> bytes = readImageBytes(path);
-    return hybridlab::decode(bytes.data(), bytes.size(), path.string(), decode, assumed);
+    const std::string bytes = readImageBytes(path);
+    return hybridlab::decode(unsignedBytes(bytes), bytes.size(), path.string(), decode, assumed);
 }
 
-void checkImageFile(const fs::path& path) {
-    const std::vector<unsigned char> bytes = readImageBytes(path);
-    checkReadableHeader(imageFormatOf(bytes.data(), bytes.size()), bytes.data(), bytes.size(), path.string());
+void checkImageFile(const fs::path& path, bool requireFinite) {
+    const std::string bytes = readImageBytes(path);
+    const ImageFormat format = imageFormatOf(unsignedBytes(bytes), bytes.size());
+    checkReadableHeader(format, unsignedBytes(bytes), bytes.size(), path.string());
+    if (requireFinite && format == ImageFormat::Exr)
+        requireFiniteTexels(hybridlab::decode(unsignedBytes(bytes), bytes.size(), path.string(), ColorEncoding::Linear, nullptr), path.string());
 }
 
 Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode) {
@@ -192,6 +189,14 @@ void writeDisplayPng(const fs::path& path, const Image& linear, int bits) {
 void writePng(const fs::path& path, const Image& display, int bits) {
     // encodePng clamps to [0, 1].
     writeBytes(path, encoded(path, [&] { return encodePng(display, bits); }));
+}
+
+std::vector<unsigned char> pngFileBytes(const Image& display, int bits) {
+    try {
+        return encodePng(display, bits);
+    } catch (const ImageCodecError& e) {
+        throw std::runtime_error(std::string("cannot encode image (") + e.what() + ")");
+    }
 }
 
 void writeImageAtomically(const fs::path& path, const Image& linear) {

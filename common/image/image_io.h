@@ -5,6 +5,7 @@
 // (image_codecs.h: the library behind each).
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "common/image/image.h"
 
@@ -24,8 +25,11 @@ enum class ColorEncoding { Linear, Srgb, Tagged };
 Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorEncoding::Linear, std::string* assumed = nullptr);
 
 // What readImage checks before decoding, without decoding: the file is an image of a format read
-// here, with pixels, within the size limit. For commands that check a scene without rendering it.
-void checkImageFile(const std::filesystem::path& path);
+// here, with pixels, within the size limit and no larger than its file can hold. With
+// `requireFinite`, an image of floating-point samples (EXR: the format here that can hold NaN or
+// infinities) is also decoded and refused as requireFiniteTexels (non_finite_pixels.h) refuses it. For commands that
+// check a scene without rendering it.
+void checkImageFile(const std::filesystem::path& path, bool requireFinite = false);
 
 // Every writer writes the complete file or nothing (common/core/atomic_file.h; failures throw
 // IoError), with no write time in it, so that the same pixels give the same bytes.
@@ -39,6 +43,8 @@ void writeDisplayPng(const std::filesystem::path& path, const Image& linear, int
 // Writes values as they are, clamped to [0, 1], no transfer function (for masks and heat maps
 // that are already display values).
 void writePng(const std::filesystem::path& path, const Image& display, int bits = 8);
+// The bytes writePng writes, for a writer that places the file itself (atomic_file.h's FileGroup).
+std::vector<unsigned char> pngFileBytes(const Image& display, int bits = 8);
 
 // Writes `linear` to `path` choosing by extension: .exr linear, .png display sRGB.
 void writeImageAtomically(const std::filesystem::path& path, const Image& linear);

@@ -5,6 +5,7 @@
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
 
+#include <cmath>
 #include <csetjmp>
 
 #include "common/image/image_codecs.h"
@@ -46,6 +47,14 @@ bool readJpeg(const unsigned char* bytes, std::size_t size, bool headerOnly, Jpe
     jpeg_create_decompress(&info);
     jpeg_mem_src(&info, bytes, static_cast<unsigned long>(size));
     jpeg_read_header(&info, TRUE);
+    // Huffman coding spends at least a bit on each 8 x 8 block of a full-resolution component (its
+    // DC difference); arithmetic coding has no such floor.
+    const double blocks = std::ceil(info.image_width / 8.0) * std::ceil(info.image_height / 8.0);
+    if (!info.arith_code && claimExceedsFile(info.image_width, info.image_height, blocks / 8.0, size,
+                                             "Huffman coding spends a bit at least on each 8x8 block", errors.message, sizeof errors.message)) {
+        jpeg_destroy_decompress(&info);
+        return false;
+    }
     out.cmyk = info.jpeg_color_space == JCS_CMYK || info.jpeg_color_space == JCS_YCCK;
     out.adobeInverted = info.saw_Adobe_marker;
     info.out_color_space = out.cmyk ? JCS_CMYK : info.jpeg_color_space == JCS_GRAYSCALE ? JCS_GRAYSCALE : JCS_RGB;

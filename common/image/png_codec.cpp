@@ -95,6 +95,14 @@ bool readPng(const unsigned char* bytes, std::size_t size, bool headerOnly, PngR
     png_set_read_fn(png, &reader, readFromMemory);
     png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_ALWAYS, kCicp, 1);
     png_read_info(png, info);
+    // The rows as the file stores them (before the expansions below), which deflate packs at most
+    // 1032:1 (a 258-byte match in two bits).
+    const double fileRowBytes = static_cast<double>(png_get_rowbytes(png, info)) * png_get_image_height(png, info);
+    if (claimExceedsFile(png_get_image_width(png, info), png_get_image_height(png, info), fileRowBytes / 1032.0, size,
+                         "deflate packs at most 1032 bytes of rows into one", messages.error, sizeof messages.error)) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
     // Palettes to RGB, grey under 8 bits to 8, tRNS to an alpha channel; 16 bits stay 16.
     png_set_expand(png);
     png_set_interlace_handling(png);

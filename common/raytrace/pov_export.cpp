@@ -293,14 +293,6 @@ void writeMesh(std::ostream& os, const std::string& id, const Mesh& mesh, const 
 // ---- files ------------------------------------------------------------------------------------
 
 // Removes the temporary files on failure.
-struct TemporaryFiles {
-    std::vector<fs::path> paths;
-    ~TemporaryFiles() {
-        std::error_code ec;
-        for (const auto& p : paths) fs::remove(p, ec);
-    }
-};
-
 // Per material: whether the scene uses it, how POV-Ray expresses it, and its pigment image (for a
 // textured one, the diffuse colour times the texture, scaled into [0, 1]).
 std::vector<MaterialPlan> planMaterials(const Scene& scene, const std::string& stem) {
@@ -492,29 +484,15 @@ void addMediaApproximations(const Scene& scene, const std::vector<MaterialPlan>&
 // Returns the files written.
 std::vector<fs::path> writeExportFiles(const fs::path& out, const std::string& sdl, const std::vector<MaterialPlan>& plans) {
     const fs::path dir = out.parent_path();
-    std::vector<fs::path> files;
     if (!dir.empty()) createDirectories(dir);
-    TemporaryFiles temporaries;
-    std::vector<std::pair<fs::path, fs::path>> renames;
-    const fs::path tmpPov = temporaryPathFor(out);
-    temporaries.paths.push_back(tmpPov);
-    writeFileAtomically(tmpPov, sdl);
-    renames.emplace_back(tmpPov, out);
+    FileGroup files;
+    files.write(out, sdl);
     for (const auto& p : plans) {
         if (!p.used || !p.textured) continue;
-        const fs::path png = dir / p.pngName;
-        const fs::path tmp = temporaryPathFor(png);
-        temporaries.paths.push_back(tmp);
-        writePng(tmp, p.pigmentImage, 16);
-        renames.emplace_back(tmp, png);
+        const std::vector<unsigned char> png = pngFileBytes(p.pigmentImage, 16);
+        files.write(dir / p.pngName, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
     }
-    for (const auto& [from, to] : renames) {
-        std::error_code ec;
-        fs::rename(from, to, ec);
-        if (ec) throw IoError(to.string() + ": cannot write (" + ec.message() + ")");
-        files.push_back(to);
-    }
-    return files;
+    return files.commit();
 }
 
 }  // namespace

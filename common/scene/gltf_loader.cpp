@@ -10,8 +10,10 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/log.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
@@ -315,12 +317,12 @@ private:
         if (!img.uri.empty()) {
             if (img.uri.rfind("data:", 0) == 0) reader_.fail("image " + std::to_string(src) + ": data URIs are not supported");
             fs::path p = file_.parent_path() / img.uri;
-            if (!fs::exists(p)) reader_.fail("image '" + img.uri + "' not found (looked for " + p.string() + ")");
+            if (inputPathKind(p) == InputPathKind::Missing) reader_.fail("image '" + img.uri + "' not found (looked for " + p.string() + ")");
             out_.sourceFiles.push_back(p);
             if (opt_.decodeTextures) {
                 t = loadTexture(p, srgb);
             } else {
-                checkImageFile(p);  // not decoded, but checked
+                checkImageFile(p, true);  // not decoded (unless it may hold NaN), but checked
                 t.source = p.string();
             }
         } else if (img.bufferView >= 0 && img.bufferView < static_cast<int>(model_.bufferViews.size())) {
@@ -330,6 +332,7 @@ private:
             t.source = file_.string() + "#image" + std::to_string(src);
             t.image = readImageFromMemory(buf.data() + view.byteOffset, view.byteLength, t.source,
                                           srgb ? ColorEncoding::Srgb : ColorEncoding::Linear);
+            requireFiniteTexels(t.image, t.source);
         } else {
             reader_.fail("image " + std::to_string(src) + " has neither a uri nor a buffer view");
         }
@@ -365,7 +368,8 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const st
 }  // namespace
 
 GltfContent loadGltf(const fs::path& file, const GltfLoadOptions& options) {
-    if (!fs::exists(file)) throw InputError(file.string() + ": glTF file not found");
+    if (inputPathKind(file) == InputPathKind::Missing) throw InputError(file.string() + ": glTF file not found");
+    requireInputFile(file, "a glTF model (.gltf or .glb)");
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(skipImage, nullptr);
     gltf.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});

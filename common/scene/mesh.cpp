@@ -97,11 +97,14 @@ std::size_t dropDegenerateTriangles(Mesh& mesh) {
 void transformMesh(Mesh& mesh, const glm::mat4& m) {
     glm::mat3 nm = normalMatrix(m);
     glm::mat3 lin(m);
+    // A mirroring transform flips the winding and the handedness of (normal, tangent, bitangent):
+    // the triangles are turned back to counter-clockwise about their normal, and the bitangent
+    // sign flipped, so that cross(n, t) * w is still the mapped bitangent.
+    const bool mirrors = glm::determinant(lin) < 0.0f;
     for (auto& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
     for (auto& n : mesh.normals) n = glm::normalize(nm * n);
-    for (auto& t : mesh.tangents) t = glm::vec4(glm::normalize(lin * glm::vec3(t)), t.w);
-    // A mirroring transform flips the winding; keep triangles counter-clockwise about their normal.
-    if (glm::determinant(lin) < 0.0f) {
+    for (auto& t : mesh.tangents) t = glm::vec4(glm::normalize(lin * glm::vec3(t)), mirrors ? -t.w : t.w);
+    if (mirrors) {
         for (auto& t : mesh.triangles) std::swap(t.y, t.z);
     }
 }

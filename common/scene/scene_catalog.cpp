@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 
 namespace hybridlab {
 namespace fs = std::filesystem;
@@ -25,13 +26,15 @@ std::vector<fs::path> listSceneFiles() {
 
 fs::path findSceneFile(const std::string& nameOrPath) {
     fs::path p(nameOrPath);
-    if (fs::exists(p) && fs::is_regular_file(p)) return p;
-    if (fs::is_directory(p)) throw InputError(nameOrPath + ": is a directory, expected a scene file (.toml) or a scene's name");
+    constexpr const char* kExpected = "a scene file (.toml) or a scene's name";
+    const InputPathKind kind = inputPathKind(p);
+    if (kind == InputPathKind::RegularFile) return p;
+    if (kind != InputPathKind::Missing) requireInputFile(p, kExpected);  // a folder, a device, a loop of links
     if (p.extension() == ".toml" || nameOrPath.find('/') != std::string::npos) {
         throw InputError(nameOrPath + ": scene file not found");
     }
     fs::path named = scenesDirectory() / (nameOrPath + ".toml");
-    if (fs::exists(named)) return named;
+    if (inputPathKind(named) != InputPathKind::Missing) return named;
     std::string known;
     for (const auto& f : listSceneFiles()) known += (known.empty() ? "" : ", ") + f.stem().string();
     throw InputError("unknown scene '" + nameOrPath + "' (built-in scenes: " + known + "; or give a path to a .toml file)");

@@ -1,5 +1,6 @@
 #include "common/scene/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -7,6 +8,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/number_check.h"
 #include "common/core/log.h"
 #include "common/core/toml_reader.h"
@@ -14,6 +16,7 @@
 #include "common/scene/assets.h"
 #include "common/scene/bounds_fit.h"
 #include "common/scene/gltf_loader.h"
+#include "common/scene/placement_mirror.h"
 #include "common/scene/primitives.h"
 
 namespace hybridlab {
@@ -52,8 +55,14 @@ private:
     // Checks that a file named in the scene exists, with the asset explanation when not.
     fs::path existingPath(const TomlTable& t, const std::string& key, const std::string& written) const {
         fs::path p = resolveScenePath(written, doc_.file());
-        if (!fs::exists(p)) t.fail(key, missingAssetExplanation(written, p));
-        if (fs::is_directory(p)) t.fail(key, "'" + written + "' is a directory (" + p.string() + "), expected a file");
+        std::string reason;
+        switch (inputPathKind(p, &reason)) {
+        case InputPathKind::Missing: t.fail(key, missingAssetExplanation(written, p));
+        case InputPathKind::Directory: t.fail(key, "'" + written + "' is a directory (" + p.string() + "), expected a file");
+        case InputPathKind::Unreadable: t.fail(key, "'" + written + "' cannot be read (" + p.string() + ": " + reason + ")");
+        case InputPathKind::RegularFile:
+        case InputPathKind::Special: break;  // the reader says what a device or a pipe is not
+        }
         return p;
     }
 
@@ -100,7 +109,7 @@ private:
             } else {
                 // Not decoded, but checked: a scene that passes scene-info also renders.
                 try {
-                    checkImageFile(p);
+                    checkImageFile(p, true);
                 } catch (const InputError& e) {
                     t.fail(key, e.what());
                 }
@@ -255,6 +264,8 @@ private:
             if (t.has("lens_group") && o.lensGroup.empty()) t.fail("lens_group", "expected a non-empty group name");
             if (auto a = t.table("animation")) o.animation = readAnimation(*a, o.transform);
             if (auto d = t.table("deform")) o.deformation = readDeformation(*d);
+            mirrorCameras(o.name, moveMirrorIntoMeshes(o, meshes));
+            checkPlacementReach(t, o, meshes);
             std::vector<SceneObject> copies;
             if (auto c = t.table("copies")) copies = readCopies(*c, o, names);
             else copies.push_back(std::move(o));
@@ -271,6 +282,46 @@ private:
                 scene_.objects.push_back(std::move(copy));
             }
         }
+    }
+
+    // The cameras of a model whose mirror moved into its meshes (placement_mirror.h) move with it:
+    // a camera cannot be mirrored, so it looks along the mirrored direction with the mirrored up.
+    void mirrorCameras(const std::string& object, glm::vec3 signs) {
+        if (signs == glm::vec3(1.0f)) return;
+        for (GltfCamera& c : gltfCameras_[object]) {
+            const glm::vec3 forward = signs * c.camera.forward(), up = signs * c.camera.up();
+            c.camera.position *= signs;
+            c.camera.orientation = Camera::lookAtOrientation(c.camera.position, c.camera.position + forward, up);
+        }
+    }
+
+    // Every vertex of the object, at rest and at each keyframe (deformed at most by its amplitude),
+    // within limits::kSceneCoordinate of the origin: a scale of 1e38 makes bounds of inf, a
+    // rasterizer that draws nothing and rays that find nothing.
+    void checkPlacementReach(const TomlTable& t, const SceneObject& o, const std::vector<Mesh>& meshes) const {
+        Aabb local;
+        for (const Mesh& m : meshes) local.extend(m.bounds());
+        local = o.deformation.envelope(local);
+        if (!local.valid()) return;
+        const auto check = [&](const Transform& placement, const std::string& key, const std::string& which) {
+            const Aabb world = local.transformed(placement.matrix());
+            const glm::vec3 far = glm::max(glm::abs(world.lo), glm::abs(world.hi));
+            const float reach = std::max({far.x, far.y, far.z});
+            const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+            if (finite(world.lo) && finite(world.hi) && reach <= limits::kSceneCoordinate) return;
+            t.fail(key, which + "places the object's vertices up to " + formatNumber(reach) + " from the origin, beyond the limit of " +
+                            formatNumber(limits::kSceneCoordinate) + " (a camera's far plane reaches no farther)");
+        };
+        if (!o.isAnimated()) {
+            // Named at what put it there: the position, else the scale, else the model's own coordinates.
+            const glm::vec3 far = glm::abs(o.transform.position);
+            const bool byPosition = std::max({far.x, far.y, far.z}) > limits::kSceneCoordinate && t.has("position");
+            check(o.transform, byPosition ? "position" : t.has("scale") ? "scale" : t.has("model") ? "model" : "primitive", "");
+            return;
+        }
+        for (std::size_t k = 0; k < o.animation.times.size(); ++k)
+            check({o.animation.positions[k], o.animation.rotations[k], o.animation.scales[k]}, "animation",
+                  "keyframe " + std::to_string(k) + " ");
     }
 
     // `count` copies of `o` in a ring: copy k turned about the vertical axis through `center` by
@@ -322,6 +373,11 @@ private:
         a.interpolation = toInterpolation(t.choice("interpolation", "linear", kInterpolations));
         for (const auto& k : readKeys(t, "an animation", a.times)) {
             Transform tr = readTransform(k, rest);  // missing components keep the object's placement
+            // A factor whose sign changes between keys scales through zero: the object flattens
+            // and turns inside out (placement_mirror.h moves one set of signs into its meshes).
+            if (!a.scales.empty() && scaleSigns(tr.scale) != scaleSigns(a.scales.front()))
+                k.fail("scale", "expected each scale factor to keep the sign it has at the first keyframe (scaling through zero "
+                                "would flatten the object and turn it inside out)");
             a.positions.push_back(tr.position);
             a.rotations.push_back(tr.rotation);
             a.scales.push_back(tr.scale);

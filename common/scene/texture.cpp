@@ -3,6 +3,7 @@
 #include "common/core/input_error.h"
 #include "common/image/color.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 
 namespace hybridlab {
 
@@ -20,7 +21,9 @@ Texture makeBuiltinTexture(const std::string& name) {
 }
 
 Texture loadTexture(const std::filesystem::path& path, bool srgb) {
-    return Texture{path.string(), srgb, readImage(path, srgb ? ColorEncoding::Srgb : ColorEncoding::Linear)};
+    Texture t{path.string(), srgb, readImage(path, srgb ? ColorEncoding::Srgb : ColorEncoding::Linear)};
+    requireFiniteTexels(t.image, t.source);
+    return t;
 }
 
 }  // namespace hybridlab

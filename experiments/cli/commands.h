@@ -17,6 +17,7 @@ void addExportPovCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addBakeEmCommand(CLI::App& app);
 void addBundleCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 // `hybridlab help [COMMAND]`: the program's help, or one command's; added last, so that it knows them all.
 void addHelpCommand(CLI::App& app);
 

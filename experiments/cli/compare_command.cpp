@@ -11,11 +11,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "experiments/cli/commands.h"
 #include "metrics/metrics.h"
 #include "metrics/report_files.h"
@@ -37,7 +39,27 @@ struct CompareOptions {
     bool json = false;
     double range = 0.0;  // 0: the largest difference of all the tests
     std::vector<std::string> failAbove;
+    bool ignoreNonFinite = false;
 };
+
+// A NaN or an infinity makes every metric NaN (and SSIM's window spreads it): such pixels are bad
+// input unless --ignore-nonfinite, which blacks them out in both images (no error there) and says
+// so. Returns the lines to print.
+std::vector<std::string> handleNonFinite(Image& test, const std::string& testName, Image& reference, const std::string& referenceName,
+                                         bool ignore) {
+    std::vector<std::string> notes;
+    for (const auto& [image, name] : {std::pair{&test, &testName}, std::pair{&reference, &referenceName}}) {
+        const NonFinitePixels found = findNonFinite(*image);
+        if (found.count == 0) continue;
+        if (!ignore) {
+            throw InputError(*name + ": " + found.description() + ": every metric would be NaN (pass --ignore-nonfinite to score the "
+                                     "other pixels, with these black in both images)");
+        }
+        notes.push_back(*name + ": " + found.description() + ", ignored: black in both images");
+    }
+    blackOutNonFinite(test, reference);
+    return notes;
+}
 
 // One test image against the reference: where it came from, what it was taken as, its scores.
 struct Compared {
@@ -208,11 +230,16 @@ void run(const CompareOptions& o) {
     std::string referenceSpace;
     const Image reference = readImage(referencePath, ColorEncoding::Tagged, &referenceSpace);
     std::vector<Compared> tests(o.images.size() - 1);
-    std::vector<Image> testImages;
+    std::vector<Image> testImages, references;
+    std::vector<std::string> nonFiniteNotes;
     for (std::size_t i = 0; i + 1 < o.images.size(); ++i) {
         tests[i].path = o.images[i];
         testImages.push_back(readImage(tests[i].path, ColorEncoding::Tagged, &tests[i].space));
         requireSameSize(testImages.back(), tests[i].path, reference, referencePath);
+        // Each test against its own copy: another test's non-finite pixels do not black out this one's.
+        references.push_back(reference);
+        for (std::string& note : handleNonFinite(testImages.back(), tests[i].path, references.back(), referencePath, o.ignoreNonFinite))
+            if (std::find(nonFiniteNotes.begin(), nonFiniteNotes.end(), note) == nonFiniteNotes.end()) nonFiniteNotes.push_back(std::move(note));
     }
     nameTests(tests);
     std::optional<PixelMask> mask;
@@ -226,7 +253,7 @@ void run(const CompareOptions& o) {
     options.pixelsPerDegree = o.pixelsPerDegree;
     double largest = 0.0;
     for (std::size_t i = 0; i < tests.size(); ++i) {
-        tests[i].report = computeMetrics(testImages[i], reference, options, mask ? &*mask : nullptr);
+        tests[i].report = computeMetrics(testImages[i], references[i], options, mask ? &*mask : nullptr);
         largest = std::max(largest, largestDifference(tests[i].report));
     }
     // One difference scale for every test, so that their maps compare.
@@ -257,11 +284,12 @@ void run(const CompareOptions& o) {
         for (const Compared& c : tests) std::printf("test       %s  [%s]\n", c.path.c_str(), c.space.c_str());
         std::printf("reference  %s  [%s]\n", referencePath.c_str(), referenceSpace.c_str());
         if (mask) std::printf("mask       %s\n", o.mask.c_str());
+        for (const std::string& note : nonFiniteNotes) std::printf("note: %s\n", note.c_str());
         const MetricReport& first = tests.front().report;
         std::printf("%dx%d; SSIM on %s; RMSE and PSNR on %s values; FLIP at %g pixels per degree\n", first.width, first.height,
                     o.perChannel ? "R, G, B (mean)" : "luma", valueSpaceName(options.errorSpace), options.pixelsPerDegree);
         printTable(tests);
-        if (o.timing) printTiming(testImages.front(), reference, options);
+        if (o.timing) printTiming(testImages.front(), references.front(), options);
         if (!o.out.empty()) {
             std::string folders;
             for (std::size_t i = 0; i < tests.size(); ++i)
@@ -301,6 +329,9 @@ void addCompareCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     cmd->add_flag("--timing", o->timing, "Also time each metric on the first test (median of 5 runs)");
+    cmd->add_flag("--ignore-nonfinite", o->ignoreNonFinite,
+                  "Score images holding NaN or infinite pixels: those pixels are made black in both images (and named); "
+                  "without it they are refused (exit status 2)");
     cmd->callback([o] { run(*o); });
 }
 

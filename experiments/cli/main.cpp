@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addCompareCommand(app);
     hybridlab::cli::addBakeEmCommand(app);
     hybridlab::cli::addBundleCommand(app);
+    hybridlab::cli::addViewCommand(app);
     app.add_flag("--version")->description("Print the program version on one line, then exit; `--version --json`: this machine's device record "
                                            "as JSON, as result sets store it");
     const std::vector<std::string> arguments(argv + 1, argv + argc);

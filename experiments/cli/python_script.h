@@ -1,17 +1,19 @@
 #pragma once
-// The report's Python scripts (report/), started by `report` and `run`: Debian's /usr/bin/python3,
-// which has the packages setup.sh installs (matplotlib, OpenImageIO, jsonschema); a python3 found
-// first on the PATH (pyenv, a virtualenv) may not.
+// The report's Python scripts (report/*.py, in the source folder compiled into the program), run
+// by Debian's python3, which has the packages the set-up script installs (matplotlib); a python3
+// found first on the PATH (pyenv, a virtualenv) may not.
 #include <string>
 #include <vector>
 
 namespace hybridlab::cli {
 
-// report/NAME under the source tree the program was built from.
-std::string reportScript(const std::string& name);
+// How a script's run treats Ctrl-C: stop the program with it (the default), or leave it to the
+// script alone (a server that stops on Ctrl-C and says so), the program returning its status.
+enum class Interrupt { StopsBoth, ScriptOnly };
 
-// Runs `python3 script args...`, its output passing through (or, with `output`, collected there
-// instead of stdout); returns its exit status (128 + the signal's number when killed by one).
-int runPython(const std::string& script, const std::vector<std::string>& args, std::string* output = nullptr);
+// Runs report/SCRIPT with `args` and returns its exit status (128 + the signal where one ended it).
+// Its standard output passes through, or with `output` is collected there instead.
+int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
+                    std::string* output = nullptr);
 
 }  // namespace hybridlab::cli

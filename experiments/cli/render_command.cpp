@@ -17,6 +17,7 @@
 #include "common/core/atomic_file.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
@@ -146,6 +147,8 @@ void run(const RenderOptions& o) {
 
     writeImageAtomically(exrPath, result.image);
     writeImageAtomically(pngPath, result.image);
+    if (const NonFinitePixels nonFinite = findNonFinite(result.image); nonFinite.count > 0)
+        std::fprintf(stderr, "hybridlab: warning: %s: %s\n", exrPath.string().c_str(), nonFinite.description().c_str());
 
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     if (o.json) {

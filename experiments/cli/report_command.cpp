@@ -30,7 +30,7 @@ void addReportCommand(CLI::App& app) {
         const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
         std::vector<std::string> args = {*dir, "--out", target};
         if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
-        const int status = runPython(reportScript("report.py"), args);
+        const int status = runReportScript("report.py", args);
         // report.py exits with 2 on a bad result set (an unreadable image), having said which.
         if (status == 2) throw InputError(*dir + ": not a complete result set (report/report.py's message above)");
         if (status != 0) throw std::runtime_error("report/report.py failed (exit status " + std::to_string(status) + ")");

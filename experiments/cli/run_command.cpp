@@ -99,7 +99,7 @@ void printClosingSummary(const ExperimentConfig& config, const RunnerOptions& r,
     // The verdict in words, a sentence per scene and size; the report has the rest.
     constexpr std::size_t kSentences = 3;
     std::string verdict;
-    if (runPython(reportScript("verdict.py"), {r.outDir.string()}, &verdict) == 0) {
+    if (runReportScript("verdict.py", {r.outDir.string()}, Interrupt::StopsBoth, &verdict) == 0) {
         std::vector<std::string> sentences;
         for (std::size_t at = 0, end; at < verdict.size(); at = end + 1) {
             end = verdict.find('\n', at);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -28,28 +29,50 @@ ParamValue toParamValue(const TomlTable& t, const std::string& key, const toml::
     t.fail(key, "expected a boolean, number or string");
 }
 
-// Runs resolveParameters to check a set, re-raising its message at the table's position.
-void checkParameters(const TomlTable& at, const std::string& technique, const ParameterList& set) {
-    try {
-        const TechniqueInfo& info = findTechnique(technique);
-        resolveParameters(info.parameters, set, "technique " + technique);
-    } catch (const InputError& e) {
-        at.failHere(e.what());
-    }
-}
+// A technique's parameter values as a config gives them: typed (a string "3" is not an integer),
+// each checked at its own position and quoted as written.
+class ParameterChecker {
+public:
+    explicit ParameterChecker(const std::string& technique) : technique_(technique), info_(findTechnique(technique)) {}
 
-// The table's keys with their values; a list of values makes a sweep: the Cartesian product, in
-// key order.
-std::vector<ParameterList> expandSweep(const TomlTable& t) {
+    // One value of `key` (a sweep's list element, or the value itself) at `t`.
+    ParamValue value(const TomlTable& t, const std::string& key, const toml::node& n) const {
+        ParamValue v = toParamValue(t, key, n);
+        try {
+            resolveParameters(info_.parameters, {{key, v}}, owner(), ParameterSource::Typed, {t.written(n)});
+        } catch (const InputError& e) {
+            t.fail(key, e.what());
+        }
+        return v;
+    }
+
+    // A whole set, its defaults filled in: what a run renders with.
+    std::map<std::string, ParamValue> resolved(const TomlTable& at, const ParameterList& set) const {
+        try {
+            return resolveParameters(info_.parameters, set, owner(), ParameterSource::Typed).values();
+        } catch (const InputError& e) {
+            at.failHere(e.what());
+        }
+    }
+
+private:
+    std::string owner() const { return "technique " + technique_; }
+    std::string technique_;
+    const TechniqueInfo& info_;
+};
+
+// The table's keys with their values (each checked by `checker`); a list of values makes a sweep:
+// the Cartesian product, in key order.
+std::vector<ParameterList> expandSweep(const TomlTable& t, const ParameterChecker& checker) {
     std::vector<ParameterList> sets(1);
     for (const auto& key : t.keys()) {
         const toml::node& n = t.node(key);
         std::vector<ParamValue> values;
         if (auto a = n.as_array()) {
             if (a->empty()) t.fail(key, "an empty list sweeps over nothing");
-            for (const auto& e : *a) values.push_back(toParamValue(t, key, e));
+            for (const auto& e : *a) values.push_back(checker.value(t, key, e));
         } else {
-            values.push_back(toParamValue(t, key, n));
+            values.push_back(checker.value(t, key, n));
         }
         std::vector<ParameterList> next;
         for (const auto& s : sets) {
@@ -62,6 +85,12 @@ std::vector<ParameterList> expandSweep(const TomlTable& t) {
         sets = std::move(next);
     }
     return sets;
+}
+
+std::string parametersText(const ParameterList& set) {
+    std::string text;
+    for (const auto& [k, v] : set) text += (text.empty() ? "" : " ") + k + "=" + formatParamValue(v);
+    return text.empty() ? "the defaults" : text;
 }
 
 // The one list of `metrics` names, in the order results list them, each with the flag of the
@@ -184,8 +213,53 @@ SceneSpec readSceneSpec(const TomlTable& t, const fs::path& configFile) {
     return s;
 }
 
+// The sets of one [[techniques]] entry so far, resolved (defaults filled in), each with where it
+// was written: two that resolve alike would render every run twice.
+class DistinctParameterSets {
+public:
+    void add(const TomlTable& at, const std::string& where, const ParameterChecker& checker, const ParameterList& set) {
+        std::map<std::string, ParamValue> values = checker.resolved(at, set);
+        for (const auto& [seen, first] : sets_) {
+            if (seen == values)
+                at.failHere("the settings " + parametersText(set) + " are, with the defaults filled in, those of " + first +
+                            ": every run of them would be rendered twice");
+        }
+        sets_.emplace_back(std::move(values), where + " (" + parametersText(set) + ")");
+    }
+
+private:
+    std::vector<std::pair<std::map<std::string, ParamValue>, std::string>> sets_;
+};
+
+// Every (scene file, size, camera path, frame) of the [[scenes]] entries so far, with the entry
+// that lists it: one listed twice (the same scene in two entries, or a size or view repeated)
+// would render every run of it twice.
+class DistinctViews {
+public:
+    void add(const TomlTable& t, const SceneSpec& s) {
+        std::error_code ec;
+        const fs::path file = fs::weakly_canonical(s.file, ec);
+        for (const auto& [w, h] : s.resolutions) {
+            for (const auto& view : s.views) {
+                const bool onPath = !view.cameraPath.empty();
+                for (int f = onPath ? view.firstFrame : -1; f <= (onPath ? view.lastFrame : -1); f += onPath ? view.stride : 1) {
+                    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+                    const std::string viewName = onPath ? "frame " + std::to_string(f) + " of path '" + view.cameraPath + "'" : "the scene's camera";
+                    const auto [at, added] = seen_.emplace((ec ? s.file : file).string() + "|" + size + "|" + viewName, t.path());
+                    if (!added)
+                        t.failHere("scene " + s.name + " at " + size + ", " + viewName + ", is listed again (first in " + at->second +
+                                   "): every run of it would be rendered twice");
+                }
+            }
+        }
+    }
+
+private:
+    std::map<std::string, std::string> seen_;
+};
+
 // One [[techniques]] entry: a registered technique, its label (unique among `labels`, which gains
-// it) and its parameter sets (a sweep, a list, or the defaults).
+// it) and its parameter sets (a sweep, a list, or the defaults), no two alike.
 TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& labels) {
     TechniqueSpec s;
     s.name = t.requiredString("name");
@@ -194,20 +268,22 @@ TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& label
     } catch (const InputError& e) {
         t.fail("name", e.what());
     }
+    const ParameterChecker checker(s.name);
     s.label = t.string("label", s.name);
     if (!labels.insert(s.label).second) t.fail("label", "two techniques are labelled '" + s.label + "' (give each entry its own label)");
     auto params = t.table("params");
     auto sets = t.tableArray("param_sets");
     if (params && !sets.empty()) t.failHere("give 'params' (a sweep) or 'param_sets' (a list of sets), not both");
+    DistinctParameterSets distinct;
     if (params) {
-        s.parameterSets = expandSweep(*params);
-        for (const auto& set : s.parameterSets) checkParameters(*params, s.name, set);
+        s.parameterSets = expandSweep(*params, checker);
+        for (const auto& set : s.parameterSets) distinct.add(*params, params->path(), checker, set);
         params->rejectUnknownKeys();
     } else if (!sets.empty()) {
         // Each set may sweep too (a list value), e.g. one set on both ray backends.
         for (const auto& st : sets) {
-            for (auto& set : expandSweep(st)) {
-                checkParameters(st, s.name, set);
+            for (auto& set : expandSweep(st, checker)) {
+                distinct.add(st, st.path(), checker, set);
                 s.parameterSets.push_back(std::move(set));
             }
             st.rejectUnknownKeys();
@@ -229,7 +305,7 @@ void readTimingProtocol(const TomlTable& e, TimingProtocol& t) {
     t.minRounds = static_cast<int>(e.integer("repeats", t.minRounds, 1, 1000));
     t.maxRounds = static_cast<int>(e.integer("max_rounds", t.maxRounds, 1, 100000));
     t.precision = e.number("precision", t.precision, {0.0, 10.0});
-    t.groupBudgetMs = 1000.0 * e.number("group_budget_s", t.groupBudgetMs / 1000.0, {0.0, 86400.0});
+    t.sceneBudgetMs = 1000.0 * e.number("budget_s", t.sceneBudgetMs / 1000.0, {0.0, 86400.0});
     if (t.maxRounds < t.minRounds) e.fail("max_rounds", "expected at least repeats (" + std::to_string(t.minRounds) + ")");
 }
 
@@ -252,16 +328,21 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
     }
     if (auto r = root.table("reference")) {
         if (auto p = r->table("params")) {
-            for (const auto& key : p->keys()) c.referenceParameters.emplace_back(key, toParamValue(*p, key, p->node(key)));
-            checkParameters(*p, "whitted", c.referenceParameters);
+            const ParameterChecker checker("whitted");
+            for (const auto& key : p->keys()) c.referenceParameters.emplace_back(key, checker.value(*p, key, p->node(key)));
             p->rejectUnknownKeys();
         }
+        c.timeReference = r->boolean("timed", c.timeReference);
         r->rejectUnknownKeys();
     }
 
     auto scenes = root.tableArray("scenes");
     if (scenes.empty()) root.failHere("no [[scenes]]: an experiment needs at least one scene");
-    for (const auto& t : scenes) c.scenes.push_back(readSceneSpec(t, file));
+    DistinctViews views;
+    for (const auto& t : scenes) {
+        c.scenes.push_back(readSceneSpec(t, file));
+        views.add(t, c.scenes.back());
+    }
 
     auto techniques = root.tableArray("techniques");
     if (techniques.empty()) root.failHere("no [[techniques]]: an experiment needs at least one technique");

@@ -45,7 +45,7 @@ struct ExperimentConfig {
     // How each group of runs is timed (interleaved_timing.h): `warmup_frames`, `warmup_ms` (the
     // warm-up goes on past warmup_frames until this long: a GPU raises its clock only under load),
     // `steady_frames`, `steady_tolerance`, `max_warmup_frames`, `repeats` (the fewest rounds),
-    // `max_rounds`, `precision` and `group_budget_s`.
+    // `max_rounds`, `precision` and `budget_s`.
     TimingProtocol timing;
     double resolutionScale = 1.0;  // `run --scale`: resolutions below are already scaled (resolution_scale.h)
     MetricSelection metrics;       // `metrics`: what each image is scored with
@@ -53,6 +53,10 @@ struct ExperimentConfig {
     bool keepErrorMaps = true;     // `keep` holds "error_maps" (and a metric has a map)
     bool keepDebugImages = true;   // `keep` holds "debug_images"
     ParameterList referenceParameters;  // for the `whitted` reference
+    // `[reference] timed`: the reference is timed in every group's rounds, for speed-ups over it
+    // with intervals. false where it would idle the device between the settings' frames (the
+    // Embree reference beside settings on a GPU).
+    bool timeReference = true;
     std::vector<SceneSpec> scenes;
     std::vector<TechniqueSpec> techniques;
 };

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,7 @@
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
 #include "common/image/image_io.h"
+#include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
@@ -153,7 +155,26 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                                                    std::size_t runsInShard, double estimatedCost, RunnerSummary& summary,
                                                    std::optional<MixedDevices>& mixed) {
     const fs::path meta = o.outDir / "experiment.json";
-    if (fs::exists(o.outDir)) {
+    // The folder is looked at under its lock: a runner that started a moment earlier may be
+    // setting it up, and the one who loses the race is told who holds it. A folder that is plainly
+    // not an experiment's (a file, or files and no lock) is refused without writing into it.
+    const auto notExperimentFolder = [&] { return InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out"); };
+    // Files other than a lock and the temporaries of the runners that try to take it.
+    const auto holdsOtherFiles = [&] {
+        return std::any_of(fs::directory_iterator(o.outDir), fs::directory_iterator(), [](const fs::directory_entry& e) {
+            const std::string name = e.path().filename().string();
+            return name != DirectoryLock::kFileName && name.rfind(".tmp-", 0) != 0;
+        });
+    };
+    // In this order: a runner setting the folder up takes the lock, then makes files, then writes
+    // experiment.json, then releases the lock; so other files seen first mean the lock or
+    // experiment.json is there when looked for after them.
+    if (fs::exists(o.outDir) &&
+        (!fs::is_directory(o.outDir) || (holdsOtherFiles() && !fs::exists(o.outDir / DirectoryLock::kFileName) && !fs::exists(meta))))
+        throw notExperimentFolder();
+    createDirectories(o.outDir);
+    auto lock = std::make_unique<DirectoryLock>(o.outDir);
+    {
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
@@ -184,13 +205,12 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
                 devices.push_back(here);
             }
             if (devices.size() > 1) mixed = MixedDevices{m.value("device", json()), devices, here};
-        } else if (!fs::is_directory(o.outDir) || !fs::is_empty(o.outDir)) {
-            throw InputError(o.outDir.string() + ": exists and is not an experiment folder; choose another --out");
+        } else if (holdsOtherFiles()) {
+            throw notExperimentFolder();
         }
     }
     const ResultsStore store(o.outDir);
     store.createLayout();
-    auto lock = std::make_unique<DirectoryLock>(o.outDir);
     // Records are about to be added: results.json/csv are written again when the runner stops.
     store.removeResults();
     // What runs killed mid-write left (their ".tmp-PID-*" files); only a resumed folder has any.
@@ -266,6 +286,18 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
     summary.referenceKeys.insert(key);
     ++summary.referencesRendered;
     return ref;
+}
+
+// A run's image scored against its reference. Its pixels holding a NaN or an infinity are counted
+// (`nonFinite`, for the record) and scored as black in both images, so that the metrics stay
+// numbers (non_finite_pixels.h).
+MetricReport scoreImage(const Image& image, const Image& reference, const MetricOptions& options, const PixelMask* mask,
+                        std::size_t& nonFinite) {
+    nonFinite = findNonFinite(image).count;
+    if (nonFinite == 0) return computeMetrics(image, reference, options, mask);
+    Image finiteImage = image, finiteReference = reference;
+    blackOutNonFinite(finiteImage, finiteReference);
+    return computeMetrics(finiteImage, finiteReference, options, mask);
 }
 
 // One setting of a group as the protocol times it (interleaved_timing.h): each frame's clocks, its
@@ -344,7 +376,8 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
 // the runs recorded.
 std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, const ResultsStore& store, const ReferenceCache& cache,
                         ActiveScene& active, const std::vector<const RunSpec*>& group, const std::vector<const RunSpec*>& pending,
-                        const std::optional<MixedDevices>& mixed, Progress& progress, std::size_t done, RunnerSummary& summary) {
+                        const TimingProtocol& protocol, const std::optional<MixedDevices>& mixed, Progress& progress, std::size_t done,
+                        RunnerSummary& summary) {
     const auto groupStart = WallClock::now();
     const RunSpec& head = *pending.front();
     const std::string name = groupName(config, head);
@@ -358,14 +391,14 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
     std::vector<const RunSpec*> timedRuns = pending;
     const RunSpec* rtOnly = rtOnlyOf(config, group);
     if (rtOnly && std::find(pending.begin(), pending.end(), rtOnly) == pending.end()) timedRuns.push_back(rtOnly);
-    std::vector<TimedSetting> settings(timedRuns.size() + 1);
+    std::vector<TimedSetting> settings(timedRuns.size() + (config.timeReference ? 1 : 0));
     for (std::size_t i = 0; i < timedRuns.size(); ++i) {
         const RunSpec& run = *timedRuns[i];
         settings[i].technique = &active.technique(std::to_string(run.technique) + "|" + run.parametersText, config.techniques[run.technique].name,
                                                   run.parameters);
     }
     const std::size_t referenceIndex = timedRuns.size();
-    settings[referenceIndex].technique = &active.technique("\x01reference", "whitted", config.referenceParameters);
+    if (config.timeReference) settings[referenceIndex].technique = &active.technique("\x01reference", "whitted", config.referenceParameters);
     std::vector<TimedRender> renders;
     for (TimedSetting& s : settings) {
         renders.push_back([&s, &active, &request] {
@@ -375,14 +408,14 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         });
     }
     const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
-    GroupTiming timing = timeInterleaved(renders, config.timing);
+    GroupTiming timing = timeInterleaved(renders, protocol);
     const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
     // Only the rounds' stage times: the warm-up's are not the setting's steady state.
     for (TimedSetting& s : settings) {
         for (auto& [stage, times] : s.stageTimes)
             times.erase(times.begin(), times.end() - std::min<std::ptrdiff_t>(timing.rounds, static_cast<std::ptrdiff_t>(times.size())));
     }
-    const std::vector<double> referenceRounds = wallTimes(timing.settings[referenceIndex]);
+    const std::vector<double> referenceRounds = config.timeReference ? wallTimes(timing.settings[referenceIndex]) : std::vector<double>{};
     const double timingSeconds = millisecondsSince(groupStart) / 1000.0;
 
     const PixelMask mask = PixelMask::fromImage(ref.mask);
@@ -394,7 +427,8 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         const FrameResult& result = settings[i].last;
         MetricOptions scoring;
         scoring.selection = config.metrics;
-        const MetricReport report = computeMetrics(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr);
+        std::size_t nonFinite = 0;
+        const MetricReport report = scoreImage(result.image, ref.image, scoring, mask.count() > 0 ? &mask : nullptr, nonFinite);
         const std::string image = "images/" + run->id;
         const ReportSources sources{image + ".exr", "references/" + ref.key + ".exr",
                                     mask.count() > 0 ? std::optional<std::string>("reflective and refractive pixels") : std::nullopt};
@@ -419,6 +453,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
 
         RunRecord record = runRecord(*run, config.scenes[run->scene], active.stats, view, config.techniques[run->technique], settings[i], report,
                                      sources, ref, mask.count() > 0, image, maps);
+        record.counters["nonfinite_pixels"] = static_cast<double>(nonFinite);
         const std::vector<double> wall = wallTimes(st);
         record.frameMilliseconds = intervalSpreadOf(wall);
         record.warmupFrames = st.warmupFrames;
@@ -439,12 +474,12 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         t.steady = st.steady;
         if (clocksBefore && clocksAfter) t.gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
         record.timing = std::move(t);
-        record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
+        if (config.timeReference) record.reference.frameMilliseconds = spreadOf(referenceRounds).median;
         const auto speedupOver = [&](const std::vector<double>& other) {
             const MedianInterval m = pairedRatio(other, wall);
             return m.hasInterval ? RatioInterval{m.median, m.low, m.high} : RatioInterval{m.median, std::nullopt, std::nullopt};
         };
-        record.speedup["reference"] = speedupOver(referenceRounds);
+        if (config.timeReference) record.speedup["reference"] = speedupOver(referenceRounds);
         if (rtOnly) {
             const std::size_t k = static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) - timedRuns.begin());
             record.speedup["rt_only"] = speedupOver(wallTimes(timing.settings[k]));
@@ -483,6 +518,10 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     Progress progress(mine.size(), o.quiet);
     ActiveScene active;
     std::size_t done = 0;
+    // Each scene and size's budget, shared by its groups (interleaved_timing.h).
+    std::map<std::tuple<std::size_t, int, int>, int> groupsOfScene;
+    for (std::size_t k = 0; k < mine.size(); ++k)
+        if (k == 0 || !sameGroup(*mine[k - 1], *mine[k])) ++groupsOfScene[{mine[k]->scene, mine[k]->width, mine[k]->height}];
     for (std::size_t first = 0; first < mine.size();) {
         std::size_t last = first + 1;
         while (last < mine.size() && sameGroup(*mine[first], *mine[last])) ++last;
@@ -498,7 +537,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
             }
         }
         if (pending.empty()) continue;
-        done += renderGroup(config, o, store, cache, active, group, pending, mixed, progress, done, summary);
+        TimingProtocol protocol = config.timing;
+        protocol.groupBudgetMs = protocol.sceneBudgetMs / groupsOfScene.at({group.front()->scene, group.front()->width, group.front()->height});
+        done += renderGroup(config, o, store, cache, active, group, pending, protocol, mixed, progress, done, summary);
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
     }
     progress.finish();

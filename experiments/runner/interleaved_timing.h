@@ -8,7 +8,10 @@
 //      `max_warmup_frames` frames in all. `warmup_frames = 0`: no warm-up at all.
 //   2. Rounds: every setting once a round, in roundOrder's order (timing_statistics.h). At least
 //      `repeats` rounds, then more until every setting's median has a 95% interval within
-//      +-`precision` of itself, or the rounds have taken `group_budget_s`, or `max_rounds`. With
+//      +-`precision` of itself, or the rounds have taken the group's share of `budget_s`, or
+//      `max_rounds`. The budget is for one scene and size, shared equally by its groups (its views
+//      and frames): the report pools a setting's rounds over them, so a scene seen from one view
+//      gets as many rounds to rank its settings as one seen along a path. With
 //      `repeats` below 6, too few for a 95% interval of a median, exactly `repeats` rounds and no
 //      interval (quick checks and tests).
 //
@@ -30,13 +33,14 @@ struct FrameClocks {
 struct TimingProtocol {
     int warmupFrames = 1;
     double warmupMs = 0.0;
-    int steadyFrames = 3;
+    int steadyFrames = 2;
     double steadyTolerance = 0.1;
-    int maxWarmupFrames = 10;
+    int maxWarmupFrames = 5;
     int minRounds = 6;  // `repeats`
     int maxRounds = 30;
     double precision = 0.03;
-    double groupBudgetMs = 1500.0;
+    double groupBudgetMs = 2000.0;  // the runner's share of `budget_s` for one group (see below)
+    double sceneBudgetMs = 6000.0;  // `budget_s`: for one scene and size, shared by its groups
     std::uint64_t seed = 0x68796272696c6162ULL;  // "hybrilab": one fixed order for every run
 };
 

@@ -1,44 +1,19 @@
-// Linear images for display, after tev and JERI: an exposure (EV: the linear values times 2^EV)
-// and a display transform take the EXR's linear RGB to the 8-bit colours drawn. report.py writes
-// each run's and reference's linear RGB as a classic script (viewer/linear/N.js, half floats, so
-// that it loads from the file system) that calls window.hybridlabLinear; loaded when first needed.
-
-import { scriptLoader } from './script_data.js';
+// How values become the colours drawn, after tev and JERI. Linear images (and their differences)
+// go through an exposure (EV: the values times 2^EV) and a display transform, or through false
+// colour; one-value images (FLIP, the runner's error maps) through their colour map over their
+// range, with the viewer's legend; a PNG's display values are drawn as stored.
 
 export const DISPLAY_TRANSFORMS = [
   { id: 'srgb', name: 'sRGB, clipped (as the PNGs)' },
   { id: 'aces', name: 'ACES filmic (Narkowicz 2015)' },
   { id: 'reinhard', name: 'Reinhard, x / (1 + x)' },
   { id: 'linear', name: 'linear, clipped (no curve)' },
+  { id: 'false', name: 'false colour: mean of R, G, B on viridis, 0 to 2^-EV' },
 ];
 export const DEFAULT_TRANSFORM = 'srgb';
+export const FALSE_COLOUR_MAP = 'viridis';
 
-function halfToFloat(h) {
-  const s = h & 0x8000 ? -1 : 1;
-  const e = (h >> 10) & 0x1f;
-  const m = h & 0x3ff;
-  if (e === 0) return s * m * 2 ** -24;
-  if (e === 31) return m ? NaN : s * Infinity;
-  return s * (1 + m / 1024) * 2 ** (e - 15);
-}
-
-// The linear RGB of the image shown as `file` (a PNG path of the manifest); null without a script.
-// Its script calls window.hybridlabLinear(file, width, height, base64 of half floats).
-export const linearData = scriptLoader('hybridlabLinear', (width, height, base64) => {
-  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-  const halves = new Uint16Array(bytes.buffer);
-  const rgb = new Float32Array(halves.length);
-  for (let i = 0; i < halves.length; i += 1) rgb[i] = halfToFloat(halves[i]);
-  return { width, height, rgb };
-});
-
-export function linearAt(data, x, y) {
-  if (!data || x < 0 || y < 0 || x >= data.width || y >= data.height) return null;
-  const i = 3 * (y * data.width + x);
-  return [data.rgb[i], data.rgb[i + 1], data.rgb[i + 2]];
-}
-
-const srgbEncode = (c) => (c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055);
+export const srgbEncode = (c) => (c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055);
 const clip = (c) => Math.min(1, Math.max(0, c));
 
 // One linear channel value to display [0, 1], after the exposure.
@@ -57,42 +32,158 @@ export function displayChannel(v, ev, transform) {
   }
 }
 
-export function displayRgb(rgb, ev, transform) {
-  return rgb.map((v) => Math.round(255 * displayChannel(v, ev, transform)));
-}
-
-// The PNG as written shows the default transform at EV 0: no need to draw it again.
-export function isIdentity(ev, transform) {
-  return ev === 0 && transform === DEFAULT_TRANSFORM;
-}
-
-const drawn = new Map(); // file|ev|transform -> data URL
-
-// A data: URL of the image under the exposure and transform (a data: URL, unlike a file:// image,
-// can be read back by a canvas).
-export function drawLinear(file, data, ev, transform) {
-  const key = `${file}|${ev}|${transform}`;
-  if (!drawn.has(key)) {
-    const canvas = document.createElement('canvas');
-    canvas.width = data.width;
-    canvas.height = data.height;
-    const ctx = canvas.getContext('2d');
-    const img = ctx.createImageData(data.width, data.height);
-    const lut = new Map();
-    for (let p = 0, n = data.width * data.height; p < n; p += 1) {
-      for (let c = 0; c < 3; c += 1) {
-        const v = data.rgb[3 * p + c];
-        let d = lut.get(v);
-        if (d === undefined) {
-          d = Math.round(255 * displayChannel(v, ev, transform));
-          lut.set(v, d);
-        }
-        img.data[4 * p + c] = d;
-      }
-      img.data[4 * p + 3] = 255;
+// The 8-bit level a linear value is drawn at: round(255 displayChannel(v)) by a binary search among
+// the 255 values where the level changes (displayChannel rises with v), a fraction of the time of
+// the curve itself, which a megapixel image would evaluate three million times.
+function levels(ev, transform) {
+  const x = (v) => displayChannel(v, ev, transform);
+  const steps = [];
+  for (let k = 1; k < 256; k += 1) {
+    // The smallest v drawn at level k or above: bisection on the rising curve.
+    let lo = 0;
+    let hi = 2 ** (EV_SEARCH - ev);
+    if (Math.round(255 * x(hi)) < k) {
+      steps.push(Infinity);
+      continue;
     }
-    ctx.putImageData(img, 0, 0);
-    drawn.set(key, canvas.toDataURL());
+    for (let i = 0; i < 400; i += 1) {
+      const mid = 0.5 * (lo + hi);
+      if (mid === lo || mid === hi) break; // adjacent numbers: hi is the threshold
+      if (Math.round(255 * x(mid)) >= k) hi = mid;
+      else lo = mid;
+    }
+    steps.push(hi);
   }
-  return drawn.get(key);
+  return (v) => {
+    let a = 0;
+    let b = 255;
+    while (a < b) {
+      const m = (a + b) >> 1;
+      if (v >= steps[m]) a = m + 1;
+      else b = m;
+    }
+    return a;
+  };
+}
+const EV_SEARCH = 40;
+
+// The level of every float whose top 16 bits are i, where they all share one (-1 where the level
+// changes inside, about one bucket in a hundred, left to the search): one look-up a value.
+function bucketLevels(level) {
+  const table = new Int16Array(65536);
+  const word = new Uint32Array(1);
+  const float = new Float32Array(word.buffer);
+  const at = (b) => {
+    word[0] = b;
+    const v = float[0];
+    return Number.isNaN(v) ? 0 : level(v);
+  };
+  for (let i = 0; i < 65536; i += 1) {
+    const low = at(i << 16 >>> 0);
+    table[i] = low === at(((i << 16) | 0xffff) >>> 0) ? low : -1;
+  }
+  return table;
+} // values up to 2^40 (times the exposure) are searched; above, the curves are flat
+
+// The colour `table` (256 RGB entries) gives value v on [lo, hi].
+export function mapColour(v, table, lo, hi) {
+  const t = hi > lo ? (v - lo) / (hi - lo) : 0;
+  return table[Math.max(0, Math.min(table.length - 1, Math.round(t * (table.length - 1))))];
+}
+
+// How an image is drawn: { ev, transform } for linear values, { colormap, range } for one value a
+// pixel. `tables`: the colour maps by name.
+export function pixelColour(values, image, how, tables) {
+  if (image.kind === 'scalar') return mapColour(values[0], tables[how.colormap], how.range[0], how.range[1]);
+  if (image.kind === 'display') return values.map((v) => Math.round(255 * v));
+  if (how.transform === 'false') {
+    const mean = values.reduce((a, b) => a + b, 0) / values.length;
+    return mapColour(mean * 2 ** how.ev, tables[FALSE_COLOUR_MAP], 0, 1);
+  }
+  return values.map((v) => Math.round(255 * displayChannel(v, how.ev, how.transform)));
+}
+
+const levelTables = new Map(); // "ev transform" -> { level, byBits }
+
+// The image's colours as ImageData.
+export function drawImage(image, how, tables) {
+  const out = new ImageData(image.width, image.height);
+  const n = image.width * image.height;
+  const c = image.channels;
+  const d = image.data;
+  const px = out.data;
+  if (image.kind === 'linear' && how.transform !== 'false') {
+    const key = `${how.ev} ${how.transform}`;
+    if (!levelTables.has(key)) {
+      const level = levels(how.ev, how.transform);
+      levelTables.set(key, { level, byBits: bucketLevels(level) });
+    }
+    const { level, byBits } = levelTables.get(key);
+    const bits = new Uint32Array(d.buffer, d.byteOffset, d.length);
+    for (let p = 0; p < n; p += 1) {
+      for (let k = 0; k < 3; k += 1) {
+        const known = byBits[bits[3 * p + k] >>> 16];
+        px[4 * p + k] = known >= 0 ? known : level(d[3 * p + k]);
+      }
+      px[4 * p + 3] = 255;
+    }
+    return out;
+  }
+  const values = new Array(c);
+  for (let p = 0; p < n; p += 1) {
+    for (let k = 0; k < c; k += 1) values[k] = d[c * p + k];
+    const colour = pixelColour(values, image, how, tables);
+    px[4 * p] = colour[0];
+    px[4 * p + 1] = colour[1];
+    px[4 * p + 2] = colour[2];
+    px[4 * p + 3] = 255;
+  }
+  return out;
+}
+
+// The legend of a drawing: { colormap, low, high, what } where it uses a colour map, else null.
+export function legendOf(image, how) {
+  if (image.kind === 'scalar') return { colormap: how.colormap, low: how.range[0], high: how.range[1], what: how.what };
+  if (image.kind === 'linear' && how.transform === 'false') {
+    return { colormap: FALSE_COLOUR_MAP, low: 0, high: 2 ** -how.ev, what: 'mean of R, G, B' };
+  }
+  return null;
+}
+
+export function legendHtml(legend, tables, escape) {
+  const table = tables[legend.colormap];
+  const stops = table.filter((_, i) => i % 16 === 0 || i === table.length - 1).map((c) => `rgb(${c[0]},${c[1]},${c[2]})`);
+  const fmt = (v) => Number(v.toPrecision(3)).toString();
+  return `<div class="legend"><div class="bar" style="background:linear-gradient(to right,${stops.join(',')})"></div>`
+    + `<div class="ends"><span class="lo">${fmt(legend.low)}</span><span>${escape(legend.what)}</span><span class="hi">${fmt(legend.high)}</span></div></div>`;
+}
+
+// The values of one of the runner's error maps (a PNG coloured by `table` over `range`, with its
+// legend drawn below the map's first `height` rows): each colour's nearest entry of the table,
+// scaled to the range, so that the viewer draws the map with its own legend alone. The values are
+// as precise as the map's 256 colours.
+export function runnerMapValues(png, table, range, height) {
+  const rows = Math.min(height, png.height);
+  const data = new Float32Array(png.width * rows);
+  const byColour = new Map();
+  for (let p = 0; p < data.length; p += 1) {
+    const rgb = [0, 1, 2].map((k) => Math.round(255 * png.data[3 * p + k]));
+    const packed = (rgb[0] << 16) | (rgb[1] << 8) | rgb[2];
+    let v = byColour.get(packed);
+    if (v === undefined) {
+      let best = 0;
+      let bestDistance = Infinity;
+      table.forEach((c, i) => {
+        const d = (c[0] - rgb[0]) ** 2 + (c[1] - rgb[1]) ** 2 + (c[2] - rgb[2]) ** 2;
+        if (d < bestDistance) {
+          bestDistance = d;
+          best = i;
+        }
+      });
+      v = range[0] + ((range[1] - range[0]) * best) / (table.length - 1);
+      byColour.set(packed, v);
+    }
+    data[p] = v;
+  }
+  return { width: png.width, height: rows, channels: 1, data, kind: 'scalar' };
 }

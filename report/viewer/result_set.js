@@ -1,5 +1,7 @@
-// The result set as the viewer reads it: the manifest that report.py writes (one entry per run,
-// paths relative to viewer.html), grouped into scenes, sizes, views, frames and technique variants.
+// The result set as the viewer reads it: the records of results.json (what the runner wrote: the
+// images' paths are the result set's own) and the report's settings.json (title, the report's
+// colour of each setting, the settings not applicable to a scene), grouped into scenes, sizes,
+// views, frames and technique settings.
 
 export const REFERENCE = 'reference';
 
@@ -12,14 +14,53 @@ function distinct(values) {
 // Numbers inside names by value: "budget=5000" before "budget=20000".
 const naturalOrder = new Intl.Collator('en', { numeric: true }).compare;
 
+// A technique with its parameter set, named as the report names it (report/results.py variant()).
+export function variantOf(r) {
+  return r.label + (r.parameters_text ? ` [${r.parameters_text}]` : '');
+}
+
+const metric = (r, region, name) => {
+  const m = r.metrics && r.metrics[region];
+  if (!m) return null;
+  if (name === 'flip' || name === 'flip_hdr') return m[name] ? m[name].mean : null;
+  if (name === 'psnr') return m.psnr_db ?? null;
+  return m[name] ?? null;
+};
+
+// One run as the viewer shows it; `base`: the result set's folder as seen from viewer.html.
+function runOf(r, base, notApplicable) {
+  const file = (path) => encodeURI(base + path);
+  const size = `${r.width}x${r.height}`;
+  const maps = {};
+  for (const [name, m] of Object.entries((r.images.maps && r.metrics.maps) || {})) {
+    maps[name] = { file: file(`${r.images.maps}/${m.file}`), colormap: m.colormap, range: m.range };
+  }
+  const variant = variantOf(r);
+  return {
+    id: r.id, index: r.index, scene: r.scene, size, width: r.width, height: r.height, view: r.view, frame: r.frame,
+    technique: r.technique, label: r.label, variant, parameters_text: r.parameters_text,
+    image: file(r.images.exr), reference: file(r.reference.exr), png: file(r.images.png), reference_png: file(r.reference.png), frame_ms: r.frame_ms.median, reference_ms: r.reference.frame_ms,
+    stages: Object.fromEntries(Object.entries(r.stages || {}).map(([k, s]) => [k, s.median])),
+    metrics: {
+      ssim: metric(r, 'whole', 'ssim'), flip: metric(r, 'whole', 'flip'), flip_hdr: metric(r, 'whole', 'flip_hdr'),
+      psnr: metric(r, 'whole', 'psnr'), masked_ssim: metric(r, 'masked', 'ssim'), masked_flip: metric(r, 'masked', 'flip'),
+      masked_flip_hdr: metric(r, 'masked', 'flip_hdr'), temporal: r.temporal_error ?? null,
+    },
+    maps,
+    debug: Object.fromEntries(Object.entries(r.images.debug || {}).map(([k, v]) => [k, file(v)])),
+    not_applicable: notApplicable.get(keyOf(r.scene, size, '', '', variant)) || null,
+  };
+}
+
 export class ResultSet {
-  constructor(manifest) {
-    this.title = manifest.title;
-    this.runs = manifest.runs;
-    this.colormaps = manifest.colormaps;
-    this.pixelScripts = manifest.pixel_scripts;
-    this.linearScripts = manifest.linear_scripts || {};
-    this.referenceParameters = manifest.reference_parameters;
+  constructor(records, settings) {
+    this.title = settings.title;
+    this.colours = settings.colours || {};
+    this.colormaps = settings.colormaps;
+    this.referenceParameters = settings.reference_parameters;
+    const base = settings.result_set ? `${settings.result_set}/` : '';
+    const notApplicable = new Map((settings.not_applicable || []).map(([scene, size, name, why]) => [keyOf(scene, size, '', '', name), why]));
+    this.runs = records.map((r) => runOf(r, base, notApplicable));
     this.byId = new Map(this.runs.map((r) => [r.id, r]));
     this.byKey = new Map(this.runs.map((r) => [keyOf(r.scene, r.size, r.view, r.frame, r.variant), r]));
   }
@@ -56,14 +97,12 @@ export class ResultSet {
     const byTechnique = new Map();
     for (const r of this.group(sel)) {
       if (r.not_applicable) continue;
-      const key = r.technique || r.label;
-      if (!byTechnique.has(key)) byTechnique.set(key, new Set());
-      byTechnique.get(key).add(r.variant);
+      if (!byTechnique.has(r.technique)) byTechnique.set(r.technique, new Set());
+      byTechnique.get(r.technique).add(r.variant);
     }
-    return [...byTechnique.entries()].map(([, set]) => {
-      const names = [...set].sort();
+    return [...byTechnique.values()].map((set) => {
       const plain = this.group(sel).find((r) => set.has(r.variant) && !r.parameters_text);
-      return plain ? plain.variant : names[0];
+      return plain ? plain.variant : [...set].sort(naturalOrder)[0];
     });
   }
 

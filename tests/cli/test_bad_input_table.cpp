@@ -5,13 +5,16 @@
 // files fixtures/bad/*.toml and the glTF cases of test_cli_bad_input.cpp are the other half of
 // the table.
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "common/image/image_io.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/test_support.h"
@@ -46,6 +49,61 @@ std::string sceneText(const std::string& materialLines, const std::string& objec
 // An experiment config: one scene with `sceneLines` (from line 2), one technique.
 std::string configText(const std::string& sceneLines) {
     return "[[scenes]]\n" + sceneLines + "\n[[techniques]]\nname = \"whitted\"\n";
+}
+
+// PNG's CRC-32 of a chunk's type and data.
+std::uint32_t pngCrc(const std::string& bytes) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char b : bytes) {
+        c ^= b;
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return ~c;
+}
+
+// A PNG chunk: length, type, data, CRC.
+std::string pngChunk(const std::string& type, const std::string& data) {
+    const auto bigEndian = [](std::uint32_t v) {
+        return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+    };
+    return bigEndian(static_cast<std::uint32_t>(data.size())) + type + data + bigEndian(pngCrc(type + data));
+}
+
+// The second round of inputs that passed silently or crashed: an object scaled past any float
+// bound, textures and a sky holding a NaN, loops of symbolic links, a device and an unreadable
+// file where files were expected, a PNG whose header claims more pixels than its 1 KB can hold,
+// technique parameters of the wrong type, runs listed twice, a scale that changes sign.
+void writeHardeningInputs(const fs::path& d) {
+    using test::writeTextFile;
+    writeTextFile(d / "huge-scale.toml", sceneText("", "primitive = \"sphere\"\nscale = 1e38\n"));
+    writeTextFile(d / "sign-change.toml",
+                  sceneText("", "primitive = \"cube\"\nanimation = { keys = [{ time = 0.0, scale = 1.0 }, { time = 1.0, scale = [1.0, -1.0, 1.0] }] }\n"));
+    Image nan(4, 4, glm::vec4(0.5f));
+    nan.at(2, 1).g = std::numeric_limits<float>::quiet_NaN();
+    nan.at(3, 3).r = std::numeric_limits<float>::infinity();
+    writeExr(d / "nan-texel.exr", nan);
+    writeExr(d / "finite.exr", Image(4, 4, glm::vec4(0.5f)));
+    writeTextFile(d / "nan-texture.toml", sceneText("diffuse_texture = \"nan-texel.exr\"\n", "primitive = \"cube\"\n"));
+    writeTextFile(d / "nan-sky.toml", sceneText("", "primitive = \"cube\"\n") +
+                                          "\n[sky]\ncube_map = [\"finite.exr\", \"finite.exr\", \"nan-texel.exr\", \"finite.exr\", "
+                                          "\"finite.exr\", \"finite.exr\"]\n");
+    for (const char* ext : {".toml", ".glb"}) {
+        fs::create_symlink(std::string("loop-b") + ext, d / (std::string("loop-a") + ext));
+        fs::create_symlink(std::string("loop-a") + ext, d / (std::string("loop-b") + ext));
+    }
+    writeTextFile(d / "loop-model.toml", sceneText("", "model = \"loop-a.glb\"\n"));
+    // 16384 x 16384 RGB in 1 KB: 805 MB of pixels that a decoder would allocate before finding the
+    // data missing.
+    const std::string ihdr = std::string{0, 0, 0x40, 0, 0, 0, 0x40, 0, 8, 2, 0, 0, 0};
+    std::string png = "\x89PNG\r\n\x1a\n" + pngChunk("IHDR", ihdr) + pngChunk("IDAT", std::string(960, '\0')) + pngChunk("IEND", "");
+    writeTextFile(d / "huge.png", png);
+    writeTextFile(d / "huge-png.toml", sceneText("diffuse_texture = \"huge.png\"\n", "primitive = \"cube\"\n"));
+    const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 32]]\n";
+    writeTextFile(d / "param-string.toml", scene + "\n[[techniques]]\nname = \"whitted\"\nparams = { max_depth = \"3\" }\n");
+    writeTextFile(d / "param-float.toml", scene + "\n[[techniques]]\nname = \"whitted\"\nparams = { max_depth = 2.0 }\n");
+    writeTextFile(d / "scene-twice.toml", scene + scene + "\n[[techniques]]\nname = \"whitted\"\n");
+    writeTextFile(d / "sets-twice.toml", scene + "\n[[techniques]]\nname = \"whitted\"\nparam_sets = [{ max_depth = 2 }, { max_depth = 2 }]\n");
+    writeTextFile(d / "loop-scene.toml", "[[scenes]]\nscene = \"loop-a.toml\"\nresolutions = [[32, 32]]\n\n[[techniques]]\nname = \"whitted\"\n");
 }
 
 // Writes every input the cases name into `d`.
@@ -101,6 +159,7 @@ void writeInputs(const fs::path& d) {
     shard("shard-a0", "a", 'a', 0);
     shard("shard-a1", "a", 'a', 1);
     shard("shard-b1", "b", 'b', 1);
+    writeHardeningInputs(d);
 }
 
 struct BadInputCase {
@@ -121,7 +180,7 @@ const std::vector<BadInputCase> kCases = {
     // Numbers on the command line: finite, in range, within their type.
     {render({"--time", "nan", "--out", "%o/x.exr"}), 2, "--time: expected a finite number in [-1e+06, 1e+06], got nan"},
     {render({"--time", "inf", "--out", "%o/x.exr"}), 2, "--time: expected a finite number in [-1e+06, 1e+06], got inf"},
-    {render({"--time", "1e300", "--out", "%o/x.exr"}), 2, "--time: expected a number in [-1e+06, 1e+06], got 1e+300"},
+    {render({"--time", "1e300", "--out", "%o/x.exr"}), 2, "--time: expected a number in [-1e+06, 1e+06], got 1e300"},
     {render({"--camera-path", "orbit", "--frame", "4294967296", "--out", "%o/x.exr"}), 2, "--frame: expected an integer in [0, 10000000], got 4294967296"},
     {{"render", "--scene", "whitted-classic", "--width", "4294967328", "--height", "24", "--out", "%o/x.exr"}, 2,
      "--width: expected an integer in [1, 16384], got 4294967328"},
@@ -167,6 +226,47 @@ const std::vector<BadInputCase> kCases = {
     {{"merge", "--out", "%o", "%d/shard-a0", "%d/shard-a0"}, 2, "merge: %d/shard-a0 and %d/shard-a0 are both shard 0/2"},
     {{"merge", "--out", "%o", "%d/shard-a0", "%d/shard-a1"}, 2, "merge: %d/shard-a0 (shard 0/2) holds 0 of its 1 runs"},
     {{"merge", "--out", "%o", "%d/shard-a0", "%d/a-folder"}, 2, "%d/a-folder: not an experiment folder (no experiment.json)"},
+    // The second round. An object scaled past every bound: refused by scene-info and render alike.
+    {{"scene-info", "%d/huge-scale.toml"}, 2,
+     "%d/huge-scale.toml:9:9: objects[0].scale: places the object's vertices up to 5e+37 from the origin, beyond the limit of 1e+12"},
+    {{"render", "--scene", "%d/huge-scale.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "objects[0].scale: places the object's vertices up to 5e+37 from the origin"},
+    {{"scene-info", "%d/sign-change.toml"}, 2, "objects[0].animation.keys[1].scale: expected each scale factor to keep the sign it has at the first keyframe"},
+    // Non-finite texels, in a texture and in a sky's face: named with the file and the first texel,
+    // by scene-info (which decodes float images to check them) and by render.
+    {{"scene-info", "%d/nan-texture.toml"}, 2,
+     "%d/nan-texture.toml:5:19: materials.grey.diffuse_texture: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1): (0.5, nan, 0.5, 0.5)"},
+    {{"render", "--scene", "%d/nan-texture.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "materials.grey.diffuse_texture: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1)"},
+    {{"render", "--scene", "%d/nan-sky.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "sky.cube_map: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1)"},
+    // Paths that are no files: a loop of symbolic links (as scene, model and config entry), a device,
+    // a file the system cannot read: the system's reason, never an internal error.
+    {{"scene-info", "%d/loop-a.toml"}, 2, "%d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
+    {{"render", "--scene", "%d/loop-a.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "%d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
+    {{"scene-info", "%d/loop-model.toml"}, 2, "objects[0].model: 'loop-a.glb' cannot be read (%d/loop-a.glb: Too many levels of symbolic links)"},
+    {{"run", "%d/loop-scene.toml", "--out", "%o"}, 2, "scenes[0].scene: %d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
+    {{"scene-info", "/dev/null"}, 2, "/dev/null: is not a regular file (a device or a pipe), expected a scene file (.toml) or a scene's name"},
+    {{"run", "/dev/null", "--out", "%o"}, 2, "/dev/null: is not a regular file (a device or a pipe), expected a TOML file"},
+    {{"scene-info", "/proc/self/mem"}, 2, "/proc/self/mem: cannot be read (Input/output error)"},
+    // A header claiming more pixels than its file can hold: refused before the pixels are allocated.
+    {{"scene-info", "%d/huge-png.toml"}, 2,
+     "materials.grey.diffuse_texture: %d/huge.png: cannot read image (PNG: header claims 16384x16384 pixels, which take at least 780336 bytes (deflate packs at most 1032 bytes of rows into one), more than the file's 1017"},
+    {{"render", "--scene", "%d/huge-png.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2, "%d/huge.png: cannot read image (PNG: header claims 16384x16384 pixels"},
+    // Numbers echoed as written.
+    {{"render", "--scene", "whitted-classic", "--width", "99999999999999999999", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "--width: expected an integer in [1, 16384], got 99999999999999999999"},
+    {{"run", "%d/param-float.toml", "--out", "%o"}, 2,
+     "%d/param-float.toml:7:24: techniques[0].params.max_depth: technique whitted: parameter 'max_depth': expected an integer in [0, 64], got 2.0"},
+    // A config's parameters are typed: a string is not an integer.
+    {{"run", "%d/param-string.toml", "--out", "%o"}, 2,
+     "%d/param-string.toml:7:24: techniques[0].params.max_depth: technique whitted: parameter 'max_depth': expected an integer in [0, 64], got the string \"3\""},
+    // Runs listed twice would each render twice.
+    {{"run", "%d/scene-twice.toml", "--out", "%o"}, 2,
+     "%d/scene-twice.toml:4:1: scenes[1]: scene whitted-classic at 32x32, the scene's camera, is listed again (first in scenes[0])"},
+    {{"run", "%d/sets-twice.toml", "--out", "%o"}, 2,
+     "techniques[0].param_sets[1]: the settings max_depth=2 are, with the defaults filled in, those of techniques[0].param_sets[0] (max_depth=2)"},
     // Arguments: one line, with the pointer to --help on it.
     {{"scene-info", "whitted-classic", "--frobnicate"}, 2, "The following argument was not expected: --frobnicate (hybridlab --help for usage)"},
     {{"frobnicate"}, 2, "unknown command 'frobnicate' (commands: "},

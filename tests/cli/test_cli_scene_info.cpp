@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -140,6 +141,35 @@ TEST(CliSceneInfo, ObjectsFittedByTheirBounds) {
     EXPECT_EQ(r[3].exitStatus, 2);
     EXPECT_CONTAINS(r[3].err, "flat.toml:");
     EXPECT_CONTAINS(r[3].err, "the object's bounds have no height (a flat object): fit its 'size' instead");
+}
+
+// de Macedo & Rodrigues Tables I and II at the paper's scale: `scenes --json` gives every
+// bunnies-falling-N and teapots-deforming-N a triangle count and a dynamic-triangle count within 10%
+// of the table's; the full-resolution -full-N count every copy of the full model as dynamic.
+TEST(CliScenes, DynamicScenesWithinTenPercentOfThePapersCounts) {
+    CliResult r = runHybridlab({"scenes", "--json"}, {{"HYBRIDLAB_ASSETS", std::nullopt}});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    std::map<std::string, nlohmann::json> stats;
+    for (const auto& row : nlohmann::json::parse(r.out))
+        if (row.contains("stats")) stats[row.at("name").get<std::string>()] = row.at("stats");
+    // N, then Table I's triangles and dynamic triangles, then Table II's (x10^3, as the paper prints them).
+    const double tables[][5] = {{5, 3.2, 2.5, 3.0, 2.8},      {10, 5.7, 5.0, 5.9, 5.7},     {15, 8.2, 7.5, 8.8, 8.6},
+                                {20, 10.7, 10.0, 11.6, 11.4}, {25, 13.2, 12.5, 14.5, 14.3}, {30, 15.7, 15.0, 17.4, 17.2}};
+    for (const auto& row : tables) {
+        const std::string n = std::to_string(static_cast<int>(row[0]));
+        for (const auto& [scene, triangles, dynamic] :
+             {std::tuple{"bunnies-falling-" + n, row[1], row[2]}, std::tuple{"teapots-deforming-" + n, row[3], row[4]}}) {
+            SCOPED_TRACE(scene);
+            ASSERT_EQ(stats.count(scene), 1u);
+            EXPECT_NEAR(stats[scene].at("triangles").get<double>() / 1e3, triangles, 0.1 * triangles);
+            EXPECT_NEAR(stats[scene].at("dynamic_triangles").get<double>() / 1e3, dynamic, 0.1 * dynamic);
+        }
+        ASSERT_EQ(stats.count("bunnies-falling-full-" + n), 1u);
+        ASSERT_EQ(stats.count("teapots-deforming-full-" + n), 1u);
+        EXPECT_EQ(stats["bunnies-falling-full-" + n].at("dynamic_triangles").get<double>(), row[0] * 69451);
+        EXPECT_EQ(stats["teapots-deforming-full-" + n].at("dynamic_triangles").get<double>(), row[0] * 15704);
+    }
+    EXPECT_EQ(stats["whitted-classic"].at("dynamic_triangles"), 0);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 sys.path.insert(0, os.path.join(HERE, "..", "support"))
+import results as rs  # noqa: E402
 import synthetic_records as sr  # noqa: E402
 import timing  # noqa: E402
 import verdict  # noqa: E402
@@ -48,8 +49,10 @@ def verdict_of(records):
 
 
 def row(v, threshold, region="whole image"):
+    """The threshold table's row that answers SSIM >= threshold on the region (rows whose answer is
+    the same settings are one row)."""
     header, rows = verdict.threshold_table(v)
-    (found,) = [cells for cells in rows if cells[0] == "SSIM >= %.2f, %s" % (threshold, region)]
+    (found,) = [cells for (covers, _), cells in zip(v.threshold_rows(), rows) if (region, threshold) in covers]
     return dict(zip(header, found))
 
 
@@ -95,7 +98,7 @@ class TiedRows(unittest.TestCase):
     def test_markdown_links_each_tied_setting(self):
         v = verdict_of(timed_set())
         lines = verdict.markdown_table(verdict.threshold_table(v), verdict.setting_link(lambda i: "viewer.html#run=" + i, True))
-        (line,) = [l for l in lines if l.startswith("| SSIM >= 0.99, whole image |")]
+        (line,) = [l for l in lines if l.startswith("| SSIM >= 0.99 and >= 0.97, whole image |")]
         self.assertRegex(line, r"\| \[%s\]\(viewer\.html#run=\S+\) and \[%s\]\(viewer\.html#run=\S+\), tied within 3%% or the noise \|"
                          % (re.escape(CUTOFF), re.escape(DEPTH)))
 
@@ -156,6 +159,42 @@ class OldResultSets(unittest.TestCase):
     def test_the_report_says_the_set_has_no_intervals(self):
         _, md = verdict.write([verdict_of(self.records())], lambda i: "viewer.html#run=" + i)
         self.assertIn("This result set has no intervals", md[3])
+
+
+class NothingBeatsTheReference(unittest.TestCase):
+    """A small committed result set (tests/fixtures/report/nothing_beats_reference, timed rounds) in
+    which the reference (13.6 ms) is faster than every setting that reaches any threshold: rt_only
+    (15.9 ms, SSIM 0.9995) is the fastest reaching each, heuristic_rt reaches 0.99 at 35.6 ms."""
+
+    def verdict(self):
+        return verdict_of(rs.load(os.path.join(HERE, "..", "fixtures", "report", "nothing_beats_reference")))
+
+    def test_the_sentence_says_nothing_beats_the_reference(self):
+        s = self.verdict().sentence()
+        self.assertIn("On whitted-classic at 64x36, nothing reaching SSIM 0.99 on the whole image beats the reference (13.6 ms): "
+                      "the fastest, rt_only at 15.9 ms (0.85x (0.85-0.86) the reference's speed)", s)
+        self.assertNotIn("rt_only's", s)
+
+    def test_rows_naming_the_same_setting_are_one_row_saying_so(self):
+        header, rows = verdict.threshold_table(self.verdict())
+        self.assertEqual(len(rows), 1)
+        cells = dict(zip(header, rows[0]))
+        self.assertEqual(cells["quality reached"], "SSIM >= 0.99, >= 0.97 and >= 0.95, whole image")
+        self.assertEqual(plain(cells["fastest setting"]), "rt_only")
+        self.assertEqual(cells["in words"], "nothing reaching it beats the reference")
+
+    def test_a_hybrid_that_beats_the_reference_but_not_rt_only_says_so(self):
+        reference = sr.drifting_rounds(100.0, 8, 3)
+        records = []
+        for view in ("a", "b"):
+            g = sr.Group("scene", reference, view=view)
+            records.append(sr.timed_record(g, "rt_only", "", sr.drifting_rounds(60.0, 8, 3), ssim=0.999))
+            records.append(sr.timed_record(g, "hyb", "k=slow", sr.drifting_rounds(80.0, 8, 3), ssim=0.995))
+        v = verdict_of(records)
+        hyb = v.settings["hyb [k=slow]"]
+        self.assertTrue(v.beats_reference(hyb))
+        self.assertFalse(v.beats_rt_only(hyb))
+        self.assertEqual(v.beaten([hyb]), "beats the reference; nothing reaching it beats rt_only")
 
 
 if __name__ == "__main__":

@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 std::vector<std::string> paperScenes() {
     std::vector<std::string> names = {"sponza-spheres", "sponza-armadillo", "teapot-lens", "teapot-on-floor", "dining-room"};
     for (int n = 5; n <= 30; n += 5) {
-        names.push_back("bunnies-falling-" + std::to_string(n));
-        names.push_back("teapots-deforming-" + std::to_string(n));
+        for (const char* family : {"bunnies-falling-", "teapots-deforming-", "bunnies-falling-full-", "teapots-deforming-full-"})
+            names.push_back(family + std::to_string(n));
     }
     return names;
 }

@@ -21,11 +21,13 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 import results  # noqa: E402
+import timing  # noqa: E402
 
 CONFIG = """
 [experiment]
 name = "schema"
-repeats = 1
+repeats = 6
+max_rounds = 6
 warmup_frames = 0
 keep = ["debug_images", "error_maps"]
 
@@ -80,6 +82,23 @@ def check_refusals(record):
         found = mutated(change)
         check(found == [], f"a valid variant refused: {found}")
     print(f"validator: {len(cases)} broken records refused, {len(allowed)} valid variants accepted")
+
+
+def check_intervals_agree(records):
+    """The runner's intervals (C++, experiments/runner/timing_statistics.h) equal the report's
+    (report/timing.py) on the same rounds: one statistic written twice, held equal here."""
+    for r in records:
+        t = r["timing"]
+        check(t["rounds"] == 6 and len(t["frame_ms_rounds"]) == 6, f"{r['id']}: expected 6 rounds, got {t['rounds']}")
+        iv = timing.median_interval(t["frame_ms_rounds"])
+        check((iv.median, iv.low, iv.high) == (r["frame_ms"]["median"], r["frame_ms"]["ci_low"], r["frame_ms"]["ci_high"]),
+              f"{r['id']}: the runner's interval {r['frame_ms']} is not the report's {iv}")
+        ratios = [ref / ms for ref, ms in zip(t["reference_ms_rounds"], t["frame_ms_rounds"])]
+        iv = timing.median_interval(ratios)
+        s = r["speedup"]["reference"]
+        check(abs(iv.median - s["ratio"]) <= 1e-12 * s["ratio"] and (iv.low, iv.high) == (s["low"], s["high"]),
+              f"{r['id']}: the runner's speed-up {s} is not the report's {iv}")
+    print(f"intervals: the runner's and the report's agree on {len(records)} records")
 
 
 def validate_set(folder):
@@ -146,6 +165,7 @@ def main():
     check(any(r["images"].get("debug") for r in records), "no record lists debug images")
     print(f"writer: {len(records)} records of results.json and runs/ validate")
 
+    check_intervals_agree(records)
     check_sharded_and_mixed(binary, config, scratch, env, len(records))
     check_refusals(records[-1])
 

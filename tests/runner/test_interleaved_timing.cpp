@@ -55,7 +55,11 @@ TEST(InterleavedTiming, RoundsRunEverySettingOnceInTheDocumentedOrder) {
 
 TEST(InterleavedTiming, WarmUpGoesOnUntilTheLastFramesAgree) {
     VirtualMachine m;
-    TimingProtocol p;  // 1 frame, then until 3 agree within 10%, at most 10
+    TimingProtocol p;
+    p.warmupFrames = 1;  // 1 frame, then until 3 agree within 10%, at most 10
+    p.steadyFrames = 3;
+    p.steadyTolerance = 0.1;
+    p.maxWarmupFrames = 10;
     const GroupTiming g = timeInterleaved({m.setting(0, 10, {80, 40, 20, 12}), m.setting(1, 5, {90, 80, 70, 60, 50, 40, 30, 20, 10, 9, 8})}, p);
     // 80 40 20 12 10 10: the last three, 12 10 10, still differ by 20%; the seventh frame agrees.
     EXPECT_EQ(g.settings[0].warmupFrames, 7);

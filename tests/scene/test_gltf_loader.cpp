@@ -359,7 +359,7 @@ TEST(GltfLoader, UnreadableFilesAreErrors) {
     test::writeTextFile(dir / "image-folder.gltf", d.dump());
     EXPECT_CONTAINS(loadError(dir / "image-folder.gltf"), (dir / ".").string() + ": is a directory, expected an image file");
     std::filesystem::create_directory(dir / "folder.glb");
-    EXPECT_CONTAINS(loadError(dir / "folder.glb"), (dir / "folder.glb").string() + ": not a valid glTF 2.0 file (");
+    EXPECT_CONTAINS(loadError(dir / "folder.glb"), (dir / "folder.glb").string() + ": is a directory, expected a glTF model (.gltf or .glb)");
 }
 
 }  // namespace

@@ -156,6 +156,17 @@ TEST(MeshTransform, MirroringKeepsTrianglesCounterClockwise) {
             transformMesh(m, M);
             expectOutwardCounterClockwise(m, glm::vec3(0.0f));
         }
+        // The bitangent, cross(n, t) * w, is the mapped one: a mirror flips w.
+        Mesh plane = makePlane();
+        computeTangents(plane);
+        Mesh mirrored = plane;
+        transformMesh(mirrored, M);
+        for (std::size_t i = 0; i < plane.positions.size(); ++i) {
+            const glm::vec3 bitangent = glm::cross(plane.normals[i], glm::vec3(plane.tangents[i])) * plane.tangents[i].w;
+            const glm::vec3 mapped = glm::normalize(glm::mat3(M) * bitangent);
+            const glm::vec3 rebuilt = glm::cross(mirrored.normals[i], glm::vec3(mirrored.tangents[i])) * mirrored.tangents[i].w;
+            EXPECT_GT(glm::dot(glm::normalize(rebuilt), mapped), 0.5f);
+        }
     }
 }
 

@@ -1,14 +1,20 @@
 // The paper scenes (scenes/sponza-*.toml, teapot-lens.toml, de Macedo & Rodrigues' dynamic
-// bunnies-falling-N and teapots-deforming-N) with their assets: exact triangle counts of the
-// models and Walewski 2019 Table 4's reflective and refractive object counts.
+// bunnies-falling-N and teapots-deforming-N, and their full-resolution -full-N) with their assets:
+// exact triangle counts of the models, Walewski 2019 Table 4's reflective and refractive object
+// counts, and the simplified models' topology and normals.
 // Their models are in scenes/assets (HYBRIDLAB_ASSETS overrides the folder).
 //
 // Sponza: sponza.gltf holds 66,450 triangles, 6 of which have zero area (three distinct vertices
 // on one line: 1 in mesh 'relief', 4 in 'object3', 1 in 'doors'). The loader drops them with a
 // warning, so the sponza object has 66,444 triangles and droppedDegenerateTriangles is 6.
+#include <cstdint>
+#include <map>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "common/scene/scene_file.h"
@@ -23,6 +29,9 @@ constexpr std::size_t kSponzaTriangles = kSponzaTrianglesInFile - kSponzaDegener
 constexpr std::size_t kTeapotTriangles = 15704;
 constexpr std::size_t kArmadilloTriangles = 345944;
 constexpr std::size_t kBunnyTriangles = 69451;
+// The models simplified to de Macedo & Rodrigues' sizes (scenes/assets/README.md: gltfpack).
+constexpr std::size_t kBunnyLowTriangles = 500;
+constexpr std::size_t kTeapotLowTriangles = 572;
 
 constexpr std::size_t sphereTriangles(std::size_t slices, std::size_t stacks) { return 2 * slices * (stacks - 1); }
 
@@ -132,27 +141,72 @@ TEST(PaperScenes, TeapotLensCounts) {
 
 // de Macedo & Rodrigues Tables I-II: N rigidly moving bunnies / N deforming teapots (N = 5 to 30 in
 // steps of 5, one file per N differing only in the copy count) around a static mirror sphere on a
-// static floor, with the orbit path the tables are measured along.
+// static floor, with the orbit path the tables are measured along. At the paper's scale the models
+// are the simplified ones and the sphere is the paper's size (0.7k static triangles in Table I,
+// 0.2k in Table II); -full-N keeps the full-resolution models and a finer sphere.
 TEST(PaperScenes, DynamicScenesCounts) {
+    struct Family {
+        const char* prefix;
+        const char* model;
+        std::size_t modelTriangles;
+        std::size_t sphereSlices, sphereStacks;
+    };
+    const Family families[] = {{"bunnies-falling-", "bunny", kBunnyLowTriangles, 28, 14},
+                               {"teapots-deforming-", "teapot", kTeapotLowTriangles, 16, 8},
+                               {"bunnies-falling-full-", "bunny", kBunnyTriangles, 96, 48},
+                               {"teapots-deforming-full-", "teapot", kTeapotTriangles, 96, 48}};
     for (int n = 5; n <= 30; n += 5) {
-        for (const auto& [family, model, triangles] : {std::tuple{"bunnies-falling-", "bunny", kBunnyTriangles},
-                                                       std::tuple{"teapots-deforming-", "teapot", kTeapotTriangles}}) {
-            const std::string name = family + std::to_string(n);
+        for (const Family& f : families) {
+            const std::string name = f.prefix + std::to_string(n);
             SCOPED_TRACE(name);
             const Scene s = loadSceneFile(test::builtinSceneFile(name), {.loadTextures = false});
             EXPECT_EQ(s.name, name);
             ASSERT_EQ(s.objects.size(), static_cast<std::size_t>(n) + 2);
-            EXPECT_EQ(s.stats().triangles, n * triangles + 2 + sphereTriangles(96, 48));
+            EXPECT_EQ(s.stats().triangles, n * f.modelTriangles + 2 + sphereTriangles(f.sphereSlices, f.sphereStacks));
             EXPECT_EQ(s.stats().reflectiveObjects, 1u);
+            const bool bunny = std::string(f.model) == "bunny";
             for (int k = 0; k < n; ++k) {
-                const SceneObject& o = s.objects[objectIndex(s, std::string(model) + "-" + std::to_string(k))];
-                EXPECT_EQ(o.isAnimated(), std::string(model) == "bunny");
-                EXPECT_EQ(o.isDeforming(), std::string(model) == "teapot");
+                const std::size_t object = objectIndex(s, std::string(f.model) + "-" + std::to_string(k));
+                EXPECT_EQ(s.objectTriangleCount(object), f.modelTriangles);
+                EXPECT_EQ(s.objects[object].isAnimated(), bunny);
+                EXPECT_EQ(s.objects[object].isDeforming(), !bunny);
             }
             EXPECT_FALSE(s.objects[objectIndex(s, "sphere")].isDynamic());
             ASSERT_NE(s.findCameraPath("orbit"), nullptr);
             EXPECT_EQ(s.findCameraPath("orbit")->frameCount(), 121);
         }
+    }
+}
+
+// The simplified models keep their sources' topology: no edge shared by more than two triangles,
+// the teapot closed (Euler characteristic -2: genus 2, the handle and the spout), the bunny with
+// four small holes (14 boundary edges) where the scan has five (223); and every vertex normal on
+// the side of the triangles around it (positive dot product with their area-weighted normal).
+TEST(PaperScenes, SimplifiedModelsKeepTheirTopologyAndNormals) {
+    for (const auto& [scene, object, boundaryEdges] : {std::tuple{"bunnies-falling-5", "bunny-0", std::size_t{14}},
+                                                       std::tuple{"teapots-deforming-5", "teapot-0", std::size_t{0}}}) {
+        SCOPED_TRACE(scene);
+        const Scene s = loadSceneFile(test::builtinSceneFile(scene), {.loadTextures = false});
+        const auto& meshes = s.objects[objectIndex(s, object)].meshes;
+        ASSERT_EQ(meshes.size(), 1u);
+        const Mesh& mesh = s.meshes[meshes[0]];
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;  // vertex pair -> triangles sharing it
+        std::vector<glm::vec3> around(mesh.vertexCount(), glm::vec3(0.0f));
+        for (const glm::uvec3& t : mesh.triangles) {
+            for (int k = 0; k < 3; ++k) ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+            const glm::vec3 areaNormal = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+            for (int k = 0; k < 3; ++k) around[t[k]] += areaNormal;
+        }
+        std::size_t boundary = 0, nonManifold = 0;
+        for (const auto& [edge, count] : edges) {
+            boundary += count == 1;
+            nonManifold += count > 2;
+        }
+        EXPECT_EQ(boundary, boundaryEdges);
+        EXPECT_EQ(nonManifold, 0u);
+        const long euler = static_cast<long>(mesh.vertexCount()) - static_cast<long>(edges.size()) + static_cast<long>(mesh.triangleCount());
+        EXPECT_EQ(euler, -2);
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) EXPECT_GT(glm::dot(mesh.normals[v], around[v]), 0.0f) << "vertex " << v;
     }
 }
 

@@ -27,9 +27,13 @@ inline std::vector<nlohmann::json> readResults(const std::filesystem::path& out)
 }
 
 // A record without what legitimately differs between two runs of the same experiment: timings
-// and whether the reference came from the cache.
+// (the warm-up's length too: it ends when frame times agree) and whether the reference came from
+// the cache.
 inline nlohmann::json comparableRecord(nlohmann::json r) {
     r.erase("frame_ms");
+    r.erase("timing");
+    r.erase("speedup");
+    r.erase("warmup_frames");
     r.erase("stages");
     r.erase("run_seconds");
     r["reference"].erase("cache_hit");

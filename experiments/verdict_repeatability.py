@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Does the verdict hold from run to run? Runs one experiment several times back to back (the
+references cached), optionally with busy loops on every core throughout, and compares the
+report's verdict rows: per scene, size and SSIM threshold, the fastest setting (or the settings
+tied for fastest) reaching it.
+
+    /usr/bin/python3 experiments/verdict_repeatability.py [--config experiments/configs/quick.toml]
+        [--runs 3] [--busy N] [--out DIR] [--program build/hybridlab] [--reuse]
+
+Prints each run's wall time and rows, then how many rows name the same settings in every run.
+`--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
+reports result sets already in DIR/run-K instead of running them; `--against DIR` also counts the
+rows identical to the first run in DIR (say, quiet runs against runs under load). On a shared
+machine, run it under `chrt -r 50`: the runner and the busy loops it starts then share the cores
+round-robin, ahead of everything else. Exit status 0 whatever agrees: this is a measurement, not
+a test."""
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "report"))
+import results as rs  # noqa: E402
+import verdict  # noqa: E402
+
+
+def verdict_rows(result_dir):
+    """{(scene, size, region, threshold): "name" or "a and b (tied)"} of one result set."""
+    rows = {}
+    for v in verdict.verdicts(rs.load(result_dir), result_dir):
+        for region, label, threshold, tied in v.thresholds:
+            names = " and ".join(s.name for s in tied) if tied else "none"
+            rows[(v.scene, v.size, label, threshold)] = names
+    return rows
+
+
+def busy_loops(count):
+    return [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(count)]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--config", default=os.path.join(HERE, "configs", "quick.toml"))
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--busy", type=int, default=0, help="busy loops running throughout")
+    ap.add_argument("--out", default="results/verdict-repeatability")
+    ap.add_argument("--program", default=os.path.join(HERE, "..", "build", "hybridlab"))
+    ap.add_argument("--reuse", action="store_true", help="report the result sets already in --out")
+    ap.add_argument("--against", help="a folder of earlier runs (run-1, ...): count the rows identical to its first")
+    args = ap.parse_args()
+
+    loops = busy_loops(args.busy)
+    tables = []
+    try:
+        for k in range(args.runs):
+            out = os.path.join(args.out, "run-%d" % (k + 1))
+            if not args.reuse:
+                if os.path.exists(out):
+                    sys.exit("%s: exists; remove it or pass --reuse" % out)
+                start = time.monotonic()
+                subprocess.run([args.program, "run", args.config, "--out", out, "--quiet"], check=True)
+                print("run %d: %.1f s%s" % (k + 1, time.monotonic() - start, " (%d busy loops)" % args.busy if args.busy else ""), flush=True)
+            tables.append(verdict_rows(out))
+    finally:
+        for p in loops:
+            p.kill()
+
+    keys = sorted(set().union(*tables))
+    same = 0
+    for key in keys:
+        values = [t.get(key, "-") for t in tables]
+        agree = len(set(values)) == 1
+        same += agree
+        scene, size, label, threshold = key
+        print("%s %s SSIM >= %.2f %s: %s%s" % (scene, size, threshold, label, " | ".join(values), "" if agree else "   <- differs"))
+    print("%d of %d verdict rows identical in all %d runs" % (same, len(keys), len(tables)))
+    if args.against:
+        baseline = verdict_rows(os.path.join(args.against, "run-1"))
+        for k, t in enumerate(tables):
+            agree = sum(t.get(key, "-") == baseline.get(key, "-") for key in keys)
+            print("run %d: %d of %d rows identical to %s's first run" % (k + 1, agree, len(keys), args.against))
+
+
+if __name__ == "__main__":
+    main()
