@@ -420,7 +420,9 @@ params = { max_depth = 1 }
     const json frames = run("frames", "warmup_frames = 3\n");
     EXPECT_GE(frames.at("warmup_frames"), 3);
     EXPECT_LE(frames.at("warmup_frames"), 5);
-    if (frames.at("warmup_frames") < 5) EXPECT_TRUE(frames.at("timing").at("steady").get<bool>());  // it stopped on agreeing frames
+    if (frames.at("warmup_frames") < 5) {
+        EXPECT_TRUE(frames.at("timing").at("steady").get<bool>());  // it stopped on agreeing frames
+    }
     const json timed = run("timed", "warmup_frames = 1\nwarmup_ms = 250\n");
     const double frameMs = timed.at("frame_ms").at("median").get<double>();
     // At least as many frames as fit in 250 ms at the slowest timed frame's pace, and the run took that long.
