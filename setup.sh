@@ -25,8 +25,9 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   # scene core and images
   libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR
-  libopenexr-dev libpng-dev libjpeg-dev libstb-dev
+  # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR; OpenImageIO for
+  # the rest (TIFF, PFM, DDS, WebP, ...), in a plugin the program loads only when it meets such a file
+  libopenexr-dev libpng-dev libjpeg-dev libstb-dev libopenimageio-dev
   # metrics (SSIM's filtering)
   libopencv-dev
   # tests and benchmarks
@@ -43,9 +44,10 @@ PACKAGES=(
   vulkan-validationlayers
   # metrics cross-check (tests)
   python3-skimage python3-numpy
-  # reports and paper figures (Debian's /usr/bin/python3), and zlib for the report's viewer (pako,
-  # copied beside it: the browser inflates the result set's EXRs with it)
-  python3-matplotlib node-pako
+  # reports and paper figures (Debian's /usr/bin/python3): charts, the result set's images, its records'
+  # schema; and zlib for the report's viewer (pako, copied beside it: the browser inflates the result
+  # set's EXRs with it)
+  python3-matplotlib python3-openimageio python3-jsonschema node-pako
   # the viewer's browser test only (tests/report/viewer: headless Chromium driven by playwright-core,
   # and Ajv for the results schema, both from npm); the hybridlab program needs neither
   chromium nodejs

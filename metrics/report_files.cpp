@@ -40,14 +40,19 @@ nlohmann::json regionJson(const RegionMetrics& m, const MetricSelection& chosen)
 
 }  // namespace
 
-std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report) {
+double largestDifference(const MetricReport& report) {
+    double largest = 0.0;
+    if (!report.maps.absoluteDifference.empty()) cv::minMaxLoc(report.maps.absoluteDifference, nullptr, &largest);
+    return largest;
+}
+
+std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report, std::optional<double> differenceHigh) {
     const MetricSelection& chosen = report.options.selection;
     std::vector<HeatmapSpec> maps;
     if (chosen.error()) {
-        double largest = 0.0;
-        cv::minMaxLoc(report.maps.absoluteDifference, nullptr, &largest);
+        const double high = differenceHigh.value_or(largestDifference(report));
         // A legend from 0 to 0 says nothing; equal images show the bottom colour on 0 to 1.
-        maps.push_back({"diff.png", "|T-R|", ColorMap::Viridis, {0.0, largest > 0.0 ? largest : 1.0}, &report.maps.absoluteDifference});
+        maps.push_back({"diff.png", "|T-R|", ColorMap::Viridis, {0.0, high > 0.0 ? high : 1.0}, &report.maps.absoluteDifference});
     }
     if (chosen.ssim) maps.push_back({"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim});
     if (chosen.flip) maps.push_back({"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip});
@@ -55,7 +60,7 @@ std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report) {
     return maps;
 }
 
-nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources) {
+nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources, std::optional<double> differenceHigh) {
     nlohmann::json j;
     j["test"] = sources.test;
     j["reference"] = sources.reference;
@@ -70,7 +75,7 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
     j["whole"] = regionJson(report.whole, report.options.selection);
     j["masked"] = report.masked ? regionJson(*report.masked, report.options.selection) : nlohmann::json(nullptr);
     nlohmann::json maps = nlohmann::json::object();
-    for (const HeatmapSpec& h : reportHeatmaps(report)) {
+    for (const HeatmapSpec& h : reportHeatmaps(report, differenceHigh)) {
         maps[fs::path(h.file).stem().string()] = {
             {"file", h.file}, {"colormap", colorMapName(h.colorMap)}, {"range", {h.range.low, h.range.high}}};
     }
@@ -78,14 +83,14 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
     return j;
 }
 
-void writeReportFiles(const fs::path& dir, const MetricReport& report, const ReportSources& sources) {
+void writeReportFiles(const fs::path& dir, const MetricReport& report, const ReportSources& sources, std::optional<double> differenceHigh) {
     createDirectories(dir);
     std::vector<std::function<void()>> maps;
-    for (const HeatmapSpec& h : reportHeatmaps(report)) {
+    for (const HeatmapSpec& h : reportHeatmaps(report, differenceHigh)) {
         maps.push_back([&dir, h] { writePng(dir / h.file, heatmapWithLegend(*h.values, h.range, h.colorMap, h.title)); });
     }
     runInParallel(maps);  // each PNG's encoding is serial
-    const std::string text = reportJson(report, sources).dump(2) + "\n";
+    const std::string text = reportJson(report, sources, differenceHigh).dump(2) + "\n";
     writeFileAtomically(dir / "metrics.json", text);
 }
 

@@ -28,16 +28,22 @@ struct HeatmapSpec {
     const cv::Mat1f* values;
 };
 
-// diff.png (|test - reference|, viridis, 0 to the largest difference), ssim.png (viridis, 0 to 1)
-// and flip.png (magma, 0 to 1, as NVIDIA's FLIP tool shows it), each if its metric was selected.
-std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report);
+// diff.png (|test - reference|, viridis, 0 to `differenceHigh`, by default the largest difference),
+// ssim.png (viridis, 0 to 1), flip.png and flip_hdr.png (magma, 0 to 1, as NVIDIA's FLIP tool
+// shows it), each if its metric was selected. A fixed `differenceHigh` lets the maps of several
+// tests against one reference be read on one scale.
+std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report, std::optional<double> differenceHigh = std::nullopt);
+
+// The largest |test - reference| of a report's difference map (0 for equal images).
+double largestDifference(const MetricReport& report);
 
 // The numbers: sources, size, settings, whole-image (and masked) metrics, the maps' files and
 // ranges. An infinite PSNR (equal images) is written as null, which JSON has for it.
-nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources);
+nlohmann::json reportJson(const MetricReport& report, const ReportSources& sources, std::optional<double> differenceHigh = std::nullopt);
 
 // Writes the heat maps and metrics.json into `dir` (created if missing). Each file is written to
 // a temporary name beside it and renamed, so no half-written file is ever left.
-void writeReportFiles(const std::filesystem::path& dir, const MetricReport& report, const ReportSources& sources);
+void writeReportFiles(const std::filesystem::path& dir, const MetricReport& report, const ReportSources& sources,
+                      std::optional<double> differenceHigh = std::nullopt);
 
 }  // namespace hybridlab

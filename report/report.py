@@ -25,8 +25,8 @@ import sys
 import figure_files  # first: it selects matplotlib's file backend before pyplot loads
 import axis_format
 import device
-import exr
 import failures
+import images
 import matplotlib.pyplot as plt
 import palette
 import point_labels
@@ -364,9 +364,9 @@ def main():
     # Every image the report reads, checked before anything is written.
     try:
         for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
-            exr.load_header(os.path.join(a.result_dir, path))
+            images.check(os.path.join(a.result_dir, path))
         verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir)}
-    except exr.ExrError as e:
+    except images.ImageError as e:
         print("report: %s" % e, file=sys.stderr)
         sys.exit(2)
     os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)

@@ -1,11 +1,19 @@
-"""Reading a hybridlab result set (results.json, else runs/) for the figure and report scripts.
+"""Reading a hybridlab result set (results.json, else runs/) for the figure and report scripts, and
+checking its records against their JSON Schema (experiments/results.schema.json) with Debian's
+python3-jsonschema.
 
-Every script of the report and of paper_figures/ reads only the records, never the renderer."""
+Every script of the report and of paper_figures/ reads only the records, never the renderer.
+
+    results.py RESULT_DIR      validates the set's records; exit status 1 with the problems"""
 import argparse
 import json
 import os
 import re
 import sys
+
+import jsonschema
+
+SCHEMA_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "results.schema.json")
 
 
 def is_result_set(result_dir):
@@ -276,3 +284,59 @@ def write_table(lines, out_path=None, device=None):
     if out_path:
         with open(out_path, "w") as f:
             f.write(text)
+
+
+def _where(path):
+    """A record's place as "$.frame_ms.median" or "$.images.debug[0]" (as the viewer's Ajv test writes it)."""
+    return "$" + "".join("[%d]" % p if isinstance(p, int) else ".%s" % p for p in path)
+
+
+def _describe(error):
+    """One problem, "place: what", in words that name the key a missing or unexpected one is."""
+    where, value, instance = _where(error.absolute_path), error.validator_value, error.instance
+    if error.validator == "required":
+        missing = [k for k in value if isinstance(instance, dict) and k not in instance]
+        return "%s: missing required '%s'" % (where, missing[0] if missing else value)
+    if error.validator == "additionalProperties" and isinstance(instance, dict):
+        known = error.schema.get("properties", {})
+        return "%s: unexpected '%s'" % (where, ", ".join(sorted(k for k in instance if k not in known)))
+    if error.validator == "type":
+        return "%s: expected %s, got %s" % (where, " or ".join(value if isinstance(value, list) else [value]), json.dumps(instance)[:40])
+    if error.validator == "minimum":
+        return "%s: %s is below the minimum %s" % (where, instance, value)
+    return "%s: %s" % (where, error.message)
+
+
+_validator = None
+
+
+def schema_problems(record):
+    """Every way a record breaks the schema ("place: what"), in the order of their places; [] when valid."""
+    global _validator
+    if _validator is None:
+        with open(SCHEMA_PATH) as f:
+            schema = json.load(f)
+        _validator = jsonschema.Draft202012Validator(schema, format_checker=None)
+    errors = sorted(_validator.iter_errors(record), key=lambda e: [str(p) for p in e.absolute_path])
+    return [_describe(e) for e in errors]
+
+
+def results_problems(records):
+    """The problems of every record of a results.json, each prefixed by the record's index."""
+    if not isinstance(records, list):
+        return ["results.json: expected an array of records"]
+    return ["record %d: %s" % (i, p) for i, r in enumerate(records) for p in schema_problems(r)]
+
+
+def main(argv):
+    if len(argv) != 2:
+        print("usage: results.py RESULT_DIR", file=sys.stderr)
+        return 2
+    found = results_problems(load(argv[1]))
+    for p in found:
+        print(p)
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

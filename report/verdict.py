@@ -19,14 +19,18 @@ reflective/refractive pixels) are medians over the same runs. From these:
 - one sentence per scene saying it in words, "nothing ... beats the reference" where nothing does.
 
 A setting that changes nothing on a scene is not applicable there (`not_applicable`): left off the
-verdict and the scene's speed-accuracy chart, and listed with the reason."""
+verdict and the scene's speed-accuracy chart, and listed with the reason.
+
+    verdict.py RESULT_DIR      prints the verdict in words, a sentence per scene and size (what
+                               `hybridlab run` ends with)"""
 import collections
 import hashlib
 import html
 import os
 import statistics
+import sys
 
-import exr
+import images
 import results as rs
 import timing
 
@@ -71,7 +75,7 @@ def settings_of(records):
 
 def image_digest(result_dir, r):
     """The digest of a run's linear pixels (not of its EXR file, whose header carries a date)."""
-    return hashlib.sha256(exr.rgb(os.path.join(result_dir, r["images"]["exr"])).tobytes()).hexdigest()
+    return hashlib.sha256(images.rgb(os.path.join(result_dir, r["images"]["exr"])).tobytes()).hexdigest()
 
 
 def mark_not_applicable(settings, result_dir):
@@ -407,3 +411,16 @@ def write(verdict_list, viewer_link):
             page.append(html_table(excluded_table(v), h, "verdict excluded"))
             md += ["", "Not applicable:", ""] + markdown_table(excluded_table(v), m)
     return "\n".join(page), md
+
+
+def main(argv):
+    if len(argv) != 2:
+        print("usage: verdict.py RESULT_DIR", file=sys.stderr)
+        return 2
+    for v in verdicts(rs.load(argv[1]), argv[1]):
+        print(v.sentence())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,6 +1,7 @@
 #pragma once
 // The image formats behind image_io.h, each on the library that defines it: EXR on OpenEXR, PNG on
-// libpng, JPEG on libjpeg(-turbo), and BMP, TGA, GIF, PSD, PNM and Radiance HDR on stb_image. They
+// libpng, JPEG on libjpeg(-turbo), BMP, TGA, GIF, PSD, PNM and Radiance HDR on stb_image, and the
+// rest that OpenImageIO reads (TIFF, PFM, DDS, WebP, ...) through a plugin loaded on demand. They
 // decode from and encode to memory, so that a file, an image embedded in a glTF buffer and an
 // atomic write all go through the same code. Errors throw ImageCodecError with the library's words;
 // image_io.cpp names the file.
@@ -68,7 +69,7 @@ inline bool claimExceedsFile(long long width, long long height, double leastFile
     return true;
 }
 
-enum class ImageFormat { Exr, Png, Jpeg, Other };
+enum class ImageFormat { Exr, Png, Jpeg, OpenImageIo, Other };
 // By the file's first bytes, not its name.
 ImageFormat imageFormatOf(const unsigned char* bytes, std::size_t size);
 
@@ -83,6 +84,11 @@ ImageHeader readJpegHeader(const unsigned char* bytes, std::size_t size);
 DecodedImage decodeJpeg(const unsigned char* bytes, std::size_t size);
 ImageHeader readStbHeader(const unsigned char* bytes, std::size_t size);
 DecodedImage decodeStb(const unsigned char* bytes, std::size_t size);
+// TIFF, PFM, DDS, WebP, JPEG 2000, DPX, Cineon, SGI, FITS, HEIF and IFF, by their first bytes; read
+// by OpenImageIO in a plugin that the first such file loads (openimageio_codec.cpp).
+bool isOpenImageIoFormat(const unsigned char* bytes, std::size_t size);
+ImageHeader readOpenImageIoHeader(const unsigned char* bytes, std::size_t size);
+DecodedImage decodeOpenImageIo(const unsigned char* bytes, std::size_t size);
 
 // 32-bit float RGBA, ZIP-compressed, with no attribute beyond the required ones (no capDate).
 std::vector<unsigned char> encodeExr(const Image& image);

@@ -86,6 +86,7 @@ ImageHeader readHeader(ImageFormat format, const unsigned char* bytes, std::size
     case ImageFormat::Exr: return readExrHeader(bytes, size);
     case ImageFormat::Png: return readPngHeader(bytes, size);
     case ImageFormat::Jpeg: return readJpegHeader(bytes, size);
+    case ImageFormat::OpenImageIo: return readOpenImageIoHeader(bytes, size);
     case ImageFormat::Other: break;
     }
     return readStbHeader(bytes, size);
@@ -111,6 +112,7 @@ Image decode(const unsigned char* bytes, std::size_t size, const std::string& na
         case ImageFormat::Exr: decoded = decodeExr(bytes, size); break;
         case ImageFormat::Png: decoded = decodePng(bytes, size); break;
         case ImageFormat::Jpeg: decoded = decodeJpeg(bytes, size); break;
+        case ImageFormat::OpenImageIo: decoded = decodeOpenImageIo(bytes, size); break;
         case ImageFormat::Other: decoded = decodeStb(bytes, size); break;
         }
     } catch (const ImageCodecError& e) {

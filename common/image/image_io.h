@@ -1,6 +1,7 @@
 #pragma once
 // Image files: linear EXR (any pixel type) and display PNG (8 or 16 bit sRGB) written; EXR, PNG,
-// JPEG, BMP, TGA, GIF, PSD, PNM and Radiance HDR read, each recognised by its first bytes
+// JPEG, BMP, TGA, GIF, PSD, PNM and Radiance HDR read, and through OpenImageIO TIFF, PFM, DDS, WebP,
+// JPEG 2000, DPX, Cineon, SGI, FITS, HEIF and IFF, each recognised by its first bytes
 // (image_codecs.h: the library behind each).
 #include <filesystem>
 #include <string>
@@ -12,8 +13,8 @@ namespace hybridlab {
 
 // How 8/16-bit colour channels are decoded. Tagged: as the file's metadata says, from PNG's cICP
 // chunk (which overrides the others), sRGB chunk or gAMA chunk: linear (cICP transfer 8, gAMA 1) as
-// stored, a gAMA of 1/g as v^g, sRGB or no such metadata as sRGB. Float formats (EXR, HDR) are
-// always taken as stored.
+// stored, a gAMA of 1/g as v^g, sRGB or no such metadata as sRGB (for OpenImageIO's formats, its
+// oiio:ColorSpace says). Float formats (EXR, HDR, PFM, float TIFF) are always taken as stored.
 enum class ColorEncoding { Linear, Srgb, Tagged };
 
 // Reads an image file. Pixel values are returned as stored; with `decode =

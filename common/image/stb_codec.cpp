@@ -17,6 +17,7 @@ ImageFormat imageFormatOf(const unsigned char* bytes, std::size_t size) {
     if (startsWith({0x76, 0x2F, 0x31, 0x01})) return ImageFormat::Exr;
     if (startsWith({0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'})) return ImageFormat::Png;
     if (startsWith({0xFF, 0xD8, 0xFF})) return ImageFormat::Jpeg;
+    if (isOpenImageIoFormat(bytes, size)) return ImageFormat::OpenImageIo;
     return ImageFormat::Other;
 }
 
@@ -29,7 +30,8 @@ int lengthOf(std::size_t size) {
 
 [[noreturn]] void failed() {
     const char* reason = stbi_failure_reason();
-    throw ImageCodecError(std::string("not an image in a format hybridlab reads (EXR, PNG, JPEG, BMP, TGA, GIF, PSD, PNM, HDR)") +
+    throw ImageCodecError(std::string("not an image in a format hybridlab reads (EXR, PNG, JPEG, BMP, TGA, GIF, PSD, PNM, HDR; "
+                                      "TIFF, PFM, DDS, WebP, JPEG 2000, DPX, Cineon, SGI, FITS, HEIF, IFF through OpenImageIO)") +
                           (reason ? std::string(": ") + reason : std::string()));
 }
 

@@ -14,6 +14,7 @@
 #include "common/core/toml_reader.h"
 #include "common/image/image_io.h"
 #include "common/scene/assets.h"
+#include "common/scene/bounds_fit.h"
 #include "common/scene/gltf_loader.h"
 #include "common/scene/placement_mirror.h"
 #include "common/scene/primitives.h"
@@ -170,6 +171,28 @@ private:
         return tr;
     }
 
+    // [objects.fit]: the object scaled to a height or a size and moved so that its bounds' bottom or
+    // centre lands at `at` (default: `position`, which it then replaces).
+    Transform readFit(const TomlTable& fit, const TomlTable& object, const std::vector<Mesh>& meshes, const Transform& placement) const {
+        if (fit.has("at") && object.has("position")) fit.fail("at", "the object's 'position' and fit's 'at' both place it: give one");
+        if (fit.has("height") && fit.has("size")) fit.fail("size", "expected 'height' or 'size', not both");
+        BoundsFit f;
+        constexpr NumberRange kPositive{1e-6, 1e6};
+        if (fit.has("height")) f.height = static_cast<float>(fit.requiredNumber("height", kPositive));
+        if (fit.has("size")) f.size = static_cast<float>(fit.requiredNumber("size", kPositive));
+        f.at = fit.vec3("at", placement.position);
+        f.anchor = fit.choice("anchor", "center", {"center", "bottom"}) == "bottom" ? BoundsFit::Anchor::Bottom : BoundsFit::Anchor::Center;
+        fit.rejectUnknownKeys();
+        Aabb local;
+        for (const Mesh& m : meshes) local.extend(m.bounds());
+        if (!local.valid()) fit.failHere("the object has no vertices to fit");
+        Transform rest = placement;
+        rest.position = glm::vec3(0.0f);
+        const glm::vec3 extent = placedBounds(local, rest).extent();
+        if (f.height && !(extent.y > 0.0f)) fit.fail("height", "the object's bounds have no height (a flat object): fit its 'size' instead");
+        return fitToBounds(local, placement, f);
+    }
+
     void readObjects(const TomlTable& root) {
         std::map<std::string, int> names;
         for (const auto& t : root.tableArray("objects")) {
@@ -232,6 +255,7 @@ private:
                 meshes = std::move(content.meshes);
             }
             o.transform = readTransform(t, Transform{});
+            if (auto f = t.table("fit")) o.transform = readFit(*f, t, meshes, o.transform);
             o.relevance = static_cast<float>(t.number("relevance", 1.0, {0.0, 1e6}));
             o.cost = static_cast<float>(t.number("cost", 1.0, {1e-6, 1e6}));
             o.lens = t.boolean("lens", false);

@@ -122,10 +122,12 @@ void run(BakeEmOptions& o) {
                     o.settings.width, o.settings.height, static_cast<unsigned long long>(q.lensHits),
                     static_cast<unsigned long long>(q.cameraRays), static_cast<unsigned long long>(q.pathQueries),
                     static_cast<unsigned long long>(q.treeQueries), q.ratio());
-        Progress progress(2 * views, o.quiet);
+        // Each viewpoint sample twice: its records (the lens images), then the inference of its layers.
+        Progress progress(2 * views, o.quiet, "bake step");
         LayeredEm em = bakeLayeredEm(scene, info, o.settings, stats, [&](const std::string& stage, int done, int total) {
             const std::size_t offset = stage == "records" ? 0 : views;
-            progress.start(offset + static_cast<std::size_t>(done) - 1, info.name + ": " + stage + " " + std::to_string(done) + "/" + std::to_string(total));
+            progress.start(offset + static_cast<std::size_t>(done) - 1, "lens system " + info.name + ", " + stage + " of viewpoint sample " +
+                                                                            std::to_string(done) + "/" + std::to_string(total));
         });
         progress.finish();
         writeLayeredEm(file, em);

@@ -18,5 +18,13 @@ void addCompareCommand(CLI::App& app);
 void addBakeEmCommand(CLI::App& app);
 void addBundleCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
+// `hybridlab help [COMMAND]`: the program's help, or one command's; added last, so that it knows them all.
+void addHelpCommand(CLI::App& app);
+
+// A command's verdict that is neither bad input nor a failure of the program (say, a score worse
+// than `compare --fail-above` allows): main() exits with `status` after the command's output.
+struct CommandExit {
+    int status;
+};
 
 }  // namespace hybridlab::cli

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "common/core/input_error.h"
 #include "common/core/io_error.h"
@@ -43,11 +44,18 @@ int main(int argc, char** argv) {
     hybridlab::cli::addBakeEmCommand(app);
     hybridlab::cli::addBundleCommand(app);
     hybridlab::cli::addViewCommand(app);
-    app.add_flag("--version")->description("Print the program version and this machine's device record (as result sets store it), then exit");
-    if (argc == 2 && std::string(argv[1]) == "--version") {
-        std::printf("hybridlab %s\n%s\n", hybridlab::programVersion().c_str(), hybridlab::deviceRecord().dump(1).c_str());
+    app.add_flag("--version")->description("Print the program version on one line, then exit; `--version --json`: this machine's device record "
+                                           "as JSON, as result sets store it");
+    const std::vector<std::string> arguments(argv + 1, argv + argc);
+    if (arguments == std::vector<std::string>{"--version"}) {
+        std::printf("hybridlab %s\n", hybridlab::programVersion().c_str());
         return 0;
     }
+    if (arguments == std::vector<std::string>{"--version", "--json"} || arguments == std::vector<std::string>{"--json", "--version"}) {
+        std::printf("%s\n", hybridlab::deviceRecord().dump(1).c_str());
+        return 0;
+    }
+    hybridlab::cli::addHelpCommand(app);
     // CLI11 would only say "a subcommand is required" for a misspelt one: name it.
     if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1])) {
         std::string known;
@@ -61,6 +69,8 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
+    } catch (const hybridlab::cli::CommandExit& e) {
+        return e.status;
     } catch (const CLI::ParseError& e) {
         // Bad arguments are bad input: one message, exit status 2.
         printError("error", std::string(e.what()) + " (hybridlab --help for usage)");

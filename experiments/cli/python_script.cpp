@@ -19,12 +19,20 @@ std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3
 
 }  // namespace
 
-int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt) {
+int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt, std::string* output) {
     std::vector<std::string> command = {python(), (fs::path(HYBRIDLAB_SOURCE_DIR) / "report" / script).string()};
     command.insert(command.end(), args.begin(), args.end());
+    int pipeEnds[2] = {-1, -1};
+    if (output && pipe(pipeEnds) != 0) throw std::runtime_error("cannot make a pipe for " + script);
+    std::fflush(stdout);
     pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start " + command[0]);
     if (pid == 0) {
+        if (output) {
+            dup2(pipeEnds[1], STDOUT_FILENO);
+            close(pipeEnds[0]);
+            close(pipeEnds[1]);
+        }
         std::vector<char*> argv;
         for (const auto& a : command) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
@@ -34,6 +42,15 @@ int runReportScript(const std::string& script, const std::vector<std::string>& a
     }
     // Ctrl-C reaches both processes (one process group); ignored here, the script alone decides.
     auto previous = interrupt == Interrupt::ScriptOnly ? std::signal(SIGINT, SIG_IGN) : SIG_DFL;
+    if (output) {
+        close(pipeEnds[1]);
+        char chunk[4096];
+        for (ssize_t n; (n = read(pipeEnds[0], chunk, sizeof chunk)) != 0;) {
+            if (n > 0) output->append(chunk, static_cast<std::size_t>(n));
+            else if (errno != EINTR) break;
+        }
+        close(pipeEnds[0]);
+    }
     int status = 0;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }

@@ -12,6 +12,8 @@ namespace hybridlab::cli {
 enum class Interrupt { StopsBoth, ScriptOnly };
 
 // Runs report/SCRIPT with `args` and returns its exit status (128 + the signal where one ended it).
-int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth);
+// Its standard output passes through, or with `output` is collected there instead.
+int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
+                    std::string* output = nullptr);
 
 }  // namespace hybridlab::cli

@@ -1,9 +1,15 @@
 // `hybridlab render`: one frame of one technique, written as a linear EXR and a display PNG, with
 // its stage times and ray counts.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -33,7 +39,15 @@ struct RenderOptions {
     std::string out;
     std::vector<std::string> params;
     int threads = 0;
+    bool allCounters = false;
+    bool json = false;
 };
+
+std::string timeText(double ms) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3f ms", ms);
+    return text;
+}
 
 // out.exr -> {out.exr, out.png}; out.png -> {out.exr, out.png}.
 std::pair<fs::path, fs::path> outputPaths(const std::string& out) {
@@ -46,6 +60,67 @@ std::pair<fs::path, fs::path> outputPaths(const std::string& out) {
     for (const auto& f : {exr, png})
         if (fs::is_directory(f)) throw InputError("--out " + out + ": " + f.string() + " is a directory, expected an image file name");
     return {exr, png};
+}
+
+// A counter as the record holds it: a count as a whole number, a rate or a ratio to six
+// significant digits (never rounded to a whole number: a hit rate of 0.232 is not 0).
+std::string counterText(double value) {
+    char text[64];
+    if (value == std::floor(value) && std::fabs(value) < 1e15) std::snprintf(text, sizeof text, "%.0f", value);
+    else std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+}
+
+// The stage times and the counters in one aligned table; counters at 0 only with `allCounters`.
+void printTimesAndCounters(double prepareMs, const FrameResult& result, bool allCounters) {
+    std::vector<std::pair<std::string, std::string>> rows = {{"prepare", timeText(prepareMs)}};
+    for (const auto& s : result.stages) rows.push_back({"stage " + s.name, timeText(s.milliseconds)});
+    rows.push_back({"frame", timeText(result.totalMilliseconds())});
+    std::size_t hidden = 0;
+    for (const auto& [name, value] : result.counters) {
+        if (value == 0.0 && !allCounters) ++hidden;
+        else rows.push_back({name, counterText(value)});
+    }
+    if (auto it = result.counters.find("rays_total"); it != result.counters.end() && result.totalMilliseconds() > 0.0)
+        rows.push_back({"mrays_per_second", counterText(std::round(it->second / (result.totalMilliseconds() * 1e3) * 1e3) / 1e3)});
+    std::size_t nameWidth = 0, valueWidth = 0;
+    for (const auto& [name, value] : rows) {
+        nameWidth = std::max(nameWidth, name.size());
+        valueWidth = std::max(valueWidth, value.size());
+    }
+    for (const auto& [name, value] : rows)
+        std::printf("%-*s  %*s\n", static_cast<int>(nameWidth), name.c_str(), static_cast<int>(valueWidth), value.c_str());
+    if (hidden > 0) std::printf("(%zu counters at 0 not shown: --all-counters)\n", hidden);
+}
+
+struct RenderSummary {
+    std::string scene;
+    std::string technique;
+    int width;
+    int height;
+    const View& view;
+    int threads;
+    double prepareMs;
+    const FrameResult& result;
+};
+
+// `render --json`: the same facts as the text, every counter included.
+void printJson(const RenderSummary& r, const fs::path& exr, const fs::path& png) {
+    nlohmann::json stages = nlohmann::json::object();
+    for (const auto& s : r.result.stages) stages[s.name] = s.milliseconds;
+    nlohmann::json j = {{"scene", r.scene},
+                        {"technique", r.technique},
+                        {"width", r.width},
+                        {"height", r.height},
+                        {"view", r.view.label},
+                        {"time", r.view.time},
+                        {"threads", r.threads},
+                        {"prepare_ms", r.prepareMs},
+                        {"stage_ms", stages},
+                        {"frame_ms", r.result.totalMilliseconds()},
+                        {"counters", r.result.counters},
+                        {"files", {exr.string(), png.string()}}};
+    std::printf("%s\n", j.dump(1).c_str());
 }
 
 void run(const RenderOptions& o) {
@@ -75,15 +150,15 @@ void run(const RenderOptions& o) {
     if (const NonFinitePixels nonFinite = findNonFinite(result.image); nonFinite.count > 0)
         std::fprintf(stderr, "hybridlab: warning: %s: %s\n", exrPath.string().c_str(), nonFinite.description().c_str());
 
-    std::printf("scene %s, technique %s, %dx%d, view %s, time %.4g s, %d threads\n", scene.name.c_str(), o.technique.c_str(),
-                o.view.width, o.view.height, view.label.c_str(), view.time, o.threads > 0 ? o.threads : tbb::info::default_concurrency());
-    std::printf("%-22s %10.3f ms\n", "prepare", prep.stages[0].milliseconds);
-    for (const auto& s : result.stages) std::printf("stage %-16s %10.3f ms\n", s.name.c_str(), s.milliseconds);
-    std::printf("%-22s %10.3f ms\n", "frame", result.totalMilliseconds());
-    for (const auto& [name, value] : result.counters) std::printf("%-22s %12.0f\n", name.c_str(), value);
-    if (auto it = result.counters.find("rays_total"); it != result.counters.end() && result.totalMilliseconds() > 0.0) {
-        std::printf("%-22s %12.3f\n", "mrays_per_second", it->second / (result.totalMilliseconds() * 1e3));
+    const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+    if (o.json) {
+        printJson(RenderSummary{scene.name, o.technique, o.view.width, o.view.height, view, threads, prep.stages[0].milliseconds, result},
+                  exrPath, pngPath);
+        return;
     }
+    std::printf("scene %s, technique %s, %dx%d, view %s, time %.4g s, %d threads\n", scene.name.c_str(), o.technique.c_str(),
+                o.view.width, o.view.height, view.label.c_str(), view.time, threads);
+    printTimesAndCounters(prep.stages[0].milliseconds, result, o.allCounters);
     std::printf("wrote %s and %s\n", exrPath.string().c_str(), pngPath.string().c_str());
 }
 
@@ -97,6 +172,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--out", o->out, "Output image, .exr or .png: both the linear EXR and the display PNG are written")->required();
     cmd->add_option("--param", o->params, "Technique parameter key=value (repeatable)");
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
+    cmd->add_flag("--all-counters", o->allCounters, "Also print the counters that are 0");
+    cmd->add_flag("--json", o->json, "Print {scene, technique, width, height, view, time, threads, prepare_ms, stage_ms, frame_ms, counters, "
+                                     "files} as JSON instead");
     cmd->callback([o] { run(*o); });
 }
 

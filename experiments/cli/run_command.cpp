@@ -1,9 +1,12 @@
 // `hybridlab run` and `hybridlab merge`: experiments (DESIGN.md "Experiments and results").
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "common/core/input_error.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/python_script.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/resolution_scale.h"
@@ -75,6 +78,41 @@ void listRuns(const ExperimentConfig& config, const RunnerOptions& r) {
     }
 }
 
+// What a run found, in a few lines: the runs and references rendered and reused, where the results
+// are, the verdict's first sentences (report/verdict.py) and the command that writes the report.
+void printClosingSummary(const ExperimentConfig& config, const RunnerOptions& r, const RunnerSummary& s, const RunOptions& o, double scale) {
+    std::printf("experiment %s (shard %d/%d): %zu runs, %zu rendered, %zu already done; references: %zu rendered, %zu "
+                "reused from the cache (%s)\n",
+                config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
+                s.referenceCacheHits, r.cacheDir.string().c_str());
+    if (!s.complete) {
+        std::printf("stopped with runs left; `hybridlab run %s --out %s%s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str(),
+                    scale == 1.0 ? "" : (" --scale " + o.scale).c_str());
+        return;
+    }
+    std::printf("results in %s (results.csv, results.json)\n", r.outDir.string().c_str());
+    if (r.quiet) return;
+    if (r.shardCount > 1) {
+        std::printf("a shard: `hybridlab merge` joins the shards, then `hybridlab report` writes the report\n");
+        return;
+    }
+    // The verdict in words, a sentence per scene and size; the report has the rest.
+    constexpr std::size_t kSentences = 3;
+    std::string verdict;
+    if (runReportScript("verdict.py", {r.outDir.string()}, Interrupt::StopsBoth, &verdict) == 0) {
+        std::vector<std::string> sentences;
+        for (std::size_t at = 0, end; at < verdict.size(); at = end + 1) {
+            end = verdict.find('\n', at);
+            if (end == std::string::npos) end = verdict.size();
+            if (end > at) sentences.push_back(verdict.substr(at, end - at));
+        }
+        std::printf("verdict:\n");
+        for (std::size_t i = 0; i < std::min(sentences.size(), kSentences); ++i) std::printf("  %s\n", sentences[i].c_str());
+        if (sentences.size() > kSentences) std::printf("  (%zu more scenes and sizes in the report)\n", sentences.size() - kSentences);
+    }
+    std::printf("report: `hybridlab report %s` writes %s\n", r.outDir.string().c_str(), (r.outDir / "report" / "index.html").string().c_str());
+}
+
 void run(const RunOptions& o) {
     const double scale = parseResolutionScale(o.scale);  // before the config: a bad argument is named first
     ExperimentConfig config = loadExperimentConfig(o.config);
@@ -92,12 +130,7 @@ void run(const RunOptions& o) {
     const RunnerSummary s = runExperiment(config, r);
     if (s.staleTemporariesRemoved > 0)
         std::printf("removed %zu partial file(s) (.tmp-*) left by interrupted runs\n", s.staleTemporariesRemoved);
-    std::printf("experiment %s (shard %d/%d): %zu runs, %zu rendered, %zu already done; references: %zu rendered, %zu from the cache (%s)\n",
-                config.name.c_str(), r.shardIndex, r.shardCount, s.runsPlanned, s.runsRendered, s.runsSkipped, s.referencesRendered,
-                s.referenceCacheHits, r.cacheDir.string().c_str());
-    if (s.complete) std::printf("results in %s (results.csv, results.json)\n", r.outDir.string().c_str());
-    else std::printf("stopped with runs left; `hybridlab run %s --out %s%s --resume` continues\n", o.config.c_str(), r.outDir.string().c_str(),
-                     scale == 1.0 ? "" : (" --scale " + o.scale).c_str());
+    printClosingSummary(config, r, s, o, scale);
 }
 
 // Each shard's estimated cost beside the time its runs took, both also as shares of the whole: how
@@ -138,7 +171,7 @@ void addRunCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
-    cmd->add_flag("--quiet", o->quiet, "No progress output");
+    cmd->add_flag("--quiet", o->quiet, "No progress output, and no verdict at the end");
     cmd->add_flag("--dry-run", o->dryRun,
                   "Check the config and list the runs (index, scene, view, frame, size, technique, reference cached or not, "
                   "parameters); render and write nothing");

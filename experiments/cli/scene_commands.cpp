@@ -37,6 +37,8 @@ nlohmann::json statsJson(const Scene& scene) {
 
 nlohmann::json vecJson(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
+nlohmann::json boundsJson(const Aabb& b) { return {{"min", vecJson(b.lo)}, {"max", vecJson(b.hi)}}; }
+
 // `scene-info --json`: the same facts as the text, for scripts.
 nlohmann::json sceneInfoJson(const Scene& scene) {
     const Aabb b = scene.bounds(0.0);
@@ -46,7 +48,7 @@ nlohmann::json sceneInfoJson(const Scene& scene) {
                         {"stats", statsJson(scene)},
                         {"materials", scene.materials.size()},
                         {"textures", scene.textures.size()},
-                        {"bounds", {{"min", vecJson(b.lo)}, {"max", vecJson(b.hi)}}},
+                        {"bounds", boundsJson(b)},
                         {"camera",
                          {{"projection", scene.camera.projection == Camera::Projection::Perspective ? "perspective" : "orthographic"},
                           {"position", vecJson(scene.camera.position)},
@@ -62,7 +64,8 @@ nlohmann::json sceneInfoJson(const Scene& scene) {
         const auto& o = scene.objects[i];
         j["objects"].push_back({{"name", o.name}, {"triangles", scene.objectTriangleCount(i)}, {"reflective", scene.objectIsReflective(i)},
                                 {"refractive", scene.objectIsRefractive(i)}, {"relevance", o.relevance}, {"cost", o.cost},
-                                {"animated", o.isAnimated()}, {"deforms", o.isDeforming()}, {"lens", static_cast<bool>(o.lens)}});
+                                {"animated", o.isAnimated()}, {"deforms", o.isDeforming()}, {"lens", static_cast<bool>(o.lens)},
+                                {"bounds", boundsJson(scene.objectBounds(i, 0.0))}});
     }
     for (const auto& l : scene.lights) {
         j["lights"].push_back({{"name", l.name}, {"type", lightTypeName(l.type)}, {"color", vecJson(l.color)}, {"intensity", l.intensity},
@@ -151,6 +154,12 @@ void addSceneInfoCommand(CLI::App& app) {
                         scene.objectIsReflective(i) ? "yes" : "no", scene.objectIsRefractive(i) ? "yes" : "no", o.relevance, o.cost,
                         o.isDeforming() ? "deforms" : o.isAnimated() ? "yes" : "no",
                         o.lens ? "  lens" : "");
+        }
+        // Where each object stands (at time 0), as placed: what a scene's `fit` tables aim at.
+        std::printf("\n%-24s %s\n", "object", "bounds at time 0 (min .. max)");
+        for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+            const Aabb ob = scene.objectBounds(i, 0.0);
+            std::printf("%-24s %s .. %s\n", scene.objects[i].name.c_str(), vecString(ob.lo).c_str(), vecString(ob.hi).c_str());
         }
         std::printf("\n");
         for (const auto& l : scene.lights) {

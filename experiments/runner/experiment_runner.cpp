@@ -275,7 +275,7 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
                              const View& view, const FrameRequest& request, RunnerSummary& summary) {
     const std::string key = ReferenceCache::key(*active.scene, view, run.width, run.height, config.referenceParameters);
     if (std::optional<CachedReference> cached = cache.find(key)) {
-        ++summary.referenceCacheHits;
+        if (summary.referenceKeys.insert(key).second) ++summary.referenceCacheHits;
         return std::move(*cached);
     }
     Technique& whitted = active.technique("\x01reference", "whitted", config.referenceParameters);
@@ -283,6 +283,7 @@ CachedReference referenceFor(const ExperimentConfig& config, const ReferenceCach
     CachedReference ref{key, std::move(r.image), reflectiveRefractiveMask(active.context->rayScene(view.time), view.camera, run.width, run.height),
                         r.totalMilliseconds(), false};
     cache.store(ref);
+    summary.referenceKeys.insert(key);
     ++summary.referencesRendered;
     return ref;
 }

@@ -2,6 +2,8 @@
 // `hybridlab run`: renders every run of an experiment (or one shard of them), scores each image
 // against its (cached) reference, and records the results (DESIGN.md "Experiments and results").
 #include <filesystem>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "experiments/runner/experiment_config.h"
@@ -27,6 +29,9 @@ struct RunnerSummary {
     std::size_t runsSkipped = 0;   // already recorded (--resume)
     std::size_t referencesRendered = 0;
     std::size_t referenceCacheHits = 0;
+    // Each reference counts once: two groups may share one (a path's frame seen from the scene
+    // camera), and the second finds in the cache what the first rendered.
+    std::set<std::string> referenceKeys;
     std::size_t staleTemporariesRemoved = 0;  // partial files of killed runs, removed on --resume
     bool complete = false;         // every run of the shard is recorded
 };

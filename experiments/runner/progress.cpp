@@ -3,11 +3,12 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <utility>
 
 namespace hybridlab {
 
-Progress::Progress(std::size_t total, bool quiet)
-    : total_(total), quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0), begin_(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::size_t total, bool quiet, std::string unit)
+    : total_(total), quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0), unit_(std::move(unit)), begin_(std::chrono::steady_clock::now()) {}
 
 void Progress::start(std::size_t done, const std::string& current, std::size_t runs) {
     if (quiet_) return;
@@ -24,8 +25,8 @@ void Progress::start(std::size_t done, const std::string& current, std::size_t r
         std::fprintf(stderr, "\r\033[K[%.*s%*s] %zu/%zu  left %s  %s", filled, "##############################", kWidth - filled, "", done,
                      total_, eta, current.c_str());
     } else {
-        if (runs == 1) std::fprintf(stderr, "run %zu/%zu (left %s): %s\n", done + 1, total_, eta, current.c_str());
-        else std::fprintf(stderr, "runs %zu-%zu/%zu (left %s): %s\n", done + 1, done + runs, total_, eta, current.c_str());
+        if (runs == 1) std::fprintf(stderr, "%s %zu/%zu (left %s): %s\n", unit_.c_str(), done + 1, total_, eta, current.c_str());
+        else std::fprintf(stderr, "%ss %zu-%zu/%zu (left %s): %s\n", unit_.c_str(), done + 1, done + runs, total_, eta, current.c_str());
     }
     std::fflush(stderr);
 }

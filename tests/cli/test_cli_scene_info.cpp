@@ -1,9 +1,11 @@
 // The `scenes` and `scene-info` commands on good input: exit status 0, the counts on stdout,
-// nothing on stderr.
+// nothing on stderr but warnings, each once; and the placed bounds of objects fitted by their bounds.
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -84,6 +86,61 @@ TEST(CliScenes, PaperScenesWithTheRepositorysAssets) {
     EXPECT_EQ(reflective, 3u);
     EXPECT_EQ(refractive, 23u);
     EXPECT_CONTAINS(r.err, "dropped 4 degenerate triangle(s)") << "Sponza's zero-area triangles are reported";
+    // Each warning once, though sponza-spheres and sponza-armadillo both load Sponza.
+    std::map<std::string, int> seen;
+    std::istringstream lines(r.err);
+    for (std::string line; std::getline(lines, line);) ++seen[line];
+    for (const auto& [line, count] : seen) EXPECT_EQ(count, 1) << line;
+}
+
+// [objects.fit]: the Stanford bunny (0.15 units tall, its base at y = 0.033 as modelled) stood on
+// the plane y = 0.5 at x = 1, z = 2, one unit tall; a turned cube two units across centred at
+// (0, 3, 0); scene-info --json prints each object's placed bounds.
+TEST(CliSceneInfo, ObjectsFittedByTheirBounds) {
+    test::TempDir dir;
+    const std::string bunny = (test::sourceDir() / "scenes" / "assets" / "bunny" / "bunny.glb").string();
+    const std::string objects = "[materials.white]\ndiffuse = [0.8, 0.8, 0.8]\n"
+                                "[[objects]]\nname = \"bunny\"\nmodel = \"" + bunny + "\"\nmaterial = \"white\"\nrotation = [0, 30, 0]\n"
+                                "fit = { height = 1.0, anchor = \"bottom\", at = [1, 0.5, 2] }\n"
+                                "[[objects]]\nname = \"box\"\nprimitive = \"cube\"\nmaterial = \"white\"\nrotation = [0, 45, 0]\n"
+                                "scale = [1, 2, 1]\nfit = { size = 2.0, at = [0, 3, 0] }\n";
+    const std::string camera = "[camera]\nposition = [0, 2, 8]\nlook_at = [0, 1, 0]\n";
+    test::writeTextFile(dir / "fitted.toml", objects + camera);
+    test::writeTextFile(dir / "both.toml", objects + "[[objects]]\nname = \"twice\"\nprimitive = \"cube\"\nmaterial = \"white\"\n"
+                                                     "position = [1, 1, 1]\nfit = { at = [0, 0, 0] }\n" + camera);
+    test::writeTextFile(dir / "flat.toml", "[materials.white]\ndiffuse = [0.8, 0.8, 0.8]\n[[objects]]\nname = \"floor\"\nprimitive = \"plane\"\n"
+                                           "material = \"white\"\nfit = { height = 1.0 }\n" + camera);
+    const std::vector<CliResult> r = test::runHybridlabAll({{{"scene-info", (dir / "fitted.toml").string(), "--json"}, {}},
+                                                           {{"scene-info", (dir / "fitted.toml").string()}, {}},
+                                                           {{"scene-info", (dir / "both.toml").string()}, {}},
+                                                           {{"scene-info", (dir / "flat.toml").string()}, {}}});
+    ASSERT_EQ(r[0].exitStatus, 0) << r[0].err;
+    const nlohmann::json j = nlohmann::json::parse(r[0].out);
+    auto bounds = [&](std::size_t object, const char* end, int axis) {
+        return j.at("objects").at(object).at("bounds").at(end).at(axis).get<double>();
+    };
+    // The bunny: one unit tall, its bottom on y = 0.5, centred at x = 1, z = 2.
+    EXPECT_NEAR(bounds(0, "max", 1) - bounds(0, "min", 1), 1.0, 1e-5);
+    EXPECT_NEAR(bounds(0, "min", 1), 0.5, 1e-5);
+    EXPECT_NEAR(0.5 * (bounds(0, "min", 0) + bounds(0, "max", 0)), 1.0, 1e-5);
+    EXPECT_NEAR(0.5 * (bounds(0, "min", 2) + bounds(0, "max", 2)), 2.0, 1e-5);
+    // The box: its largest side 2 (its height, scale's y), centred at (0, 3, 0); turned 45 degrees, its
+    // x and z sides are sqrt(2) times its width of 1.
+    EXPECT_NEAR(bounds(1, "max", 1) - bounds(1, "min", 1), 2.0, 1e-5);
+    EXPECT_NEAR(bounds(1, "max", 0) - bounds(1, "min", 0), std::sqrt(2.0), 1e-5);
+    for (int axis = 0; axis < 3; ++axis)
+        EXPECT_NEAR(0.5 * (bounds(1, "min", axis) + bounds(1, "max", axis)), axis == 1 ? 3.0 : 0.0, 1e-5) << axis;
+    // The text says the same.
+    ASSERT_EQ(r[1].exitStatus, 0) << r[1].err;
+    EXPECT_CONTAINS(r[1].out, "bounds at time 0 (min .. max)");
+    EXPECT_CONTAINS(lineStartingWith(r[1].out.substr(r[1].out.find("bounds at time 0")), "box "), "(-0.7071, 2, -0.7071) .. (0.7071, 4, 0.7071)");
+    // Placed twice, or fitted to a height it has not: bad input, naming the line and key.
+    EXPECT_EQ(r[2].exitStatus, 2);
+    EXPECT_CONTAINS(r[2].err, "both.toml:");
+    EXPECT_CONTAINS(r[2].err, "the object's 'position' and fit's 'at' both place it: give one");
+    EXPECT_EQ(r[3].exitStatus, 2);
+    EXPECT_CONTAINS(r[3].err, "flat.toml:");
+    EXPECT_CONTAINS(r[3].err, "the object's bounds have no height (a flat object): fit its 'size' instead");
 }
 
 // de Macedo & Rodrigues Tables I and II at the paper's scale: `scenes --json` gives every

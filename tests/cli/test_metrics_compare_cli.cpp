@@ -177,5 +177,83 @@ TEST(CompareCommand, ALinearPngScoresAsTheSameImageInExrAndEachInputSaysWhatItWa
     EXPECT_NE(metrics(r[2].out), metrics(r[1].out));
 }
 
+// Several tests against one reference: one table, --json with every test's numbers, every
+// difference map on one scale (the largest difference of all, or --range), and --fail-above's
+// exit status.
+TEST(CompareCommand, SeveralTestsAgainstOneReferenceOnOneScale) {
+    Files f;
+    Image darker = f.referenceImage;
+    for (std::size_t i = 0; i < darker.pixelCount(); ++i) darker.data()[i] *= glm::vec4(0.4f, 0.4f, 0.4f, 1.0f);
+    const fs::path dark = f.dir / "dark.exr", same = f.dir / "same.exr", out = f.dir / "maps", ranged = f.dir / "ranged";
+    writeExr(dark, darker);
+    writeExr(same, f.referenceImage);
+    const std::vector<std::string> three = {"compare", f.test.string(), dark.string(), same.string(), f.reference.string()};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = three;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return CliRun{args, {}};
+    };
+    const std::vector<CliResult> r = runHybridlabAll({with({"--out", out.string()}),
+                                                     with({"--json"}),
+                                                     with({"--json", "--range", "0.5", "--out", ranged.string()}),
+                                                     with({"--fail-above", "flip=1e-9"}),
+                                                     with({"--fail-above", "ssim=0.999999", "--json"}),
+                                                     with({"--fail-above", "sharpness=1"})});
+    const CliResult& table = r[0];
+    ASSERT_EQ(table.exitStatus, 0) << table.err;
+    for (const char* column : {"test", "dark", "same"}) EXPECT_CONTAINS(table.out, column);
+    EXPECT_CONTAINS(table.out, "reference  " + f.reference.string());
+
+    // The JSON: each test's numbers are the library's, in the order given.
+    ASSERT_EQ(r[1].exitStatus, 0) << r[1].err;
+    const nlohmann::json j = nlohmann::json::parse(r[1].out);
+    ASSERT_EQ(j.at("tests").size(), 3u);
+    const Image reference = readImage(f.reference);
+    double largest = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        const fs::path path = i == 0 ? f.test : i == 1 ? dark : same;
+        const MetricReport expected = computeMetrics(readImage(path), reference);
+        const nlohmann::json& t = j.at("tests").at(i);
+        EXPECT_EQ(t.at("test"), path.string());
+        EXPECT_DOUBLE_EQ(t.at("whole").at("ssim").get<double>(), expected.whole.ssim);
+        EXPECT_DOUBLE_EQ(t.at("whole").at("flip").at("mean").get<double>(), expected.whole.flip.mean);
+        double high = 0.0;
+        cv::minMaxLoc(expected.maps.absoluteDifference, nullptr, &high);
+        largest = std::max(largest, high);
+    }
+    EXPECT_EQ(j.at("tests").at(2).at("whole").at("rmse").get<double>(), 0.0);
+    EXPECT_EQ(j.at("failed"), nlohmann::json::array());
+    // One scale for every map: the largest difference of the three (the darker image's).
+    for (const nlohmann::json& t : j.at("tests")) EXPECT_DOUBLE_EQ(t.at("maps").at("diff").at("range").at(1).get<double>(), largest);
+    EXPECT_GT(largest, j.at("tests").at(0).at("whole").at("rmse").get<double>());
+    for (const char* name : {"test", "dark", "same"}) {
+        SCOPED_TRACE(name);
+        for (const char* file : {"diff.png", "ssim.png", "flip.png", "flip_hdr.png", "metrics.json"}) EXPECT_TRUE(fs::exists(out / name / file)) << file;
+        EXPECT_DOUBLE_EQ(nlohmann::json::parse(readText(out / name / "metrics.json")).at("maps").at("diff").at("range").at(1).get<double>(),
+                         largest);
+    }
+    // --range fixes the scale.
+    ASSERT_EQ(r[2].exitStatus, 0) << r[2].err;
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(r[2].out).at("tests").at(1).at("maps").at("diff").at("range").at(1).get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(readText(ranged / "same" / "metrics.json")).at("maps").at("diff").at("range").at(1).get<double>(), 0.5);
+
+    // --fail-above: exit status 1 naming the tests worse than the bound (the two that differ from
+    // the reference, not its copy), the table printed all the same.
+    EXPECT_EQ(r[3].exitStatus, 1) << r[3].err;
+    EXPECT_CONTAINS(r[3].out, "FLIP mean");
+    EXPECT_CONTAINS(r[3].out, "fail: test: flip ");
+    EXPECT_CONTAINS(r[3].out, "fail: dark: flip ");
+    EXPECT_EQ(r[3].out.find("fail: same:"), std::string::npos) << r[3].out;
+    // For SSIM worse is lower.
+    EXPECT_EQ(r[4].exitStatus, 1) << r[4].err;
+    const nlohmann::json failed = nlohmann::json::parse(r[4].out).at("failed");
+    ASSERT_EQ(failed.size(), 2u) << failed;
+    EXPECT_EQ(failed.at(0).get<std::string>().rfind("test: ssim ", 0), 0u) << failed;
+    EXPECT_EQ(failed.at(1).get<std::string>().rfind("dark: ssim ", 0), 0u) << failed;
+    EXPECT_CONTAINS(failed.at(1).get<std::string>(), "is worse than 0.999999 (below)");
+    EXPECT_EQ(r[5].exitStatus, 2);
+    EXPECT_CONTAINS(r[5].err, "--fail-above sharpness=1: expected METRIC=VALUE with METRIC one of ssim, rmse, psnr, flip, flip_hdr");
+}
+
 }  // namespace
 }  // namespace hybridlab

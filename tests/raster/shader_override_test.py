@@ -7,15 +7,15 @@ name; a folder without the shader leaves the embedded one in place.
     shader_override_test.py HYBRIDLAB SHADER_INCLUDE_DIR WORK_DIR
 
 Exit 77 (skipped) without glslc or without a ray-tracing Vulkan device (Mesa 25's lavapipe has one)."""
+import json
 import os
 import pathlib
-import re
 import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "report"))
-import exr  # noqa: E402  (the project's reader of the runner's EXRs)
+import images  # noqa: E402  (the report's reader of the runner's images, on OpenImageIO)
 
 CONSTANT_RAYGEN = """#version 460
 #extension GL_GOOGLE_include_directive : require
@@ -29,12 +29,15 @@ void main() {
 
 def render(hybridlab, out, env):
     return subprocess.run([hybridlab, "render", "--scene", "whitted-classic", "--width", "32", "--height", "18", "--technique", "whitted",
-                           "--param", "rays=vulkan", "--out", str(out)], env=env, capture_output=True, text=True, timeout=600)
+                           "--param", "rays=vulkan", "--out", str(out), "--json"], env=env, capture_output=True, text=True, timeout=600)
 
 
 def primary_rays(stdout):
-    match = re.search(r"^rays_primary\s+(\d+)", stdout, re.MULTILINE)
-    return int(match.group(1)) if match else None
+    """The frame's rays_primary counter (render --json holds every counter, 0 included)."""
+    try:
+        return int(json.loads(stdout)["counters"]["rays_primary"])
+    except (ValueError, KeyError):
+        return None
 
 
 def main():
@@ -66,8 +69,8 @@ def main():
     if replaced.returncode != 0:
         failures.append(f"the constant shader: exit {replaced.returncode} {replaced.stderr[-300:]}")
     else:
-        pixels = exr.read(work / "constant.exr")
-        colours = {c: sorted(set(pixels[c].ravel().tolist())) for c in ("R", "G", "B")}
+        pixels = images.rgb(str(work / "constant.exr"))
+        colours = {c: sorted(set(pixels[:, :, i].ravel().tolist())) for i, c in enumerate(("R", "G", "B"))}
         rays = primary_rays(replaced.stdout)
         print(f"constant shader: values {colours}, primary rays {rays}")
         # Every pixel the shader's colour, and no rays counted.

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The results record's schema (experiments/results.schema.json) against its writer and a reader.
 
-1. The validator (report/results_schema.py) refuses records broken in known ways.
+1. The validator (report/results.py, on python3-jsonschema) refuses records broken in known ways.
 2. The C++ writer (experiments/runner/run_record.h's toJson): `hybridlab run` on a small
    experiment (a camera path's two frames, so that temporal errors are added; debug images and
    error maps kept; a technique that ray traces and a hybrid with debug images) writes results.json
@@ -21,7 +21,6 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 import results  # noqa: E402
-import results_schema  # noqa: E402
 import timing  # noqa: E402
 
 CONFIG = """
@@ -58,7 +57,7 @@ def check_refusals(record):
     def mutated(change):
         r = copy.deepcopy(record)
         change(r)
-        return results_schema.validate_record(r)
+        return results.schema_problems(r)
 
     cases = [
         (lambda r: r.pop("id"), "$: missing required 'id'"),
@@ -105,10 +104,10 @@ def check_intervals_agree(records):
 def validate_set(folder):
     """The problems of a result set's results.json and runs/<id>.json records, and its records."""
     records = results.load(folder)
-    problems = results_schema.validate_results(records)
+    problems = results.results_problems(records)
     for name in sorted(os.listdir(os.path.join(folder, "runs"))):
         with open(os.path.join(folder, "runs", name)) as f:
-            problems += [f"runs/{name}: {p}" for p in results_schema.validate_record(json.load(f))]
+            problems += [f"runs/{name}: {p}" for p in results.schema_problems(json.load(f))]
     return records, problems
 
 

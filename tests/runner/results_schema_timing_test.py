@@ -2,7 +2,7 @@
 """experiments/results.schema.json's timing fields: a record timed in rounds (frame_ms with its
 interval, `timing`, `speedup`) validates, a record of a result set written before rounds still
 does, and broken timing fields are refused. On made-up records (tests/support/synthetic_records.py)
-through the report's validator (report/results_schema.py).
+through the report's validator (report/results.py, on python3-jsonschema).
 
     results_schema_timing_test.py        (standard library unittest; no hybridlab program needed)"""
 import copy
@@ -13,7 +13,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 sys.path.insert(0, os.path.join(HERE, "..", "support"))
-import results_schema  # noqa: E402
+import results  # noqa: E402
 import synthetic_records as sr  # noqa: E402
 
 
@@ -32,18 +32,18 @@ class TimingFields(unittest.TestCase):
         r = timed()
         self.assertIn("ci_low", r["frame_ms"])
         self.assertIn("rt_only", r["speedup"])
-        self.assertEqual(results_schema.validate_record(r), [])
+        self.assertEqual(results.schema_problems(r), [])
 
     def test_a_record_of_fewer_than_6_rounds_validates_without_intervals(self):
         r = sr.timed_record(sr.Group("s", [20.0, 21.0, 22.0]), "hyb", "", [10.0, 10.5, 11.0])
         self.assertNotIn("ci_low", r["frame_ms"])
         self.assertEqual(r["speedup"]["reference"], {"ratio": 2.0})
-        self.assertEqual(results_schema.validate_record(r), [])
+        self.assertEqual(results.schema_problems(r), [])
 
     def test_an_old_record_validates(self):
         r = sr.old_record("s", "hyb", "", 10.0)
         self.assertNotIn("timing", r)
-        self.assertEqual(results_schema.validate_record(r), [])
+        self.assertEqual(results.schema_problems(r), [])
 
     def test_broken_timing_fields_are_refused(self):
         cases = [
@@ -56,7 +56,7 @@ class TimingFields(unittest.TestCase):
         for breaks, problem in cases:
             r = copy.deepcopy(timed())
             breaks(r)
-            found = results_schema.validate_record(r)
+            found = results.schema_problems(r)
             self.assertTrue(any(p.startswith(problem) for p in found), (problem, found))
 
 

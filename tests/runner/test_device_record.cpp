@@ -1,4 +1,4 @@
-// The device record: every key in every result set's experiment.json, `hybridlab --version`,
+// The device record: every key in every result set's experiment.json, `hybridlab --version --json`,
 // `hybridlab merge` and `run --resume` refusing to mix devices unless --allow-mixed-devices, and
 // the report's charts of a mixed set naming the devices.
 #include <gtest/gtest.h>
@@ -32,12 +32,13 @@ TEST(DeviceRecord, HasEveryKeyAndVersionPrintsIt) {
     EXPECT_EQ(d.at("embree_version").get<std::string>().rfind("3.", 0), 0u) << d;
     EXPECT_NE(d.at("cpu_model").get<std::string>(), "unknown");
 
-    // `hybridlab --version`: the version, then this machine's record as JSON.
+    // `hybridlab --version`: one line; `--version --json`: this machine's record as JSON.
     const test::CliResult r = test::runHybridlab({"--version"});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
-    const std::string first = r.out.substr(0, r.out.find('\n'));
-    EXPECT_EQ(first, "hybridlab " + d.at("program_version").get<std::string>());
-    EXPECT_EQ(json::parse(r.out.substr(first.size() + 1)), d);
+    EXPECT_EQ(r.out, "hybridlab " + d.at("program_version").get<std::string>() + "\n");
+    const test::CliResult j = test::runHybridlab({"--version", "--json"});
+    ASSERT_EQ(j.exitStatus, 0) << j.err;
+    EXPECT_EQ(json::parse(j.out), d);
 }
 
 // Two tiny whitted runs: enough for a shard or a resumed run on each side.

@@ -323,7 +323,7 @@ namespace {
 TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     test::TempDir dir;
     const std::string cache = (dir / "cache").string();
-    const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache, "--quiet",
+    const std::vector<std::string> quick = {"bake-em", "--scene", "teapot-lens", "--system", "cup", "--cache", cache,
                                             "--width", "32", "--height", "24", "--supersampling", "1", "--em-size", "4",
                                             "--max-viewpoints", "2", "--layers", "2"};
     auto results = test::runHybridlabAll({{quick, {}},
@@ -336,6 +336,11 @@ TEST(EmBake, BakeEmCommandBakesCachesAndRejectsBadInput) {
     EXPECT_CONTAINS(results[0].out, "stage inference");
     EXPECT_CONTAINS(results[0].out, "full ray tree");
     EXPECT_CONTAINS(results[0].out, "direct images from the EM origin (a reflective system)");
+    // Without a terminal, a progress line a step, saying what it bakes: each viewpoint sample's
+    // records, then its inference.
+    EXPECT_CONTAINS(results[0].err, "bake step 1/4 (left ?): lens system cup, records of viewpoint sample 1/2\n");
+    EXPECT_CONTAINS(results[0].err, "bake step 4/4");
+    EXPECT_CONTAINS(results[0].err, "lens system cup, inference of viewpoint sample 2/2\n");
     EXPECT_EQ(results[1].exitStatus, 2);
     EXPECT_CONTAINS(results[1].err, "has no lens system 'vase'");
     EXPECT_EQ(results[2].exitStatus, 2);
