@@ -11,7 +11,7 @@
 
 #include "common/raster/gpu_buffer.h"
 #include "common/raster/scene_textures.h"
-#include "common/raster/shaders/device_ray_records.h"
+#include "common/device_rays/shaders/device_ray_records.h"
 #include "common/raster/vulkan_device.h"
 #include "common/scene/deformed_mesh_cache.h"
 #include "common/scene/scene.h"

@@ -1,5 +1,5 @@
 // What the layered-EM lens pass (layered_em.vert, layered_em.frag) and LayeredEmPass exchange,
-// declared once for C++ and GLSL (as common/raster/shaders/device_ray_records.h): the C++ sees glm
+// declared once for C++ and GLSL (as common/device_rays/shaders/device_ray_records.h): the C++ sees glm
 // types in namespace hybridlab::layered_em_records and static_asserts their layout. Only vec4-sized
 // members, so std430 (the vertex buffer, the push constants) and C++ agree without padding rules.
 #ifndef LAYERED_EM_RECORDS_H

@@ -1,5 +1,5 @@
 // What the SSR shaders (ssr_depth_pyramid.comp, ssr_trace.comp, ssr_composite.comp) and the C++ exchange, declared once
-// for C++ and GLSL (as common/raster/shaders/device_ray_records.h): the C++ sees glm types in
+// for C++ and GLSL (as common/device_rays/shaders/device_ray_records.h): the C++ sees glm types in
 // namespace hybridlab::ssr_records and static_asserts their layout. The uniform blocks hold only
 // mat4 and vec4 members and the march list's header four uints, so std140, std430 and C++ agree
 // without padding rules.

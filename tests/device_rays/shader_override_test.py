@@ -41,7 +41,8 @@ def primary_rays(stdout):
 
 
 def main():
-    hybridlab, include, work = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+    hybridlab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    includes = ["-I", str(source / "common" / "raster" / "shaders"), "-I", str(source / "common" / "device_rays" / "shaders")]
     glslc = shutil.which("glslc")
     if not glslc:
         print("Skipped\nno glslc")
@@ -51,7 +52,7 @@ def main():
     (work / "broken").mkdir()
     (work / "empty").mkdir()
     (work / "constant.rgen").write_text(CONSTANT_RAYGEN)
-    subprocess.run([glslc, "--target-env=vulkan1.3", "-I", include, "-o", str(work / "constant" / "device_whitted.rgen.spv"),
+    subprocess.run([glslc, "--target-env=vulkan1.3", *includes, "-o", str(work / "constant" / "device_whitted.rgen.spv"),
                     str(work / "constant.rgen")], check=True)
     (work / "broken" / "device_whitted.rgen.spv").write_bytes(b"not")
     env = dict(os.environ, HYBRIDLAB_VULKAN_DEVICE="llvmpipe")

@@ -6,7 +6,11 @@
 #define DEVICE_RAY_RECORDS_H
 
 // The lights buffer holds the lighting pass's records, LightData (shadow.x < 0: casts no shadow).
+#ifdef __cplusplus
+#include "common/raster/shaders/raster_records.h"
+#else
 #include "raster_records.h"
+#endif
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
