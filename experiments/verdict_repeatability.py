@@ -11,9 +11,11 @@ Prints each run's wall time and rows, then how many rows name the same settings 
 `--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
 reports result sets already in DIR/run-K instead of running them; `--against DIR` also counts the
 rows identical to the first run in DIR (say, quiet runs against runs under load). On a shared
-machine, run it under `chrt -r 50`: the runner and the busy loops it starts then share the cores
-round-robin, ahead of everything else. Exit status 0 whatever agrees: this is a measurement, not
-a test."""
+machine, run quiet runs under `chrt -r 50` (ahead of everything else) and runs with `--busy` under
+`nice -n -20`: the runner and its busy loops then share the cores fairly, ahead of other work.
+Not `--busy` under `chrt`: real-time busy loops starve the runner's own threads that Mesa runs at
+batch priority (lavapipe's shader compiler), and a run then stalls for minutes. Exit status 0
+whatever agrees: this is a measurement, not a test."""
 import argparse
 import os
 import subprocess
