@@ -105,7 +105,7 @@ cmd_bundle() {
   local folder=$target work="" args=()
   if [[ $target == *.tar.xz ]]; then
     work=$(mktemp -d) || exit 3
-    trap 'rm -rf "$work"' EXIT
+    trap "rm -rf '$work'" EXIT  # expanded now: $work is local
     folder=$work/$(basename "$target" .tar.xz)
   fi
   for entry in "${CAMPAIGN[@]}"; do
