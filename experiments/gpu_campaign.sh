@@ -63,6 +63,7 @@ python_missing() {
 }
 
 mib() { du -sm "$1" | cut -f1; }
+records() { find "$1/runs" -maxdepth 1 -name '[!.]*.json' 2>/dev/null | wc -l; }
 
 # A config without the [[scenes]] entries (with their views) of the scenes in the list "a,b".
 without_scenes() {
@@ -105,7 +106,8 @@ cmd_bundle() {
   local folder=$target work="" args=()
   if [[ $target == *.tar.xz ]]; then
     work=$(mktemp -d) || exit 3
-    trap "rm -rf '$work'" EXIT  # expanded now: $work is local
+    # shellcheck disable=SC2064  # expanded now: $work is local to this function
+    trap "rm -rf '$work'" EXIT
     folder=$work/$(basename "$target" .tar.xz)
   fi
   for entry in "${CAMPAIGN[@]}"; do
@@ -215,15 +217,20 @@ cmd_run() {
     local took=$((SECONDS - t0))
     spent=$((spent + took))
     spent_est=$((spent_est + est))
-    if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
-      # Stopped at the deadline: its finished runs stay; results.json from them (no rendering).
+    local runs
+    runs=$(records "$out/$name")
+    # Stopped (the deadline) or failed: the finished runs stay, and results.json is written from
+    # them as the runner does when it stops (no rendering).
+    if [ "$status" -ne 0 ] && [ "$runs" -gt 0 ] && [ ! -f "$out/$name/results.json" ]; then
       "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" --quiet --resume --max-runs 0 \
         >>"$out/logs/$name.log" 2>&1
-      summary+=("$name: stopped at the deadline after ${took} s, $(ls "$out/$name/runs" 2>/dev/null | grep -c '\.json$') runs kept")
+    fi
+    if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+      summary+=("$name: stopped at the deadline after ${took} s, $runs runs kept")
     elif [ "$status" -ne 0 ]; then
-      summary+=("$name: failed (exit status $status) after ${took} s: $out/logs/$name.log")
+      summary+=("$name: failed (exit status $status) after ${took} s, $runs runs kept: $out/logs/$name.log")
     else
-      summary+=("$name: ${took} s, $(ls "$out/$name/runs" | grep -c '\.json$') runs")
+      summary+=("$name: ${took} s, $runs runs")
     fi
     echo "  ${summary[-1]}" | tee -a "$out/campaign.log" >/dev/null
     echo "  done in ${took} s ($((SECONDS - start)) s in all)"
@@ -261,9 +268,13 @@ finish_sets() {
   local out=$1
   for entry in "${CAMPAIGN[@]}"; do
     set -- $entry
-    [ -d "$out/$1/runs" ] || continue
+    [ -d "$out/$1" ] || continue
     echo "$1:"
-    tables_and_report "$out/$1" "$3"
+    if [ "$(records "$out/$1")" -eq 0 ]; then
+      echo "  no runs recorded: no table or report"
+    else
+      tables_and_report "$out/$1" "$3"
+    fi
   done 2>&1 | tee -a "$out/campaign.log"
 }
 
