@@ -101,12 +101,12 @@ exec "$here/bin/hybridlab" "$@"
 )sh";
 
 std::string readme(const std::vector<SharedLibrary>& bundled, const std::vector<SharedLibrary>& base,
-                   const std::optional<fs::path>& config) {
+                   const std::vector<fs::path>& configs) {
     std::ostringstream s;
     s << "hybridlab " << programVersion() << ", bundled by `hybridlab bundle`.\n\n"
       << "Run ./hybridlab (the launcher) as the program, from any folder: it sets LD_LIBRARY_PATH to lib/ and\n"
       << "HYBRIDLAB_SCENES to scenes/, then runs bin/hybridlab.";
-    if (config) s << " The experiment: ./hybridlab run configs/" << config->filename().string() << " --out DIR";
+    for (const fs::path& config : configs) s << "\nThe experiment: ./hybridlab run configs/" << config.filename().string() << " --out DIR";
     s << "\n\nThe node must provide:\n"
       << "- Linux x86-64 with these libraries, which every node has and the bundle leaves out (glibc's, and\n"
       << "  the GCC runtime of a minimal Debian, which the node's Vulkan driver loads too, and glvnd's\n"
@@ -135,18 +135,21 @@ std::uintmax_t folderBytes(const fs::path& dir) {
 
 }  // namespace
 
-BundleContents writeBundle(const fs::path& binary, const fs::path& out, const std::optional<fs::path>& config) {
+BundleContents writeBundle(const fs::path& binary, const fs::path& out, const std::vector<fs::path>& configs) {
     if (fs::exists(out) && (!fs::is_directory(out) || !fs::is_empty(out)))
         throw InputError(out.string() + ": exists and is not an empty folder; choose another --out");
     // Every file the config's scenes read, before anything is written.
     std::map<fs::path, fs::path> files;  // in the bundle <- from
-    if (config) {
-        const ExperimentConfig experiment = loadExperimentConfig(*config);
-        files[fs::path("configs") / config->filename()] = *config;
+    for (const fs::path& config : configs) {
+        const ExperimentConfig experiment = loadExperimentConfig(config);
+        const auto [placed, fresh] = files.emplace(fs::path("configs") / config.filename(), config);
+        if (!fresh)
+            throw InputError(config.string() + ": a config of the same file name as " + placed->second.string() +
+                             " is already bundled (both would be configs/" + config.filename().string() + "); rename one");
         for (const SceneSpec& spec : experiment.scenes) {
             const Scene scene = loadSceneFile(spec.file);
-            files[placeInBundle(spec.file, spec.file, *config)] = spec.file;
-            for (const fs::path& source : scene.sourceFiles) files[placeInBundle(source, spec.file, *config)] = source;
+            files[placeInBundle(spec.file, spec.file, config)] = spec.file;
+            for (const fs::path& source : scene.sourceFiles) files[placeInBundle(source, spec.file, config)] = source;
         }
     }
     for (const fs::path& scene : listSceneFiles()) files.try_emplace(fs::path("scenes") / scene.filename(), scene);
@@ -163,7 +166,7 @@ BundleContents writeBundle(const fs::path& binary, const fs::path& out, const st
     try {
         for (const auto& [to, from] : files) copyFile(from, staging / to);
         writeFileAtomically(staging / "hybridlab", kLauncher);
-        writeFileAtomically(staging / "README.txt", readme(bundled, base, config));
+        writeFileAtomically(staging / "README.txt", readme(bundled, base, configs));
         std::error_code ec;
         fs::permissions(staging / "hybridlab", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                                                     fs::perms::others_read | fs::perms::others_exec, ec);

@@ -7,11 +7,10 @@
 //   lib/             every shared library it loads, as the dynamic linker resolves them (ldd), but
 //                    the base set below
 //   scenes/          the built-in scene files, and the models and textures a config's scenes read
-//   configs/         the config, with scene files it names by path
+//   configs/         the configs, with scene files they name by path
 //   README.txt       what the node must provide, and where each library came from
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,10 +37,11 @@ struct BundleContents {
 };
 
 // Writes the bundle of `binary` into `out` (new, or an empty folder), with the scenes and assets of
-// the experiment `config` when given. Built beside `out` under a temporary name and renamed when
-// complete: nothing is left at `out` on failure. Throws InputError for an `out` that exists and is
-// not an empty folder, or a bad config (nothing written); IoError when a file cannot be written.
+// the experiment `configs` (none, one, or several: a campaign of experiments on one machine). Built
+// beside `out` under a temporary name and renamed when complete: nothing is left at `out` on
+// failure. Throws InputError for an `out` that exists and is not an empty folder, a bad config, or
+// two configs of one file name (nothing written); IoError when a file cannot be written.
 BundleContents writeBundle(const std::filesystem::path& binary, const std::filesystem::path& out,
-                           const std::optional<std::filesystem::path>& config);
+                           const std::vector<std::filesystem::path>& configs);
 
 }  // namespace hybridlab

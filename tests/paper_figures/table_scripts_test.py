@@ -6,7 +6,9 @@ walewski_tables, macedo_tables, ssr_speed_table, hakura_tables and pareto_table;
 device under its tables and writes --out as it prints.
 
     table_scripts_test.py        (standard library unittest; no hybridlab program needed)"""
+import json
 import os
+import shutil
 import subprocess
 import tempfile
 import unittest
@@ -61,6 +63,23 @@ class TableScripts(unittest.TestCase):
         # Table 6: the means over the path's two frames (11 and 13 ms; 41 and 43).
         self.assertEqual(row(out, "| with heuristic [] |")[1], "12.0 (SSIM 0.9700, 2 frames)")
         self.assertEqual(row(out, "| whitted |")[1], "42.0 (SSIM 1.0000, 2 frames)")
+
+    def test_walewski_tables_of_one_device_backend_with_raster(self):
+        # The GPU campaign's set: every ray on the device, and raster, which has no backend.
+        with open(os.path.join(SETS, "walewski", "results.json")) as f:
+            records = json.load(f)
+        for r in records:
+            r["parameters_text"] = ("rays=vulkan " + r["parameters_text"]).strip()
+        raster = dict(records[-1], technique="raster", label="raster", parameters_text="", id=records[-1]["id"] + "-raster")
+        with tempfile.TemporaryDirectory() as d:
+            shutil.copy(os.path.join(SETS, "walewski", "experiment.json"), d)
+            with open(os.path.join(d, "results.json"), "w") as f:
+                json.dump(records + [raster], f)
+            out = subprocess.run(["/usr/bin/python3", os.path.join(SCRIPTS, "walewski_tables.py"), d], capture_output=True, text=True)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("### rays = vulkan", out.stdout)
+        self.assertNotIn("### rays = embree", out.stdout)
+        self.assertEqual(row(out.stdout, "| WHITTED FRAME |")[1], "40.000")
 
     def test_macedo_tables(self):
         out = run("macedo_tables.py", "macedo")

@@ -119,6 +119,35 @@ name = "whitted"
     EXPECT_CONTAINS(plan.out, "experiment bundled (" + (bundle / "configs" / "bundled.toml").string() + ", ");
 }
 
+// Several configs (a campaign of experiments for one machine): each config, and every one's models.
+TEST(PortableBundle, CarriesEveryConfigAndItsModels) {
+    test::TempDir dir;
+    const auto config = [&](const fs::path& file, const std::string& scene) {
+        fs::create_directories(file.parent_path());
+        test::writeTextFile(file, "[experiment]\nname = \"" + file.stem().string() + "\"\n[[scenes]]\nscene = \"" + scene +
+                                      "\"\nresolutions = [[32, 18]]\n[[techniques]]\nname = \"whitted\"\n");
+    };
+    config(dir / "lens.toml", "teapot-lens");
+    config(dir / "bunnies.toml", "bunnies-falling-5");
+    config(dir / "other" / "lens.toml", "whitted-classic");
+    const fs::path bundle = dir / "bundle";
+    const test::CliResult made =
+        test::runHybridlab({"bundle", "--out", bundle.string(), "--config", (dir / "lens.toml").string(), "--config", (dir / "bunnies.toml").string()});
+    ASSERT_EQ(made.exitStatus, 0) << made.err;
+    for (const char* file : {"configs/lens.toml", "configs/bunnies.toml"}) EXPECT_TRUE(fs::is_regular_file(bundle / file)) << file;
+    for (const char* model : {"teapot", "bunny"}) EXPECT_TRUE(fs::is_directory(bundle / "scenes" / "assets" / model)) << model;
+    EXPECT_FALSE(fs::exists(bundle / "scenes" / "assets" / "sponza"));
+    EXPECT_CONTAINS(test::readTextFile(bundle / "README.txt"), "./hybridlab run configs/bunnies.toml --out DIR");
+
+    // Two configs that would be one configs/lens.toml: refused, nothing written.
+    const fs::path clash = dir / "clash";
+    const test::CliResult refused = test::runHybridlab(
+        {"bundle", "--out", clash.string(), "--config", (dir / "lens.toml").string(), "--config", (dir / "other" / "lens.toml").string()});
+    EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+    EXPECT_CONTAINS(refused.err, "is already bundled (both would be configs/lens.toml); rename one");
+    EXPECT_FALSE(fs::exists(clash));
+}
+
 TEST(PortableBundle, BadInputIsRefusedAndLeavesNothing) {
     test::TempDir dir;
     const fs::path full = dir / "full";

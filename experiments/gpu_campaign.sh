@@ -1,0 +1,296 @@
+#!/usr/bin/env bash
+# The GPU campaign: the papers' tables that are about a GPU's speed, in one command for a GPU
+# machine lent for minutes (experiments/README.md "The GPU campaign").
+#
+#   gpu_campaign.sh bundle [FILE.tar.xz|DIR]  (here, in the checkout) the portable bundle with the
+#                                          campaign's configs, their models and this script
+#                                          (default out/hybridlab-gpu-campaign.tar.xz)
+#   gpu_campaign.sh run OUT [--scale S] [--deadline-s N] [--max-mib M] [--only A,B] [--cache DIR]
+#                           [--skip-scenes A,B]
+#                                          every config of configs/gpu_campaign/ into OUT/NAME, then
+#                                          each one's table and report where the Python packages are;
+#                                          --skip-scenes runs copies without those scenes (OUT/configs/)
+#   gpu_campaign.sh finish OUT             the tables and reports of a campaign folder, on a machine
+#                                          set up by setup.sh (after a GPU machine that lacks them)
+#
+# `run` works from the checkout (build/hybridlab, experiments/configs/gpu_campaign/) or from the
+# bundle (its hybridlab and configs/; the tables and reports then read the checkout in the working
+# folder or $HYBRIDLAB_CHECKOUT). It stops starting configs at --deadline-s (default 450: the
+# campaign in 8 minutes) and stops a config still running then, keeping its finished runs; then it
+# keeps OUT under --max-mib (default 60) by dropping whole result sets' images, largest set first.
+set -uo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
+PYTHON=/usr/bin/python3
+
+# name, config file, table script, estimated seconds on an H100/H200 at full size: per group a
+# second of warm-up a setting and 1-2 s of rounds, per run about 1.5 s of scoring and files at
+# 1280x720 on 16 cores, per reference about 1 s of Embree (references are rendered there: at
+# 11 MB each at 1280x720 they do not fit in the transfer beside the bundle). The cheap ones first,
+# so that a late deadline costs the largest.
+CAMPAIGN=(
+  "sabino2012 sabino2012.toml sabino_table3.py 30"
+  "gbuffer_rays_gpu gbuffer_rays_gpu.toml gbuffer_rays_table.py 40"
+  "hakura2001 hakura2001.toml hakura_tables.py 50"
+  "walewski2019 walewski2019.toml walewski_tables.py 140"
+  "macedo2019 macedo2019.toml macedo_tables.py 120"
+)
+
+die() { echo "gpu_campaign: $*" >&2; exit 2; }
+usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
+
+# Where the program and the configs are: a bundle has both beside this script.
+if [ -x "$here/hybridlab" ] && [ -d "$here/configs" ]; then
+  HYBRIDLAB=${HYBRIDLAB:-$here/hybridlab}
+  CONFIGS=$here/configs
+  CHECKOUT=${HYBRIDLAB_CHECKOUT:-$PWD}
+else
+  CHECKOUT=$(cd "$here/.." && pwd -P)
+  HYBRIDLAB=${HYBRIDLAB:-$CHECKOUT/build/hybridlab}
+  CONFIGS=$CHECKOUT/experiments/configs/gpu_campaign
+fi
+
+# Whether this machine can write the tables and reports: the checkout's scripts and the Debian
+# Python packages setup.sh installs. Prints why not.
+python_missing() {
+  if [ ! -f "$CHECKOUT/paper_figures/walewski_tables.py" ]; then
+    echo "no checkout at $CHECKOUT (set HYBRIDLAB_CHECKOUT)"
+  elif [ ! -x "$PYTHON" ]; then
+    echo "no $PYTHON"
+  else
+    "$PYTHON" -c 'import jsonschema, matplotlib, OpenImageIO' 2>&1 | tail -1 | grep . || true
+  fi
+}
+
+mib() { du -sm "$1" | cut -f1; }
+records() { find "$1/runs" -maxdepth 1 -name '[!.]*.json' 2>/dev/null | wc -l; }
+
+# A config without the [[scenes]] entries (with their views) of the scenes in the list "a,b".
+without_scenes() {
+  awk -v skip=",$2," '
+    function flush() { if (!drop) printf "%s", block; block = ""; drop = 0 }
+    /^\[\[scenes\]\]/ { flush(); inblock = 1 }
+    /^\[/ && !/^\[\[scenes/ { flush(); inblock = 0 }
+    inblock {
+      block = block $0 "\n"
+      if ($0 ~ /^scene *= *"/) { s = $0; sub(/^scene *= *"/, "", s); sub(/".*/, "", s); if (index(skip, "," s ",")) drop = 1 }
+      next
+    }
+    { print }
+    END { flush() }' "$1"
+}
+
+# The table and the report of one result set, each beside it, with the device record under the
+# table (the table scripts print it). report.py is what `hybridlab report` runs, called directly
+# because a bundle's program names the build machine's checkout.
+tables_and_report() {
+  local dir=$1 table=$2
+  "$PYTHON" "$CHECKOUT/paper_figures/$table" "$dir" --out "$dir/tables.md" >/dev/null &&
+    echo "  table:  $dir/tables.md" || echo "  table:  $table failed (above)"
+  if [ ! -d "$dir/images" ]; then
+    echo "  report: none, the images were dropped to fit the size limit"
+  elif "$PYTHON" "$CHECKOUT/report/report.py" "$dir" --out "$dir/report" >/dev/null; then
+    echo "  report: $dir/report/index.html"
+  else
+    echo "  report: report.py failed (above)"
+  fi
+}
+
+# The bundle: `hybridlab bundle` with every config of the campaign, and this script beside its
+# launcher. FILE.tar.xz: the folder packed (xz takes a 2-core machine under 2 minutes); any other
+# name: the folder itself.
+cmd_bundle() {
+  local target=${1:-$CHECKOUT/out/hybridlab-gpu-campaign.tar.xz}
+  [ -x "$HYBRIDLAB" ] || die "no program at $HYBRIDLAB: build it first (./setup.sh)"
+  [ ! -e "$target" ] || die "$target: exists; choose another name or remove it"
+  local folder=$target work="" args=()
+  if [[ $target == *.tar.xz ]]; then
+    work=$(mktemp -d) || exit 3
+    # shellcheck disable=SC2064  # expanded now: $work is local to this function
+    trap "rm -rf '$work'" EXIT
+    folder=$work/$(basename "$target" .tar.xz)
+  fi
+  for entry in "${CAMPAIGN[@]}"; do
+    set -- $entry
+    args+=(--config "$CONFIGS/$2")
+  done
+  "$HYBRIDLAB" bundle --out "$folder" "${args[@]}" 2>&1 | grep -v '^warning:'
+  [ "${PIPESTATUS[0]}" -eq 0 ] || exit "${PIPESTATUS[0]}"
+  cp "$0" "$folder/gpu_campaign.sh" || exit 3
+  if [ -n "$work" ]; then
+    mkdir -p "$(dirname "$target")" &&
+      tar -C "$work" -cf - "$(basename "$folder")" | xz -T0 -6 >"$target.tmp" && mv "$target.tmp" "$target" || exit 3
+    echo "gpu_campaign: $target, $(du -m "$target" | cut -f1) MiB"
+  fi
+  echo "run: $(basename "$folder")/gpu_campaign.sh run OUT   (from the folder that holds it)"
+}
+
+cmd_run() {
+  local out=${1:-}
+  [ -n "$out" ] && [ "${out#-}" = "$out" ] || die "run: expected an output folder first (gpu_campaign.sh run OUT ...)"
+  shift
+  local scale=1 deadline=450 maxmib=60 only="" cache="" skip=""
+  while [ $# -gt 0 ]; do
+    case $1 in
+      --scale) scale=${2:-}; shift 2 || die "--scale needs a value" ;;
+      --deadline-s) deadline=${2:-}; shift 2 || die "--deadline-s needs a value" ;;
+      --max-mib) maxmib=${2:-}; shift 2 || die "--max-mib needs a value" ;;
+      --only) only=${2:-}; shift 2 || die "--only needs a value" ;;
+      --cache) cache=${2:-}; shift 2 || die "--cache needs a value" ;;
+      --skip-scenes) skip=${2:-}; shift 2 || die "--skip-scenes needs a value" ;;
+      *) die "run: unknown argument '$1' (expected --scale, --deadline-s, --max-mib, --only, --cache, --skip-scenes)" ;;
+    esac
+  done
+  [[ $deadline =~ ^[0-9]+$ ]] && [ "$deadline" -gt 0 ] || die "--deadline-s $deadline: expected a whole number of seconds above 0"
+  [[ $maxmib =~ ^[0-9]+$ ]] && [ "$maxmib" -gt 0 ] || die "--max-mib $maxmib: expected a whole number of MiB above 0"
+  [[ $scale =~ ^(0?\.[0-9]+|1(\.0*)?)$ ]] && [ "$scale" != "0" ] || die "--scale $scale: expected a number in (0, 1]"
+  [ -x "$HYBRIDLAB" ] || die "no program at $HYBRIDLAB: build it (./setup.sh), or run the bundle's gpu_campaign.sh"
+  local selected=()
+  for entry in "${CAMPAIGN[@]}"; do
+    set -- $entry
+    if [ -z "$only" ] || [[ ,$only, == *,$1,* ]]; then selected+=("$entry"); fi
+  done
+  [ ${#selected[@]} -gt 0 ] || die "--only $only: names none of the campaign's configs (sabino2012, gbuffer_rays_gpu, hakura2001, walewski2019, macedo2019)"
+  if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then die "$out: exists and is not empty; choose another folder"; fi
+  mkdir -p "$out/logs" || exit 3
+  out=$(cd "$out" && pwd -P)
+  # References and layered-EM bakes are made on the campaign's machine (they are Embree's work,
+  # on its CPUs), in a cache of the campaign's own, removed at the end, unless --cache names one
+  # ($HYBRIDLAB_CACHE's layout: references/, layered-em/).
+  local own_cache=0
+  [ -n "$cache" ] || { cache=$out/cache; own_cache=1; }
+  export HYBRIDLAB_CACHE=$cache
+
+  local start=$SECONDS estimate=0 spent_est=0 spent=0
+  for entry in "${selected[@]}"; do set -- $entry; estimate=$((estimate + $4)); done
+  {
+    echo "gpu_campaign: ${#selected[@]} configs into $out, scale $scale, deadline ${deadline} s, at most $maxmib MiB"
+    echo "program: $HYBRIDLAB"
+    "$HYBRIDLAB" --version
+  } | tee "$out/campaign.log"
+  # An NVIDIA driver mounted into a container registers its Vulkan driver outside the loader's
+  # search path; without its Vulkan device the campaign would measure nothing, so it stops here.
+  local icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  if [ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}" ] && [ -f "$icd" ] &&
+     ! ls /usr/share/vulkan/icd.d/nvidia* /etc/vulkan/icd.d/nvidia* >/dev/null 2>&1; then
+    export VK_DRIVER_FILES=$icd
+  fi
+  "$HYBRIDLAB" --version --json >"$out/device.json" 2>/dev/null
+  if command -v nvidia-smi >/dev/null && ! grep -q '"vulkan_device_type": "[a-z]*_gpu"' "$out/device.json"; then
+    die "this machine has an NVIDIA GPU, but Vulkan found $(grep '"vulkan_device"' "$out/device.json" | cut -d'"' -f4):" \
+        "its driver needs glvnd's libraries (libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2; experiments/README.md)"
+  fi
+  echo "estimate: about $estimate s on an H100/H200 at full size (updated as configs finish)" | tee -a "$out/campaign.log"
+
+  local k=0 status summary=()
+  for entry in "${selected[@]}"; do
+    set -- $entry
+    local name=$1 config=$CONFIGS/$2 est=$4
+    k=$((k + 1))
+    if [ -n "$skip" ]; then
+      mkdir -p "$out/configs"
+      without_scenes "$config" "$skip" >"$out/configs/$2"
+      config=$out/configs/$2
+      if ! grep -q '^\[\[scenes\]\]' "$config"; then
+        summary+=("$name: skipped, every scene of it is in --skip-scenes")
+        continue
+      fi
+    fi
+    local elapsed=$((SECONDS - start)) left
+    left=$((deadline - elapsed))
+    # The estimate scaled by how the finished configs went against theirs (a CPU, a smaller scale).
+    local scaled=$est
+    [ "$spent_est" -gt 0 ] && scaled=$((est * spent / spent_est))
+    if [ "$left" -lt 15 ]; then
+      summary+=("$name: skipped, the deadline (${deadline} s) was reached")
+      echo "[$k/${#selected[@]}] $name: skipped, ${elapsed} s of the ${deadline} s deadline spent" | tee -a "$out/campaign.log"
+      continue
+    fi
+    echo "[$k/${#selected[@]}] $name: $(basename "$config"), about ${scaled} s; ${elapsed} s elapsed, ${left} s to the deadline" |
+      tee -a "$out/campaign.log"
+    local t0=$SECONDS
+    # The runner's progress lines (a group at a time) shown as they come, and kept in logs/.
+    timeout --signal=TERM --kill-after=10 "$left" \
+      "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" 2>&1 |
+      tee "$out/logs/$name.log" | grep --line-buffered -v '^warning:' | sed -u 's/^/  /'
+    status=${PIPESTATUS[0]}
+    local took=$((SECONDS - t0))
+    spent=$((spent + took))
+    spent_est=$((spent_est + est))
+    local runs
+    runs=$(records "$out/$name")
+    # Stopped (the deadline) or failed: the finished runs stay, and results.json is written from
+    # them as the runner does when it stops (no rendering).
+    if [ "$status" -ne 0 ] && [ "$runs" -gt 0 ] && [ ! -f "$out/$name/results.json" ]; then
+      "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" --quiet --resume --max-runs 0 \
+        >>"$out/logs/$name.log" 2>&1
+    fi
+    if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+      summary+=("$name: stopped at the deadline after ${took} s, $runs runs kept")
+    elif [ "$status" -ne 0 ]; then
+      summary+=("$name: failed (exit status $status) after ${took} s, $runs runs kept: $out/logs/$name.log")
+    else
+      summary+=("$name: ${took} s, $runs runs")
+    fi
+    echo "  ${summary[-1]}" | tee -a "$out/campaign.log" >/dev/null
+    echo "  done in ${took} s ($((SECONDS - start)) s in all)"
+  done
+  [ "$own_cache" -eq 0 ] || rm -rf "$cache"
+
+  # The tables and reports, before any image is dropped.
+  local missing
+  missing=$(python_missing)
+  if [ -z "$missing" ]; then
+    finish_sets "$out"
+  else
+    echo "tables and reports: not here ($missing); on a machine set up by setup.sh: gpu_campaign.sh finish OUT" |
+      tee -a "$out/campaign.log"
+  fi
+
+  # Under the size limit: whole result sets' images dropped, the largest set first.
+  local set
+  while [ "$(mib "$out")" -gt "$maxmib" ]; do
+    set=$(for d in "$out"/*/; do [ -d "$d/images" ] && echo "$(du -sm "$d/images" "$d/references" 2>/dev/null | awk '{s += $1} END {print s}') $d"; done |
+            sort -rn | head -1 | cut -d' ' -f2-)
+    [ -n "$set" ] || break
+    rm -rf "${set}images" "${set}references"
+    echo "dropped the images of $(basename "$set") to stay under $maxmib MiB" | tee -a "$out/campaign.log"
+  done
+
+  {
+    echo
+    echo "campaign: $((SECONDS - start)) s, $(mib "$out") MiB in $out"
+    for line in "${summary[@]}"; do echo "  $line"; done
+  } | tee -a "$out/campaign.log"
+}
+
+finish_sets() {
+  local out=$1
+  for entry in "${CAMPAIGN[@]}"; do
+    set -- $entry
+    [ -d "$out/$1" ] || continue
+    echo "$1:"
+    if [ "$(records "$out/$1")" -eq 0 ]; then
+      echo "  no runs recorded: no table or report"
+    else
+      tables_and_report "$out/$1" "$3"
+    fi
+  done 2>&1 | tee -a "$out/campaign.log"
+}
+
+cmd_finish() {
+  local out=${1:-}
+  [ -n "$out" ] && [ -f "$out/campaign.log" ] || die "finish: ${out:-(none)}: not a campaign folder (expected OUT of gpu_campaign.sh run)"
+  local missing
+  missing=$(python_missing)
+  [ -z "$missing" ] || die "finish: cannot write the tables here: $missing"
+  finish_sets "$out"
+}
+
+case ${1:-} in
+  bundle) shift; cmd_bundle "$@" ;;
+  run) shift; cmd_run "$@" ;;
+  finish) shift; cmd_finish "$@" ;;
+  -h|--help|help) usage ;;
+  *) usage >&2; exit 2 ;;
+esac
