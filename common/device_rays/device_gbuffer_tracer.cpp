@@ -49,7 +49,7 @@ void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) 
 }
 
 DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
-                                              const std::function<void(VkCommandBuffer)>& after) {
+                                              const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
     if (targets.lighting == VK_NULL_HANDLE) throw VulkanError("the G-buffer tracer needs the lit image: ask the rasterizer for lighting");
     const VulkanDevice& dev = pipeline_.device();
     const int width = static_cast<int>(targets.width), height = static_cast<int>(targets.height);
@@ -73,13 +73,13 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     in.writeImage(11, sampled, ssrHit_ ? ssrHit_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     std::memset(counts_.mapped(), 0, kTechniqueCounters * sizeof(std::uint32_t));
 
-    const auto counts = pipeline_.launch(targets.width, targets.height, "trace", after);
+    RayLaunch launch{targets.width, targets.height, "trace"};
+    launch.after = after;
+    launch.afterStage = afterStage;
+    const DeviceLaunchCounts counts = pipeline_.launch(launch);
     DeviceGBufferTrace result;
-    result.rays.primary = counts[0];
-    result.rays.shadow = counts[1];
-    result.rays.reflection = counts[2];
-    result.rays.refraction = counts[3];
-    result.rays.mediumErrors = counts[4];
+    result.rays = counts.rays;
+    result.invocations = counts.invocations;
     std::memcpy(result.techniqueCounts.data(), counts_.mapped(), sizeof(result.techniqueCounts));
     result.gpuStages = pipeline_.gpuStages();
     return result;

@@ -20,8 +20,9 @@ namespace hybridlab {
 
 struct DeviceGBufferTrace {
     RayStats rays;                                   // counted on the device
+    DeviceInvocations invocations;
     std::array<std::uint32_t, 16> techniqueCounts{};  // the shader's own counters (techniqueCounts)
-    std::vector<GpuStageTime> gpuStages;             // "trace" (with the technique's pass after it)
+    std::vector<GpuStageTime> gpuStages;             // "trace", and the technique's pass after it
 };
 
 class DeviceGBufferTracer {
@@ -43,9 +44,9 @@ public:
 
     // One launch over `targets` (the rasterizer's last frame, on this device; lighting included) with
     // `settings`; `flags` reach the shader as frame.rules.y. `after` records the technique's pass
-    // that reads the output, in the same command buffer and GPU stage ("trace"). Waits.
+    // that reads the output, in the same command buffer, GPU-timed as `afterStage`. Waits.
     DeviceGBufferTrace trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
-                             const std::function<void(VkCommandBuffer)>& after = {});
+                             const std::function<void(VkCommandBuffer)>& after = {}, const std::string& afterStage = {});
 
     // After trace(): the frame's image (vec4 per texel, row-major; host-visible) and the per-texel
     // records (kTexelRecords vec4 each; device memory the host can map on every device it runs on).

@@ -42,17 +42,14 @@ DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, in
                                              TracedEffects effects) {
     pipeline_.setFrame(deviceFrame(scene_, camera, width, height, settings, effects));
     const GpuBuffer& output = pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
-    const auto counts = pipeline_.launch(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace");
+    const DeviceLaunchCounts counts = pipeline_.launch({static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace"});
     DeviceTraceResult result;
     result.image = Image(width, height);
     const auto* pixels = static_cast<const glm::vec4*>(output.mapped());
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) result.image.at(x, y) = pixels[static_cast<std::size_t>(y) * width + x];
-    result.rays.primary = counts[0];
-    result.rays.shadow = counts[1];
-    result.rays.reflection = counts[2];
-    result.rays.refraction = counts[3];
-    result.rays.mediumErrors = counts[4];
+    result.rays = counts.rays;
+    result.invocations = counts.invocations;
     result.gpuStages = pipeline_.gpuStages();
     return result;
 }

@@ -19,6 +19,7 @@ namespace hybridlab {
 struct DeviceTraceResult {
     Image image;                          // linear radiance per pixel
     RayStats rays;                        // counted on the device
+    DeviceInvocations invocations;
     std::vector<GpuStageTime> gpuStages;  // "trace"
 };
 

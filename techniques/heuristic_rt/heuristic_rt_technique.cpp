@@ -350,6 +350,8 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     rays += traced.rays;
     recordFrame(selection, rays, traced.techniqueCounts[0], result);
     recordGpuStages(traced.gpuStages, result);
+    recordDeviceLaunch("trace", traced.rays, traced.invocations, gpuStageMilliseconds(traced.gpuStages, "trace"), result);
+    gbuffer_.recordDeviceCast(result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
         const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());

@@ -38,6 +38,22 @@ void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& resul
     for (const GpuStageTime& g : stages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
 }
 
+void recordDeviceLaunch(const std::string& kind, const RayStats& rays, const DeviceInvocations& invocations, double gpuMilliseconds,
+                        FrameResult& result) {
+    const double launched = static_cast<double>(invocations.launched), total = static_cast<double>(rays.total());
+    result.counters[kind + "_invocations_launched"] = launched;
+    result.counters[kind + "_invocations_traced"] = static_cast<double>(invocations.tracing);
+    result.counters[kind + "_rays_per_invocation"] = launched > 0.0 ? total / launched : 0.0;
+    result.counters["gpu_" + kind + "_ns_per_ray"] = total > 0.0 ? 1e6 * gpuMilliseconds / total : 0.0;
+}
+
+double gpuStageMilliseconds(const std::vector<GpuStageTime>& stages, const std::string& stage) {
+    double ms = 0.0;
+    for (const GpuStageTime& g : stages)
+        if (g.name == stage) ms += g.milliseconds;
+    return ms;
+}
+
 const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, StageClock& clock, FrameResult& result) {
     const DeviceRayScene& rays = context.deviceRayScene(time);
     clock.lap("bvh_update");
@@ -63,6 +79,7 @@ void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame,
     clock.lap("trace");
     recordRayCounters(traced.rays, static_cast<double>(frame.width) * frame.height, result);
     recordGpuStages(traced.gpuStages, result);
+    recordDeviceLaunch("trace", traced.rays, traced.invocations, gpuStageMilliseconds(traced.gpuStages, "trace"), result);
 }
 
 }  // namespace hybridlab

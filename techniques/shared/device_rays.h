@@ -2,6 +2,8 @@
 // The rays of a technique with `rays = "vulkan"` (ray_backend_parameters.h): the ray-tracing Vulkan
 // device's scene and tracers, shared by every technique that traces there.
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "common/device_rays/device_gbuffer_tracer.h"
 #include "common/device_rays/device_whitted_tracer.h"
@@ -32,6 +34,15 @@ void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& imag
 
 // The GPU stages of a device launch as counters gpu_<stage>_ms.
 void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result);
+// A device launch's work per invocation and per ray, as counters (`kind`: the launch's GPU stage,
+// "trace" or "gbuffer.rays"): <kind>_invocations_launched, <kind>_invocations_traced (those that
+// traced a ray), <kind>_rays_per_invocation (its rays over the launched invocations) and
+// gpu_<kind>_ns_per_ray (the stage's GPU time over its rays), which compare launches of different
+// sizes and selections where their times alone do not.
+void recordDeviceLaunch(const std::string& kind, const RayStats& rays, const DeviceInvocations& invocations, double gpuMilliseconds,
+                        FrameResult& result);
+// The GPU time of `stage` among `stages` (0 when it did not run).
+double gpuStageMilliseconds(const std::vector<GpuStageTime>& stages, const std::string& stage);
 
 void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame, const WhittedSettings& settings, int supersample,
                          StageClock& clock, FrameResult& result);

@@ -392,8 +392,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
 
     if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
-    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU time
-    // together is the counter gpu_trace_ms); then the image comes back.
+    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU times
+    // the counters gpu_trace_ms and gpu_composite_ms); then the image comes back.
     deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
     // device_ssr_fallback.rgen's options (frame.rules.y).
     const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
@@ -404,7 +404,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
         [&](VkCommandBuffer cb) {
             deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->image(), frame.width, frame.height, blurRadius_, blurRange_,
                                      walewski);
-        });
+        },
+        "composite");
     clock.lap("trace");
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
@@ -414,6 +415,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     recordRayCounters(rays, counts[0], result);
     recordRasterWork(raster_, result);
     recordGpuStages(traced.gpuStages, result);
+    recordDeviceLaunch("trace", traced.rays, traced.invocations, gpuStageMilliseconds(traced.gpuStages, "trace"), result);
+    gbuffer_.recordDeviceCast(result);
     result.counters["reflective_pixels"] = counts[3];
     result.counters["ssr_hits"] = counts[4];
     result.counters["ssr_hit_rate"] = counts[3] > 0 ? static_cast<double>(counts[4]) / static_cast<double>(counts[3]) : 0.0;

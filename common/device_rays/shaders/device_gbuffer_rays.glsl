@@ -62,6 +62,12 @@ vec3 cameraIncoming(vec3 p) { return frame.cameraPosition.w != 0.0 ? normalize(p
 // The camera ray's cone width at `p` (GBufferSurface::footprint); 0 without ray cones.
 float cameraFootprint(vec3 p) { return frame.settings.w != 0.0 ? frame.cone.x + frame.cone.y * distance(frame.cameraPosition.xyz, p) : 0.0; }
 
+// addRayCounts(), and the invocation counted as one that traced where the texel traced a ray.
+void addTexelRayCounts() {
+    addRayCounts();
+    if (countShadow + countReflection + countRefraction > 0u) countTraced();
+}
+
 // As ShadingParts.
 struct Parts {
     vec3 local, reflected, refracted;

@@ -71,15 +71,18 @@ struct DeviceRay {
     vec4 directionTmax;  // xyz unit direction, w tmax
 };
 
+// A launch's counters: rays by kind, primary, shadow, reflection, refraction (RayStats' order),
+// medium errors, then its invocations: those launched and those that traced a ray (what rays per
+// invocation and a launch's idle invocations are read from).
 #ifdef __cplusplus
 inline constexpr unsigned kHasUvs = 1u, kHasTangents = 2u;
-// Counters: primary, shadow, reflection, refraction (RayStats' order), medium errors.
-inline constexpr unsigned kRayCounterCount = 5u;
+inline constexpr unsigned kLaunchedInvocations = 5u, kTracingInvocations = 6u, kRayCounterCount = 7u;
 static_assert(sizeof(DeviceMaterial) == 128 && sizeof(DeviceInstance) == 160 && sizeof(DeviceVertex) == 48);
 static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceRay) == 32);
 }  // namespace hybridlab::device_rays
 #else
 const uint kHasUvs = 1u, kHasTangents = 2u;
+const uint kLaunchedInvocations = 5u, kTracingInvocations = 6u, kRayCounterCount = 7u;
 #endif
 
 #endif
