@@ -8,6 +8,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/device_rays/device_ray_scene.h"
@@ -33,6 +34,7 @@ struct CompiledRayPipeline {
 struct DeviceInvocations {
     std::uint64_t launched = 0;
     std::uint64_t tracing = 0;  // of those, the ones that traced a ray
+    std::optional<std::uint64_t> listed;  // a compacted launch: the texels its classification listed
 };
 
 // What a launch counted on the device (device_frame.glsl's rayCounts).
@@ -47,6 +49,13 @@ struct RayLaunch {
     std::string stage;  // the trace's GPU stage
     // Recorded first, untimed: what the trace needs (layout transitions of the images it writes).
     std::function<void(VkCommandBuffer)> before;
+    // A compacted launch: `classify`, recorded before the trace and GPU-timed as `classifyStage`,
+    // writes the launch's size (a VkTraceRaysIndirectCommandKHR) at device address `indirect`, and
+    // the trace is launched from it (the device must have traceRaysIndirect()); width and height
+    // then only bound it.
+    std::function<void(VkCommandBuffer)> classify;
+    std::string classifyStage;
+    VkDeviceAddress indirect = 0;
     // Recorded after the trace: passes that read its output, GPU-timed as `afterStage`.
     std::function<void(VkCommandBuffer)> after;
     std::string afterStage;
@@ -67,6 +76,10 @@ public:
     void setReplayRays(GpuBuffer rays);
     // Set 1 (with `inputs` only), written by the caller before launch().
     DescriptorSet& inputs() { return inputs_; }
+    // The pipeline layout (sets 0 and 1, visible to compute shaders too) and its sets bound at
+    // `point`: a classification pass reads what the ray-generation shader reads.
+    VkPipelineLayout layout() const { return program_->layout; }
+    void bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) const;
 
     // Zeroes the counters, records `launch` in one command buffer (before, the trace, after),
     // submits it and waits; returns the counters.

@@ -243,13 +243,20 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
     const auto vulkan = std::make_pair(std::string("rays"), ParamValue(std::string("vulkan")));
     const auto castGBuffer = std::make_pair(std::string("gbuffer"), ParamValue(std::string("rays")));
     const auto budgetParam = std::make_pair(std::string("budget"), ParamValue(budget));
-    const std::vector<DeviceTraceSetting> settings = {
-        {"rt_only", "rt_only", {vulkan}},
-        {"heuristic_rt, gbuffer raster", "heuristic_rt", {vulkan, budgetParam}},
-        {"heuristic_rt, gbuffer rays", "heuristic_rt", {vulkan, budgetParam, castGBuffer}},
-        {"ssr_fallback, gbuffer raster", "ssr_fallback", {vulkan}},
-        {"ssr_fallback, gbuffer rays", "ssr_fallback", {vulkan, castGBuffer}},
-    };
+    std::vector<DeviceTraceSetting> settings = {{"rt_only", "rt_only", {vulkan}}};
+    // Each hybrid's ray stage launched over its classified texels and one invocation per texel.
+    for (const DeviceTraceSetting& hybrid : std::vector<DeviceTraceSetting>{
+             {"heuristic_rt, gbuffer raster", "heuristic_rt", {vulkan, budgetParam}},
+             {"heuristic_rt, gbuffer rays", "heuristic_rt", {vulkan, budgetParam, castGBuffer}},
+             {"ssr_fallback, gbuffer raster", "ssr_fallback", {vulkan}},
+             {"ssr_fallback, gbuffer rays", "ssr_fallback", {vulkan, castGBuffer}}}) {
+        for (const char* launch : {"full", "compact"}) {
+            DeviceTraceSetting s = hybrid;
+            s.label += std::string(", ") + launch;
+            s.params.emplace_back("launch", std::string(launch));
+            settings.push_back(s);
+        }
+    }
     std::vector<std::unique_ptr<Technique>> techniques;
     try {
         for (const DeviceTraceSetting& s : settings) {
@@ -276,8 +283,8 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
     std::printf("\ndevice traces per ray (rays = vulkan; heuristic_rt budget %.0f; %d rounds; medians; ratio to rt_only's ns/ray paired "
                 "by round, median [min, max])\n",
                 budget, o.repeats);
-    std::printf("%-30s %9s %9s %8s %9s %9s %9s %20s %9s %11s\n", "setting", "launched", "traced", "rays/inv", "rays", "trace ms",
-                "ns/ray", "ratio to rt_only", "composite", "gbuf ns/ray");
+    std::printf("%-38s %9s %9s %8s %9s %9s %9s %22s %9s %9s %11s\n", "setting", "launched", "traced", "rays/inv", "rays", "trace ms",
+                "ns/ray", "ratio to rt_only", "classify", "composite", "gbuf ns/ray");
     for (std::size_t i = 0; i < settings.size(); ++i) {
         std::vector<double> ratios;
         for (int r = 0; r < o.repeats; ++r) {
@@ -287,10 +294,11 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
         const Summary ratio = summarize(ratios);
         const FrameResult& last = frames[i].back();
         const double traceRays = counter(last, "trace_rays_per_invocation") * counter(last, "trace_invocations_launched");
-        std::printf("%-30s %9.0f %9.0f %8.3f %9.0f %9.3f %9.1f %6.3f [%.3f, %.3f] %9.3f %11.1f\n", settings[i].label.c_str(),
+        std::printf("%-38s %9.0f %9.0f %8.3f %9.0f %9.3f %9.1f %6.3f [%.3f, %.3f] %9.3f %9.3f %11.1f\n", settings[i].label.c_str(),
                     counter(last, "trace_invocations_launched"), counter(last, "trace_invocations_traced"),
                     counter(last, "trace_rays_per_invocation"), traceRays, median(i, "gpu_trace_ms"), median(i, "gpu_trace_ns_per_ray"),
-                    ratio.median, ratio.min, ratio.max, median(i, "gpu_composite_ms"), median(i, "gpu_gbuffer.rays_ns_per_ray"));
+                    ratio.median, ratio.min, ratio.max, median(i, "gpu_classify_ms"), median(i, "gpu_composite_ms"),
+                    median(i, "gpu_gbuffer.rays_ns_per_ray"));
     }
 }
 

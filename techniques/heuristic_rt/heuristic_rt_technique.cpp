@@ -59,6 +59,7 @@ TechniqueInfo HeuristicRtTechnique::info() {
     parameters.bind(&P::debugImages, ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"));
     parameters.bind(&P::gbuffer, gbufferSourceParameters());
     parameters.bind(&P::rays, rayBackendParameters());
+    parameters.bind(&P::launch, deviceLaunchParameters());
     // The tracer recurses and shades as the reference, cut off at rt_only's importance.
     parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
     parameters.bind(&P::shading, tracedShadingParameters());
@@ -82,6 +83,7 @@ HeuristicRtTechnique::HeuristicRtTechnique(const HeuristicRtParameters& p)
       cpuLighting_(p.cpuLighting),
       debugImages_(p.debugImages),
       onDevice_(p.rays.onDevice),
+      launch_(p.launch),
       gbuffer_(p.gbuffer) {
     p.shading.applyTo(tracer_);
     if (gbuffer_.rays() && visiblePixelsByQueries_)
@@ -108,7 +110,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
     // Lavapipe compiles shaders at the first draw (and the ray-tracing pipeline at its creation).
     const FrameRequest warmUp = RasterWarmUp::preparing(scene);
     if (onDevice_) {
-        deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen");
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen", "heuristic_classify.comp", launch_);
         gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         pixelCounts_ = std::make_unique<ObjectPixelCountPass>(VulkanDevice::shared({.rayTracing = true}), scene.objects.size());
         renderOnDevice(context, warmUp);

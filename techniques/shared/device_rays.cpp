@@ -16,9 +16,11 @@ std::unique_ptr<DeviceWhittedTracer> prepareDeviceRays(SceneContext& context) {
     }
 }
 
-std::unique_ptr<DeviceGBufferTracer> prepareDeviceGBufferRays(SceneContext& context, const std::string& raygenShader) {
+std::unique_ptr<DeviceGBufferTracer> prepareDeviceGBufferRays(SceneContext& context, const std::string& raygenShader,
+                                                              const std::string& classifyShader, const DeviceLaunchParameters& launch) {
     try {
-        auto tracer = std::make_unique<DeviceGBufferTracer>(context.deviceRayScene(0.0), raygenShader);
+        auto tracer = std::make_unique<DeviceGBufferTracer>(context.deviceRayScene(0.0), raygenShader, classifyShader);
+        tracer->setCompactLaunch(launch.compact);
         rayTracingDeviceRasterizer(context);
         return tracer;
     } catch (const VulkanUnavailable& e) {
@@ -43,6 +45,7 @@ void recordDeviceLaunch(const std::string& kind, const RayStats& rays, const Dev
     const double launched = static_cast<double>(invocations.launched), total = static_cast<double>(rays.total());
     result.counters[kind + "_invocations_launched"] = launched;
     result.counters[kind + "_invocations_traced"] = static_cast<double>(invocations.tracing);
+    if (invocations.listed) result.counters[kind + "_texels_listed"] = static_cast<double>(*invocations.listed);
     result.counters[kind + "_rays_per_invocation"] = launched > 0.0 ? total / launched : 0.0;
     result.counters["gpu_" + kind + "_ns_per_ray"] = total > 0.0 ? 1e6 * gpuMilliseconds / total : 0.0;
 }

@@ -106,6 +106,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
                                                    "which smears thin reflected detail)"));
     parameters.bind(&P::gbuffer, gbufferSourceParameters());
     parameters.bind(&P::rays, rayBackendParameters());
+    parameters.bind(&P::launch, deviceLaunchParameters());
     parameters.bind(&P::shadowMaps, shadowMapParameters());
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
     // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
@@ -120,6 +121,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
 
 SsrFallbackTechnique::SsrFallbackTechnique(const SsrFallbackParameters& p)
     : onDevice_(p.rays.onDevice),
+      launch_(p.launch),
       ssrOn_(p.ssr),
       rayTracedShadows_(p.rayTracedShadows),
       fallback_(p.fallback),
@@ -161,7 +163,7 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 
 void SsrFallbackTechnique::prepare(SceneContext& context) {
     if (onDevice_) {
-        deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen");
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen", "ssr_classify.comp", launch_);
         gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         deviceComposite_ = std::make_unique<DeviceSeamComposite>(deviceTracer_->device());
         ssr_ = std::make_unique<SsrPass>(VulkanDevice::shared({.rayTracing = true}));
