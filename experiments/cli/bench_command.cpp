@@ -300,6 +300,23 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
                     ratio.median, ratio.min, ratio.max, median(i, "gpu_classify_ms"), median(i, "gpu_composite_ms"),
                     median(i, "gpu_gbuffer.rays_ns_per_ray"));
     }
+    // The whole frame by stage (wall clock; the device's stages by their GPU timestamps, the rest
+    // of each submission's wall clock as overhead): what lies outside the trace.
+    std::printf("\nframe stages (medians, ms)\n");
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        std::vector<double> frame;
+        for (const FrameResult& f : frames[i]) frame.push_back(f.totalMilliseconds());
+        std::printf("%-38s frame %9.2f:", settings[i].label.c_str(), summarize(frame).median);
+        for (const StageTime& s : frames[i].back().stages) {
+            std::vector<double> v;
+            for (const FrameResult& f : frames[i]) {
+                const auto it = std::find_if(f.stages.begin(), f.stages.end(), [&](const StageTime& t) { return t.name == s.name; });
+                v.push_back(it == f.stages.end() ? 0.0 : it->milliseconds);
+            }
+            std::printf(" %s %.2f", s.name.c_str(), summarize(v).median);
+        }
+        std::printf("\n");
+    }
 }
 
 void run(const BenchOptions& o) {

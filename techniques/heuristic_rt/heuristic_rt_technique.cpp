@@ -345,7 +345,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
     // then the image comes back.
     const DeviceGBufferTrace traced = deviceTracer_->trace(rasterizer.targets(), tracer_, debugImages_ ? 1u : 0u);
-    clock.lap("trace");
+    lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 

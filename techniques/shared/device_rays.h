@@ -35,6 +35,11 @@ const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, S
 // Copies the device's image (vec4 per texel, row-major) of a width x height frame into `image`.
 void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& image);
 
+// Ends a device launch's stage in `clock`: its GPU stages (the classification as trace.classify,
+// the trace, the pass after it as blend) and the rest of its wall clock, recording, submission
+// and the wait, as overhead.
+void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages);
+
 // The GPU stages of a device launch as counters gpu_<stage>_ms.
 void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result);
 // A device launch's work per invocation and per ray, as counters (`kind`: the launch's GPU stage,

@@ -408,7 +408,7 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
                                      walewski);
         },
         "composite");
-    clock.lap("trace");
+    lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 
