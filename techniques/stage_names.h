@@ -25,8 +25,8 @@ inline constexpr StageName kStageNames[] = {
     {"lens", "layered-EM lens geometry: .tessellation, .texture_coordinates, .draw (the lens pass)"},
     {"trace", "rays traced for shading: Whitted trees, fallback rays, layered-EM lens vertices (.lens_vertices)"},
     {"blend", "composing traced, SSR or lens colours over the rasterized image (.seam_blur: SSR seams smoothed)"},
-    {"readback", "the rasterizer's targets copied to the host and unpacked"},
-    {"overhead", "recording and submitting the rasterizer's commands and waiting: its wall clock the GPU timestamps miss"},
+    {"readback", "the rasterizer's targets, or a device trace's image, copied to the host and unpacked"},
+    {"overhead", "recording and submitting the rasterizer's or a device launch's commands and waiting: the wall clock its GPU timestamps miss"},
 };
 
 // The part of a stage name before its first dot: the kind of work it is charted under.

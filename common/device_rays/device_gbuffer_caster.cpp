@@ -27,16 +27,19 @@ DeviceGBufferCast DeviceGBufferCaster::cast(const GBufferStorage& targets, const
     // Rewritten every frame: the rasterizer recreates its targets when the frame size changes.
     for (int i = 0; i < GBufferPass::kColorTargets; ++i)
         pipeline_.inputs().writeImage(i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, targets.views[i], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
-    const auto counts = pipeline_.launch(targets.width, targets.height, "gbuffer.rays", {}, [&](VkCommandBuffer cb) {
+    RayLaunch launch{targets.width, targets.height, "gbuffer.rays"};
+    launch.before = [&](VkCommandBuffer cb) {
         // Every texel is written: what the last frame left is discarded (from UNDEFINED), and the
         // last frame's readers finish first.
         for (VkImage image : targets.images) {
             transitionImage(cb, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                             VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT);
         }
-    });
+    };
+    const DeviceLaunchCounts counts = pipeline_.launch(launch);
     DeviceGBufferCast result;
-    result.primaryRays = counts[0];
+    result.primaryRays = counts.rays.primary;
+    result.invocations = counts.invocations;
     for (const GpuStageTime& s : pipeline_.gpuStages()) result.gpuMilliseconds += s.milliseconds;
     return result;
 }

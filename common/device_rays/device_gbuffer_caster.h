@@ -16,6 +16,7 @@ namespace hybridlab {
 
 struct DeviceGBufferCast {
     std::uint64_t primaryRays = 0;  // counted on the device: one a pixel
+    DeviceInvocations invocations;
     double gpuMilliseconds = 0.0;   // the launch's GPU timestamps
 };
 

@@ -14,10 +14,12 @@ namespace {
 
 constexpr std::uint32_t kTechniqueCounters = 16;
 
-// Set 1 of device_gbuffer_rays.glsl: the G-buffer's eight targets and the lit image (0-8), the
-// per-object data (9), SSR's outputs (10, 11), the per-texel records (12), the technique's counters (13).
+// Set 1 of device_gbuffer_inputs.glsl: the G-buffer's eight targets and the lit image (0-8), the
+// per-object data (9), SSR's outputs (10, 11), the per-texel records (12), the technique's counters
+// (13), the compacted launch's texel list (14); read by the ray-generation shader and the
+// classification pass.
 std::vector<VkDescriptorSetLayoutBinding> inputBindings() {
-    const VkShaderStageFlags raygen = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+    const VkShaderStageFlags raygen = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_COMPUTE_BIT;
     std::vector<VkDescriptorSetLayoutBinding> b;
     for (std::uint32_t i = 0; i <= 8; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, raygen, nullptr});
     b.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
@@ -25,18 +27,30 @@ std::vector<VkDescriptorSetLayoutBinding> inputBindings() {
     b.push_back({11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, raygen, nullptr});
     b.push_back({12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
     b.push_back({13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
+    b.push_back({14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, raygen, nullptr});
     return b;
 }
 
 }  // namespace
 
-DeviceGBufferTracer::DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader)
+// The texel list of a width x height launch: its header and a texel at most per texel.
+GpuBuffer texelList(const VulkanDevice& dev, std::size_t texels) {
+    return GpuBuffer(dev, sizeof(TexelListHeader) + texels * sizeof(std::uint32_t),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     GpuBuffer::Memory::HostVisible);
+}
+
+DeviceGBufferTracer::DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader, const std::string& classifyShader)
     : scene_(scene), pipeline_(scene, raygenShader, inputBindings()) {
     const VulkanDevice& dev = pipeline_.device();
     nearest_ = createNearestSampler(dev, "the G-buffer tracer's sampler");
     counts_ = GpuBuffer(dev, kTechniqueCounters * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
     pipeline_.inputs().writeBuffer(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counts_.buffer());
     setObjectData({0u});
+    if (!classifyShader.empty() && dev.traceRaysIndirect()) classify_ = createComputePipeline(dev, classifyShader, pipeline_.layout());
+    list_ = texelList(dev, 1);
+    pipeline_.inputs().writeBuffer(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, list_.buffer());
 }
 
 void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) {
@@ -49,13 +63,15 @@ void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) 
 }
 
 DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
-                                              const std::function<void(VkCommandBuffer)>& after) {
+                                              const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
     if (targets.lighting == VK_NULL_HANDLE) throw VulkanError("the G-buffer tracer needs the lit image: ask the rasterizer for lighting");
     const VulkanDevice& dev = pipeline_.device();
     const int width = static_cast<int>(targets.width), height = static_cast<int>(targets.height);
     const std::size_t texelCount = static_cast<std::size_t>(width) * height;
     DeviceFrame f = deviceFrame(scene_, targets.camera, width, height, settings);
     f.rules.y = flags;
+    const bool compact = compactsLaunches();
+    f.rules.z = compact ? 1u : 0u;
     pipeline_.setFrame(f);
     image_ = &pipeline_.output(texelCount * sizeof(glm::vec4));
     const VkDeviceSize texelBytes = texelCount * kTexelRecords * sizeof(glm::vec4);
@@ -73,13 +89,32 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     in.writeImage(11, sampled, ssrHit_ ? ssrHit_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     std::memset(counts_.mapped(), 0, kTechniqueCounters * sizeof(std::uint32_t));
 
-    const auto counts = pipeline_.launch(targets.width, targets.height, "trace", after);
+    RayLaunch launch{targets.width, targets.height, "trace"};
+    if (compact) {
+        if (list_.size() < sizeof(TexelListHeader) + texelCount * sizeof(std::uint32_t)) {
+            list_ = texelList(dev, texelCount);
+            in.writeBuffer(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, list_.buffer());
+        }
+        launch.classifyStage = "classify";
+        launch.indirect = list_.deviceAddress(dev);
+        launch.classify = [&](VkCommandBuffer cb) {
+            const TexelListHeader empty{{0u, 1u, 1u, 0u}};
+            vkCmdUpdateBuffer(cb, list_.buffer(), 0, sizeof(empty), &empty);
+            VkMemoryBarrier cleared{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, nullptr, 0, nullptr);
+            vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, classify_);
+            pipeline_.bindSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE);
+            vkCmdDispatch(cb, (targets.width + 7) / 8, (targets.height + 7) / 8, 1);  // texel_list.glsl's 8 x 8 tiles
+        };
+    }
+    launch.after = after;
+    launch.afterStage = afterStage;
+    const DeviceLaunchCounts counts = pipeline_.launch(launch);
     DeviceGBufferTrace result;
-    result.rays.primary = counts[0];
-    result.rays.shadow = counts[1];
-    result.rays.reflection = counts[2];
-    result.rays.refraction = counts[3];
-    result.rays.mediumErrors = counts[4];
+    result.rays = counts.rays;
+    result.invocations = counts.invocations;
+    if (compact) result.invocations.listed = static_cast<const TexelListHeader*>(list_.mapped())->launch.x;
     std::memcpy(result.techniqueCounts.data(), counts_.mapped(), sizeof(result.techniqueCounts));
     result.gpuStages = pipeline_.gpuStages();
     return result;

@@ -20,18 +20,28 @@ namespace hybridlab {
 
 struct DeviceGBufferTrace {
     RayStats rays;                                   // counted on the device
+    DeviceInvocations invocations;
     std::array<std::uint32_t, 16> techniqueCounts{};  // the shader's own counters (techniqueCounts)
-    std::vector<GpuStageTime> gpuStages;             // "trace" (with the technique's pass after it)
+    std::vector<GpuStageTime> gpuStages;             // "trace", and the technique's pass after it
 };
 
 class DeviceGBufferTracer {
 public:
     static constexpr std::uint32_t kTexelRecords = 4;  // vec4 per texel in texels() (device_gbuffer_rays.glsl)
 
-    // `raygenShader` includes device_gbuffer_rays.glsl.
-    DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader);
+    // `raygenShader` includes device_gbuffer_rays.glsl; `classifyShader`, the technique's
+    // classification pass (texel_list.glsl), compacts its launches (none: every launch is full).
+    DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader, const std::string& classifyShader = {});
 
     const VulkanDevice& device() const { return pipeline_.device(); }
+
+    // Compacted launches (the default, where there is a classification pass and the device has
+    // indirect launches): the classification pass lists the texels the ray-generation shader
+    // must see and writes the others' outputs itself, and the trace is launched over the list
+    // alone, so that no invocation is launched only to return. Full launches, one invocation per
+    // texel, give the same images (the test DeviceCompactLaunch holds them byte for byte).
+    void setCompactLaunch(bool compact) { compact_ = compact; }
+    bool compactsLaunches() const { return compact_ && classify_; }
 
     // Per object, the technique's data (objectData in the shader); uploaded, a few bytes an object.
     void setObjectData(const std::vector<std::uint32_t>& data);
@@ -41,11 +51,11 @@ public:
         ssrHit_ = hit;
     }
 
-    // One launch over `targets` (the rasterizer's last frame, on this device; lighting included) with
+    // One launch (compacted or full) over `targets` (the rasterizer's last frame, on this device; lighting included) with
     // `settings`; `flags` reach the shader as frame.rules.y. `after` records the technique's pass
-    // that reads the output, in the same command buffer and GPU stage ("trace"). Waits.
+    // that reads the output, in the same command buffer, GPU-timed as `afterStage`. Waits.
     DeviceGBufferTrace trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
-                             const std::function<void(VkCommandBuffer)>& after = {});
+                             const std::function<void(VkCommandBuffer)>& after = {}, const std::string& afterStage = {});
 
     // After trace(): the frame's image (vec4 per texel, row-major; host-visible) and the per-texel
     // records (kTexelRecords vec4 each; device memory the host can map on every device it runs on).
@@ -57,6 +67,9 @@ private:
     DeviceRayPipeline pipeline_;
     UniqueSampler nearest_;
     GpuBuffer objectData_, texels_, counts_;
+    UniquePipeline classify_;  // null: full launches only
+    GpuBuffer list_;           // TexelListHeader, then the listed texels
+    bool compact_ = true;
     const GpuBuffer* image_ = nullptr;
     VkImageView ssrColor_ = VK_NULL_HANDLE, ssrHit_ = VK_NULL_HANDLE;
 };

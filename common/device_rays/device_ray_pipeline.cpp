@@ -15,12 +15,17 @@ namespace {
 
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
+// GPU stages of a launch: the classification, the trace, and the pass after it. Timestamps only: on lavapipe (Mesa
+// 25.0.7) a second stage's pipeline-statistics query after vkCmdTraceRaysKHR crashes the queue thread.
+constexpr std::uint32_t kLaunchStages = 3;
+
 // The shader stages: ray generation, radiance closest hit and miss, shadow miss and any hit.
 enum Stage : std::uint32_t { kRaygen, kRadianceHit, kRadianceMiss, kShadowMiss, kShadowAnyHit, kStageCount };
 
 std::vector<VkDescriptorSetLayoutBinding> descriptorBindings(std::uint32_t textureCount) {
+    // Compute too: a compacted launch's classification pass reads the frame and writes the output.
     const VkShaderStageFlags all = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR |
-                                   VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR;
+                                   VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR | VK_SHADER_STAGE_MISS_BIT_KHR | VK_SHADER_STAGE_COMPUTE_BIT;
     const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     return {{0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1, all, nullptr},
                                        {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
@@ -126,7 +131,7 @@ std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, cons
 
 DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader,
                                      const std::vector<VkDescriptorSetLayoutBinding>& inputs)
-    : device_(scene.device()), timer_(scene.device(), 1) {
+    : device_(scene.device()), timer_(scene.device(), kLaunchStages, /*statistics=*/false) {
     const VulkanDevice& dev = device_;
     const std::uint32_t textureCount = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(scene.scene().textures.size()));
     {
@@ -191,45 +196,70 @@ void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {
     descriptors_.writeBuffer(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, replay_.buffer());
 }
 
-std::array<std::uint32_t, kRayCounterCount> DeviceRayPipeline::launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
-                                                                       const std::function<void(VkCommandBuffer)>& after,
-                                                                       const std::function<void(VkCommandBuffer)>& before) {
+void DeviceRayPipeline::bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) const {
+    const VkDescriptorSet sets[2] = {descriptors_.set(), inputs_.layout() != VK_NULL_HANDLE ? inputs_.set() : VK_NULL_HANDLE};
+    vkCmdBindDescriptorSets(cb, point, program_->layout, 0, sets[1] ? 2 : 1, sets, 0, nullptr);
+}
+
+DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
     const VulkanDevice& dev = device_;
     std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
     dev.submitAndWait([&](VkCommandBuffer cb) {
         timer_.reset(cb);
-        if (before) before(cb);
+        if (launch.before) launch.before(cb);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
-        const VkDescriptorSet sets[2] = {descriptors_.set(), inputs_.layout() != VK_NULL_HANDLE ? inputs_.set() : VK_NULL_HANDLE};
-        vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->layout, 0, sets[1] ? 2 : 1, sets, 0, nullptr);
-        // The rasterizer's targets the shader may read were written by an earlier submission on this queue.
+        bindSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR);
+        // The rasterizer's targets the shaders may read were written by an earlier submission on this queue.
         VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1, &inputs, 0, nullptr, 0,
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                             VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &inputs, 0, nullptr, 0,
                              nullptr);
-        // One GPU stage for the trace and the pass after it: on lavapipe (Mesa 25.0.7) a second
-        // stage's pipeline-statistics query after vkCmdTraceRaysKHR crashes the queue thread.
-        timer_.begin(cb, stage);
-        dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, width, height, 1);
+        if (launch.classify) {
+            timer_.begin(cb, launch.classifyStage);
+            launch.classify(cb);
+            timer_.end(cb);
+            // The list and the texels it left out, then the launch's size, read by the trace.
+            VkMemoryBarrier listed{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                                   VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                 VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1, &listed, 0, nullptr,
+                                 0, nullptr);
+        }
+        timer_.begin(cb, launch.stage);
+        if (launch.classify) {
+            dev.rayTracing().cmdTraceRaysIndirect(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.indirect);
+        } else {
+            dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.width,
+                                          launch.height, 1);
+        }
+        timer_.end(cb);
         VkPipelineStageFlags readers = VK_PIPELINE_STAGE_HOST_BIT;
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        if (after) {
+        if (launch.after) {
             readers |= VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
             barrier.dstAccessMask |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
         }
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, readers, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-        if (after) {
-            after(cb);
+        if (launch.after) {
+            timer_.begin(cb, launch.afterStage);
+            launch.after(cb);
+            timer_.end(cb);
             VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
             vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
         }
-        timer_.end(cb);
     });
-    std::array<std::uint32_t, kRayCounterCount> counts;
-    std::memcpy(counts.data(), counters_.mapped(), sizeof(counts));
+    std::array<std::uint32_t, kRayCounterCount> c;
+    std::memcpy(c.data(), counters_.mapped(), sizeof(c));
+    DeviceLaunchCounts counts;
+    counts.rays.primary = c[0];
+    counts.rays.shadow = c[1];
+    counts.rays.reflection = c[2];
+    counts.rays.refraction = c[3];
+    counts.rays.mediumErrors = c[4];
+    counts.invocations = {c[kLaunchedInvocations], c[kTracingInvocations]};
     return counts;
 }
-
 
 }  // namespace hybridlab

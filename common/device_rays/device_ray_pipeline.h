@@ -8,11 +8,13 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/device_rays/device_ray_scene.h"
 #include "common/raster/gpu_timer.h"
 #include "common/raster/pipelines.h"
+#include "common/raytrace/ray_stats.h"
 
 namespace hybridlab {
 
@@ -25,6 +27,38 @@ struct CompiledRayPipeline {
     UniquePipeline pipeline;
     GpuBuffer bindingTable;
     VkStridedDeviceAddressRegionKHR raygen{}, miss{}, hit{}, callable{};
+};
+
+// A launch's invocations, counted on the device: rays per launched invocation, and how many of
+// them were launched only to return.
+struct DeviceInvocations {
+    std::uint64_t launched = 0;
+    std::uint64_t tracing = 0;  // of those, the ones that traced a ray
+    std::optional<std::uint64_t> listed;  // a compacted launch: the texels its classification listed
+};
+
+// What a launch counted on the device (device_frame.glsl's rayCounts).
+struct DeviceLaunchCounts {
+    RayStats rays;
+    DeviceInvocations invocations;
+};
+
+// One launch of width x height invocations and what its command buffer records around it.
+struct RayLaunch {
+    std::uint32_t width = 0, height = 0;
+    std::string stage;  // the trace's GPU stage
+    // Recorded first, untimed: what the trace needs (layout transitions of the images it writes).
+    std::function<void(VkCommandBuffer)> before;
+    // A compacted launch: `classify`, recorded before the trace and GPU-timed as `classifyStage`,
+    // writes the launch's size (a VkTraceRaysIndirectCommandKHR) at device address `indirect`, and
+    // the trace is launched from it (the device must have traceRaysIndirect()); width and height
+    // then only bound it.
+    std::function<void(VkCommandBuffer)> classify;
+    std::string classifyStage;
+    VkDeviceAddress indirect = 0;
+    // Recorded after the trace: passes that read its output, GPU-timed as `afterStage`.
+    std::function<void(VkCommandBuffer)> after;
+    std::string afterStage;
 };
 
 class DeviceRayPipeline {
@@ -42,14 +76,15 @@ public:
     void setReplayRays(GpuBuffer rays);
     // Set 1 (with `inputs` only), written by the caller before launch().
     DescriptorSet& inputs() { return inputs_; }
+    // The pipeline layout (sets 0 and 1, visible to compute shaders too) and its sets bound at
+    // `point`: a classification pass reads what the ray-generation shader reads.
+    VkPipelineLayout layout() const { return program_->layout; }
+    void bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) const;
 
-    // Zeroes the counters, traces a width x height x 1 launch, records `after` (passes that read the
-    // trace's output) in the same command buffer, both GPU-timed as `stage`, waits; returns the
-    // counters (device_rays.glsl rayCounts). `before` records what the trace needs first (layout
-    // transitions of the images it writes), untimed.
-    std::array<std::uint32_t, device_rays::kRayCounterCount> launch(std::uint32_t width, std::uint32_t height, const std::string& stage,
-                                                                    const std::function<void(VkCommandBuffer)>& after = {},
-                                                                    const std::function<void(VkCommandBuffer)>& before = {});
+    // Zeroes the counters, records `launch` in one command buffer (before, the trace, after),
+    // submits it and waits; returns the counters.
+    DeviceLaunchCounts launch(const RayLaunch& launch);
+    // After launch(): the trace's GPU stage, then the pass after it where there was one.
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
 private:

@@ -31,9 +31,9 @@ ReplayResult DeviceRayReplay::trace() {
     frame.size = glm::ivec4(static_cast<int>(radianceRays_), static_cast<int>(shadowRays_), 0, 0);
     pipeline_.setFrame(frame);
     const std::uint32_t rays = radianceRays_ + shadowRays_, width = std::min<std::uint32_t>(std::max(rays, 1u), 4096u);
-    const auto counts = pipeline_.launch(width, (rays + width - 1) / width, "replay");
+    const DeviceLaunchCounts counts = pipeline_.launch({width, (rays + width - 1) / width, "replay"});
     ReplayResult r;
-    r.hits = counts[0] + counts[1];
+    r.hits = static_cast<std::uint32_t>(counts.rays.primary + counts.rays.shadow);
     for (const GpuStageTime& s : pipeline_.gpuStages()) r.gpuMilliseconds += s.milliseconds;
     return r;
 }

@@ -1,5 +1,6 @@
 #include "common/device_rays/device_whitted_tracer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <glm/trigonometric.hpp>
@@ -38,22 +39,24 @@ DeviceFrame deviceFrame(const DeviceRayScene& scene, const Camera& camera, int w
 
 DeviceWhittedTracer::DeviceWhittedTracer(const DeviceRayScene& scene) : scene_(scene), pipeline_(scene, "device_whitted.rgen") {}
 
+DeviceTraceResult DeviceWhittedTracer::launch(const Camera& camera, int width, int height, const WhittedSettings& settings,
+                                              TracedEffects effects) {
+    pipeline_.setFrame(deviceFrame(scene_, camera, width, height, settings, effects));
+    output_ = &pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
+    const DeviceLaunchCounts counts = pipeline_.launch({static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace"});
+    DeviceTraceResult result;
+    result.rays = counts.rays;
+    result.invocations = counts.invocations;
+    result.gpuStages = pipeline_.gpuStages();
+    return result;
+}
+
 DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, int height, const WhittedSettings& settings,
                                              TracedEffects effects) {
-    pipeline_.setFrame(deviceFrame(scene_, camera, width, height, settings, effects));
-    const GpuBuffer& output = pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
-    const auto counts = pipeline_.launch(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace");
-    DeviceTraceResult result;
+    DeviceTraceResult result = launch(camera, width, height, settings, effects);
+    const auto* pixels = static_cast<const glm::vec4*>(output_->mapped());
     result.image = Image(width, height);
-    const auto* pixels = static_cast<const glm::vec4*>(output.mapped());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) result.image.at(x, y) = pixels[static_cast<std::size_t>(y) * width + x];
-    result.rays.primary = counts[0];
-    result.rays.shadow = counts[1];
-    result.rays.reflection = counts[2];
-    result.rays.refraction = counts[3];
-    result.rays.mediumErrors = counts[4];
-    result.gpuStages = pipeline_.gpuStages();
+    std::copy(pixels, pixels + static_cast<std::size_t>(width) * height, result.image.data());
     return result;
 }
 

@@ -19,6 +19,7 @@ namespace hybridlab {
 struct DeviceTraceResult {
     Image image;                          // linear radiance per pixel
     RayStats rays;                        // counted on the device
+    DeviceInvocations invocations;
     std::vector<GpuStageTime> gpuStages;  // "trace"
 };
 
@@ -35,10 +36,15 @@ public:
     // from camera rays with `settings` (blend, depth limit, importance cut-off, shadows, ray
     // cones) and `effects` traced at each pixel's first hit.
     DeviceTraceResult trace(const Camera& camera, int width, int height, const WhittedSettings& settings, TracedEffects effects = {});
+    // As trace(), leaving the image where the device wrote it (output()); result.image stays empty.
+    DeviceTraceResult launch(const Camera& camera, int width, int height, const WhittedSettings& settings, TracedEffects effects = {});
+    // After launch(): the image, vec4 per pixel, row-major, host-visible.
+    const GpuBuffer& output() const { return *output_; }
 
 private:
     const DeviceRayScene& scene_;
     DeviceRayPipeline pipeline_;
+    const GpuBuffer* output_ = nullptr;
 };
 
 }  // namespace hybridlab

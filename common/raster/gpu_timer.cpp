@@ -13,14 +13,14 @@ constexpr VkQueryPipelineStatisticFlags kCounted =
 
 }  // namespace
 
-GpuTimer::GpuTimer(const VulkanDevice& device, std::uint32_t maxStages) : device_(device), capacity_(maxStages) {
+GpuTimer::GpuTimer(const VulkanDevice& device, std::uint32_t maxStages, bool statistics) : device_(device), capacity_(maxStages) {
     VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     ci.queryType = VK_QUERY_TYPE_TIMESTAMP;
     ci.queryCount = 2 * maxStages;
     VkQueryPool pool;
     checkVk(vkCreateQueryPool(device.device(), &ci, nullptr, &pool), "creating a timestamp query pool");
     pool_ = UniqueQueryPool(device.device(), pool);
-    if (device.pipelineStatistics()) {
+    if (statistics && device.pipelineStatistics()) {
         VkQueryPoolCreateInfo si{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         si.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
         si.queryCount = maxStages;

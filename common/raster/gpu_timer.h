@@ -30,7 +30,8 @@ struct GpuStageTime {
 
 class GpuTimer {
 public:
-    GpuTimer(const VulkanDevice& device, std::uint32_t maxStages);
+    // `statistics`: count each stage's work where the device can (false: timestamps only).
+    GpuTimer(const VulkanDevice& device, std::uint32_t maxStages, bool statistics = true);
 
     // At the start of a command buffer: forgets the previous frame's stages.
     void reset(VkCommandBuffer cb);

@@ -267,6 +267,15 @@ void VulkanDevice::createLogicalDevice(const std::vector<const char*>& extension
     f13.maintenance4 = VK_TRUE;
     VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
     rtf.rayTracingPipeline = VK_TRUE;
+    // Indirect launches (a compacted launch's size, written by its classification pass) where the
+    // device has them (Mesa 25's lavapipe does); without, compacted launches fall back to full ones.
+    if (features_.rayTracing) {
+        VkPhysicalDeviceRayTracingPipelineFeaturesKHR has{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+        VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &has};
+        vkGetPhysicalDeviceFeatures2(physical_, &query);
+        traceRaysIndirect_ = has.rayTracingPipelineTraceRaysIndirect == VK_TRUE;
+        rtf.rayTracingPipelineTraceRaysIndirect = has.rayTracingPipelineTraceRaysIndirect;
+    }
     VkPhysicalDeviceAccelerationStructureFeaturesKHR asf{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rtf};
     asf.accelerationStructure = VK_TRUE;
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &asf};
@@ -313,6 +322,7 @@ void VulkanDevice::loadRayTracingFunctions() {
     load(rayTracing_.createRayTracingPipelines, "vkCreateRayTracingPipelinesKHR");
     load(rayTracing_.getRayTracingShaderGroupHandles, "vkGetRayTracingShaderGroupHandlesKHR");
     load(rayTracing_.cmdTraceRays, "vkCmdTraceRaysKHR");
+    if (traceRaysIndirect_) load(rayTracing_.cmdTraceRaysIndirect, "vkCmdTraceRaysIndirectKHR");
 }
 
 void VulkanDevice::createCommandPoolAndFence() {

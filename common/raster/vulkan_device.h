@@ -37,6 +37,7 @@ struct RayTracingFunctions {
     PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
     PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
     PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+    PFN_vkCmdTraceRaysIndirectKHR cmdTraceRaysIndirect = nullptr;  // where traceRaysIndirect()
 };
 
 class VulkanDevice {
@@ -64,6 +65,8 @@ public:
     VkPhysicalDeviceType type() const { return properties_.deviceType; }
     // Whether pipeline-statistics queries are enabled (the device supports them; lavapipe does).
     bool pipelineStatistics() const { return pipelineStatistics_; }
+    // Ray-tracing devices: launches whose size the device writes (vkCmdTraceRaysIndirectKHR).
+    bool traceRaysIndirect() const { return traceRaysIndirect_; }
     // The driver's name and version text, e.g. "llvmpipe, Mesa 25.0.7 (LLVM 15.0.6)".
     std::string driver() const { return std::string(driver_.driverName) + ", " + driver_.driverInfo; }
     const DeviceFeatures& features() const { return features_; }
@@ -115,6 +118,7 @@ private:
     VkPhysicalDeviceDriverProperties driver_{};
     bool lavapipe_ = false;
     bool pipelineStatistics_ = false;
+    bool traceRaysIndirect_ = false;
     DeviceFeatures features_;
     RayTracingFunctions rayTracing_;
     VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracingProperties_{};

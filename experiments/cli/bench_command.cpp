@@ -6,7 +6,9 @@
 // a second column: the same rays, by kind, replayed on the device (DeviceRayReplay), its
 // acceleration-structure build, and the reference frame with rays = "vulkan". Then, on one thread,
 // the reference's frame split by a clock on every Embree call into traversal and the work around
-// it, beside the same rays bare.
+// it, beside the same rays bare. Last, each device trace per ray: rt_only's and the hybrids' ray
+// stages (heuristic_rt, ssr_fallback; on both G-buffers) with rays = "vulkan", interleaved round by
+// round, their invocations and GPU time per ray beside rt_only's.
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -43,6 +45,8 @@ struct BenchOptions {
     int height = 720;
     int repeats = 5;
     int threads = 0;
+    double budget = 0.0;              // heuristic_rt's in the device traces; 0: 1e6 scaled to the image's area
+    bool deviceTracesOnly = false;
 };
 
 struct Summary {
@@ -224,11 +228,108 @@ void benchSplit(const BenchOptions& o, SceneContext& context, Technique& whitted
                 frame, inside, 100.0 * inside / frame, frame - inside, bare, unclocked);
 }
 
+// A setting of the device-trace table: a technique with rays = "vulkan" and its parameters.
+struct DeviceTraceSetting {
+    std::string label, technique;
+    std::vector<std::pair<std::string, ParamValue>> params;
+};
+
+// The device traces per ray: every setting rendered once a round (after one warm-up frame each), in
+// the same order every round so that a round's load falls on all of them; per setting the medians
+// of its trace's GPU time per ray (counter gpu_trace_ns_per_ray) and its ratio to rt_only's in the
+// same round (median, min and max over the rounds), with its invocations and rays.
+void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const FrameRequest& request) {
+    const double budget = o.budget > 0.0 ? o.budget : 1e6 * request.width * request.height / (1280.0 * 720.0);
+    const auto vulkan = std::make_pair(std::string("rays"), ParamValue(std::string("vulkan")));
+    const auto castGBuffer = std::make_pair(std::string("gbuffer"), ParamValue(std::string("rays")));
+    const auto budgetParam = std::make_pair(std::string("budget"), ParamValue(budget));
+    std::vector<DeviceTraceSetting> settings = {{"rt_only", "rt_only", {vulkan}}};
+    // Each hybrid's ray stage launched over its classified texels and one invocation per texel.
+    for (const DeviceTraceSetting& hybrid : std::vector<DeviceTraceSetting>{
+             {"heuristic_rt, gbuffer raster", "heuristic_rt", {vulkan, budgetParam}},
+             {"heuristic_rt, gbuffer rays", "heuristic_rt", {vulkan, budgetParam, castGBuffer}},
+             {"ssr_fallback, gbuffer raster", "ssr_fallback", {vulkan}},
+             {"ssr_fallback, gbuffer rays", "ssr_fallback", {vulkan, castGBuffer}}}) {
+        for (const char* launch : {"full", "compact"}) {
+            DeviceTraceSetting s = hybrid;
+            s.label += std::string(", ") + launch;
+            s.params.emplace_back("launch", std::string(launch));
+            settings.push_back(s);
+        }
+    }
+    std::vector<std::unique_ptr<Technique>> techniques;
+    try {
+        for (const DeviceTraceSetting& s : settings) {
+            techniques.push_back(createTechnique(s.technique, s.params));
+            techniques.back()->prepare(context);
+            techniques.back()->render(context, request);  // warm-up
+        }
+    } catch (const InputError& e) {
+        std::printf("device traces: not measured (%s)\n", e.what());
+        return;
+    }
+    std::vector<std::vector<FrameResult>> frames(settings.size());
+    for (int r = 0; r < o.repeats; ++r)
+        for (std::size_t i = 0; i < settings.size(); ++i) frames[i].push_back(techniques[i]->render(context, request));
+    auto counter = [](const FrameResult& f, const std::string& name) {
+        const auto it = f.counters.find(name);
+        return it == f.counters.end() ? 0.0 : it->second;
+    };
+    auto median = [&](std::size_t i, const std::string& name) {
+        std::vector<double> v;
+        for (const FrameResult& f : frames[i]) v.push_back(counter(f, name));
+        return summarize(v).median;
+    };
+    std::printf("\ndevice traces per ray (rays = vulkan; heuristic_rt budget %.0f; %d rounds; medians; ratio to rt_only's ns/ray paired "
+                "by round, median [min, max])\n",
+                budget, o.repeats);
+    std::printf("%-38s %9s %9s %8s %9s %9s %9s %22s %9s %9s %11s\n", "setting", "launched", "traced", "rays/inv", "rays", "trace ms",
+                "ns/ray", "ratio to rt_only", "classify", "composite", "gbuf ns/ray");
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        std::vector<double> ratios;
+        for (int r = 0; r < o.repeats; ++r) {
+            const double base = counter(frames[0][r], "gpu_trace_ns_per_ray");
+            ratios.push_back(base > 0.0 ? counter(frames[i][r], "gpu_trace_ns_per_ray") / base : 0.0);
+        }
+        const Summary ratio = summarize(ratios);
+        const FrameResult& last = frames[i].back();
+        const double traceRays = counter(last, "trace_rays_per_invocation") * counter(last, "trace_invocations_launched");
+        std::printf("%-38s %9.0f %9.0f %8.3f %9.0f %9.3f %9.1f %6.3f [%.3f, %.3f] %9.3f %9.3f %11.1f\n", settings[i].label.c_str(),
+                    counter(last, "trace_invocations_launched"), counter(last, "trace_invocations_traced"),
+                    counter(last, "trace_rays_per_invocation"), traceRays, median(i, "gpu_trace_ms"), median(i, "gpu_trace_ns_per_ray"),
+                    ratio.median, ratio.min, ratio.max, median(i, "gpu_classify_ms"), median(i, "gpu_composite_ms"),
+                    median(i, "gpu_gbuffer.rays_ns_per_ray"));
+    }
+    // The whole frame by stage (wall clock; the device's stages by their GPU timestamps, the rest
+    // of each submission's wall clock as overhead): what lies outside the trace.
+    std::printf("\nframe stages (medians, ms)\n");
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        std::vector<double> frame;
+        for (const FrameResult& f : frames[i]) frame.push_back(f.totalMilliseconds());
+        std::printf("%-38s frame %9.2f:", settings[i].label.c_str(), summarize(frame).median);
+        for (const StageTime& s : frames[i].back().stages) {
+            std::vector<double> v;
+            for (const FrameResult& f : frames[i]) {
+                const auto it = std::find_if(f.stages.begin(), f.stages.end(), [&](const StageTime& t) { return t.name == s.name; });
+                v.push_back(it == f.stages.end() ? 0.0 : it->milliseconds);
+            }
+            std::printf(" %s %.2f", s.name.c_str(), summarize(v).median);
+        }
+        std::printf("\n");
+    }
+}
+
 void run(const BenchOptions& o) {
     Scene scene = loadSceneFile(findSceneFile(o.scene));
     View view = resolveView(scene, o.cameraPath, o.frame, std::nullopt);
     std::optional<tbb::global_control> threadLimit;
     if (o.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    if (o.deviceTracesOnly) {
+        SceneContext context(scene);
+        std::printf("scene %s, %dx%d, view %s\n", scene.name.c_str(), o.width, o.height, view.label.c_str());
+        benchDeviceTraces(o, context, {view.camera, view.time, o.width, o.height});
+        return;
+    }
 
     SceneContext context(scene);
     auto whitted = createTechnique("whitted", {});
@@ -270,6 +371,7 @@ void run(const BenchOptions& o) {
                 100.0 * resolvedRate / rawRate);
     benchSplit(o, context, *whitted, rays, request, logged);
     benchDevice(o, context, rays, request, logged, ref.median);
+    benchDeviceTraces(o, context, request);
 }
 
 }  // namespace
@@ -285,6 +387,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--height", o->height, "Image height")->check(CLI::Range(1, 16384))->capture_default_str();
     cmd->add_option("--repeats", o->repeats, "Timed repeats of each")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
+    cmd->add_option("--budget", o->budget, "heuristic_rt's budget in the device traces (default: 1e6 scaled to the image's area)")
+        ->check(CLI::Range(1.0, 1e18));
+    cmd->add_flag("--device-traces-only", o->deviceTracesOnly, "Only the device traces per ray (no Embree measurements)");
     cmd->callback([o] { run(*o); });
 }
 

@@ -59,6 +59,7 @@ TechniqueInfo HeuristicRtTechnique::info() {
     parameters.bind(&P::debugImages, ParamSpec::boolean("debug_images", true, "heuristic mask and the shadow, reflection and refraction images"));
     parameters.bind(&P::gbuffer, gbufferSourceParameters());
     parameters.bind(&P::rays, rayBackendParameters());
+    parameters.bind(&P::launch, deviceLaunchParameters());
     // The tracer recurses and shades as the reference, cut off at rt_only's importance.
     parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
     parameters.bind(&P::shading, tracedShadingParameters());
@@ -82,6 +83,7 @@ HeuristicRtTechnique::HeuristicRtTechnique(const HeuristicRtParameters& p)
       cpuLighting_(p.cpuLighting),
       debugImages_(p.debugImages),
       onDevice_(p.rays.onDevice),
+      launch_(p.launch),
       gbuffer_(p.gbuffer) {
     p.shading.applyTo(tracer_);
     if (gbuffer_.rays() && visiblePixelsByQueries_)
@@ -108,7 +110,7 @@ void HeuristicRtTechnique::prepare(SceneContext& context) {
     // Lavapipe compiles shaders at the first draw (and the ray-tracing pipeline at its creation).
     const FrameRequest warmUp = RasterWarmUp::preparing(scene);
     if (onDevice_) {
-        deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen");
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_heuristic_rt.rgen", "heuristic_classify.comp", launch_);
         gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         pixelCounts_ = std::make_unique<ObjectPixelCountPass>(VulkanDevice::shared({.rayTracing = true}), scene.objects.size());
         renderOnDevice(context, warmUp);
@@ -343,13 +345,15 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
     // then the image comes back.
     const DeviceGBufferTrace traced = deviceTracer_->trace(rasterizer.targets(), tracer_, debugImages_ ? 1u : 0u);
-    clock.lap("trace");
+    lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 
     rays += traced.rays;
     recordFrame(selection, rays, traced.techniqueCounts[0], result);
     recordGpuStages(traced.gpuStages, result);
+    recordDeviceLaunch("trace", traced.rays, traced.invocations, gpuStageMilliseconds(traced.gpuStages, "trace"), result);
+    gbuffer_.recordDeviceCast(result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
         const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());

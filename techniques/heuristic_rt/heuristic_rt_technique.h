@@ -34,6 +34,7 @@
 #include "common/device_rays/device_gbuffer_tracer.h"
 #include "techniques/heuristic_rt/frame_time_budget.h"
 #include "techniques/heuristic_rt/object_pixel_count_pass.h"
+#include "techniques/shared/device_launch_parameters.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/shared/ray_backend_parameters.h"
 #include "techniques/shared/recursion_parameters.h"
@@ -55,6 +56,7 @@ struct HeuristicRtParameters {
     bool debugImages{};
     GBufferSourceParameters gbuffer;
     RayBackendParameters rays;
+    DeviceLaunchParameters launch;
     RecursionParameters recursion;
     TracedShadingParameters shading;
 };
@@ -93,6 +95,7 @@ private:
     bool cpuLighting_ = false;              // lighting = "cpu"
     bool debugImages_ = true;
     bool onDevice_ = false;                 // rays = "vulkan"
+    DeviceLaunchParameters launch_;         // with rays = "vulkan"
     std::optional<FrameTimeBudget> frameTimeBudget_;  // when target_ms > 0
 
     std::vector<Aabb> localBounds_;          // per object, object space (for P and D)

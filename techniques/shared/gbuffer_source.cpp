@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "techniques/shared/device_rays.h"
 #include "techniques/shared/ray_cast_gbuffer.h"
 
 namespace hybridlab {
@@ -43,12 +44,19 @@ void GBufferSource::prepareOnDevice(const DeviceRayScene& rays) {
 void GBufferSource::renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock) {
     if (rays_) {
         if (!deviceCaster_) throw std::logic_error("GBufferSource: prepareOnDevice() first");
-        const DeviceGBufferCast cast = deviceCaster_->cast(rasterizer.gbufferStorage(request.width, request.height), request.camera);
-        stats.primary += cast.primaryRays;
-        if (clock) clock->lap({{"gbuffer.rays", cast.gpuMilliseconds}}, "overhead");
+        deviceCast_ = deviceCaster_->cast(rasterizer.gbufferStorage(request.width, request.height), request.camera);
+        stats.primary += deviceCast_.primaryRays;
+        if (clock) clock->lap({{"gbuffer.rays", deviceCast_.gpuMilliseconds}}, "overhead");
         request.deviceGBuffer = true;
     }
     rasterizer.render(request, frame);
+}
+
+void GBufferSource::recordDeviceCast(FrameResult& result) const {
+    if (!rays_) return;
+    RayStats primary;
+    primary.primary = deviceCast_.primaryRays;
+    recordDeviceLaunch("gbuffer.rays", primary, deviceCast_.invocations, deviceCast_.gpuMilliseconds, result);
 }
 
 }  // namespace hybridlab

@@ -13,6 +13,7 @@
 #include "common/raytrace/ray_stats.h"
 #include "techniques/parameter_binder.h"
 #include "techniques/stage_clock.h"
+#include "techniques/technique.h"
 
 namespace hybridlab {
 
@@ -46,11 +47,15 @@ public:
     // into the rasterizer's targets, timed as stage "gbuffer.rays" by its GPU timestamps (the
     // submission's wall clock beside them as "overhead"), and the G-buffer pass is skipped.
     void renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock = nullptr);
+    // After renderOnDevice() with rays: the cast's launch as counters (recordDeviceLaunch() of kind
+    // "gbuffer.rays", device_rays.h); nothing without rays.
+    void recordDeviceCast(FrameResult& result) const;
 
 private:
     bool rays_ = false;
     GBuffer cast_;  // reused from frame to frame
     std::unique_ptr<DeviceGBufferCaster> deviceCaster_;
+    DeviceGBufferCast deviceCast_;
 };
 
 }  // namespace hybridlab

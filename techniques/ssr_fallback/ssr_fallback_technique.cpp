@@ -106,6 +106,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
                                                    "which smears thin reflected detail)"));
     parameters.bind(&P::gbuffer, gbufferSourceParameters());
     parameters.bind(&P::rays, rayBackendParameters());
+    parameters.bind(&P::launch, deviceLaunchParameters());
     parameters.bind(&P::shadowMaps, shadowMapParameters());
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
     // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
@@ -120,6 +121,7 @@ TechniqueInfo SsrFallbackTechnique::info() {
 
 SsrFallbackTechnique::SsrFallbackTechnique(const SsrFallbackParameters& p)
     : onDevice_(p.rays.onDevice),
+      launch_(p.launch),
       ssrOn_(p.ssr),
       rayTracedShadows_(p.rayTracedShadows),
       fallback_(p.fallback),
@@ -161,7 +163,7 @@ RasterRequest SsrFallbackTechnique::rasterRequest(const FrameRequest& frame) {
 
 void SsrFallbackTechnique::prepare(SceneContext& context) {
     if (onDevice_) {
-        deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen");
+        deviceTracer_ = prepareDeviceGBufferRays(context, "device_ssr_fallback.rgen", "ssr_classify.comp", launch_);
         gbuffer_.prepareOnDevice(context.deviceRayScene(0.0));
         deviceComposite_ = std::make_unique<DeviceSeamComposite>(deviceTracer_->device());
         ssr_ = std::make_unique<SsrPass>(VulkanDevice::shared({.rayTracing = true}));
@@ -392,8 +394,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
 
     if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
-    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU time
-    // together is the counter gpu_trace_ms); then the image comes back.
+    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU times
+    // the counters gpu_trace_ms and gpu_composite_ms); then the image comes back.
     deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
     // device_ssr_fallback.rgen's options (frame.rules.y).
     const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
@@ -404,8 +406,9 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
         [&](VkCommandBuffer cb) {
             deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->image(), frame.width, frame.height, blurRadius_, blurRange_,
                                      walewski);
-        });
-    clock.lap("trace");
+        },
+        "composite");
+    lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 
@@ -414,6 +417,8 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     recordRayCounters(rays, counts[0], result);
     recordRasterWork(raster_, result);
     recordGpuStages(traced.gpuStages, result);
+    recordDeviceLaunch("trace", traced.rays, traced.invocations, gpuStageMilliseconds(traced.gpuStages, "trace"), result);
+    gbuffer_.recordDeviceCast(result);
     result.counters["reflective_pixels"] = counts[3];
     result.counters["ssr_hits"] = counts[4];
     result.counters["ssr_hit_rate"] = counts[3] > 0 ? static_cast<double>(counts[4]) / static_cast<double>(counts[3]) : 0.0;

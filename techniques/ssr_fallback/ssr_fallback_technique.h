@@ -19,6 +19,7 @@
 #include "common/device_rays/device_gbuffer_tracer.h"
 #include "techniques/ssr_fallback/device_seam_composite.h"
 #include "techniques/ssr_fallback/seam_blur.h"
+#include "techniques/shared/device_launch_parameters.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/shared/raster_warm_up.h"
 #include "techniques/shared/ray_backend_parameters.h"
@@ -51,6 +52,8 @@ private:
     void recordSsrStatistics(const std::vector<ReflectionSource>& source, const std::vector<std::uint8_t>& refractive, FrameResult& result) const;
 
     bool onDevice_ = false;  // rays = "vulkan"
+
+    DeviceLaunchParameters launch_; // with rays = "vulkan"
     bool ssrOn_ = true;
     bool rayTracedShadows_ = false;
     Fallback fallback_ = Fallback::RayTraced;
@@ -84,6 +87,7 @@ struct SsrFallbackParameters {
     float blurRange{};
     GBufferSourceParameters gbuffer;
     RayBackendParameters rays;
+    DeviceLaunchParameters launch;
     ShadowMapParameters shadowMaps;
     RecursionParameters recursion;
 };

@@ -31,7 +31,7 @@ bool isTime(const std::string& counter) {
     const auto endsWith = [&](const std::string& suffix) {
         return counter.size() >= suffix.size() && counter.compare(counter.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
-    return endsWith("_ms") || endsWith("_per_second");
+    return endsWith("_ms") || endsWith("_per_second") || endsWith("_ns_per_ray");
 }
 
 bool sameBytes(const Image& a, const Image& b) {

@@ -8,29 +8,11 @@
 #include "device_whitted_tree.glsl"
 #include "gbuffer_encoding.glsl"
 
-// The set-1 bindings: the layout of DeviceGBufferTracer (common/device_rays/device_gbuffer_tracer.h).
-layout(set = 1, binding = 0) uniform sampler2D gPosition;
-layout(set = 1, binding = 1) uniform sampler2D gNormal;
-layout(set = 1, binding = 2) uniform sampler2D gEmission;
-layout(set = 1, binding = 3) uniform sampler2D gAmbient;
-layout(set = 1, binding = 4) uniform sampler2D gDiffuse;
-layout(set = 1, binding = 5) uniform sampler2D gSpecular;
-layout(set = 1, binding = 6) uniform sampler2D gOptical;
-layout(set = 1, binding = 7) uniform usampler2D gObjectId;
-layout(set = 1, binding = 8) uniform sampler2D litImage;  // the deferred lighting's image (the P-buffer)
-// Per object, the technique's own data (heuristic_rt: the selected effects' bits).
-layout(std430, set = 1, binding = 9) readonly buffer TechniqueObjectData { uint objectData[]; };
-layout(set = 1, binding = 10) uniform sampler2D ssrColor;  // ssr_trace.comp's outputs
-layout(set = 1, binding = 11) uniform sampler2D ssrHit;
-// Per texel, kTexelRecords vec4 of terms for the technique's later passes (composite, debug images).
-layout(std430, set = 1, binding = 12) buffer Texels { vec4 texels[]; };
-// The technique's own counters (work that is not a ray).
-layout(std430, set = 1, binding = 13) buffer TechniqueCounts { uint techniqueCounts[]; };
+#include "device_gbuffer_inputs.glsl"
 
-const int kTexelRecords = 4;
-
-// The object seen at a texel, or -1 for the sky.
-int gbufferObject(ivec2 texel) { return int(texelFetch(gObjectId, texel, 0).r) - 1; }
+// The texel of this invocation: its launch index, one invocation per texel, or in a compacted
+// launch (frame.rules.z) the texel the classification pass listed at it.
+ivec2 launchTexel() { return frame.rules.z != 0u ? unpackTexel(listedTexels[gl_LaunchIDEXT.x]) : ivec2(gl_LaunchIDEXT.xy); }
 
 // As GBufferSurface and GBuffer::materialAt: the material targets hold textured colours (no
 // texture lookup), and no shadow or absorption properties.
@@ -61,6 +43,12 @@ vec3 cameraIncoming(vec3 p) { return frame.cameraPosition.w != 0.0 ? normalize(p
 
 // The camera ray's cone width at `p` (GBufferSurface::footprint); 0 without ray cones.
 float cameraFootprint(vec3 p) { return frame.settings.w != 0.0 ? frame.cone.x + frame.cone.y * distance(frame.cameraPosition.xyz, p) : 0.0; }
+
+// addRayCounts(), and the invocation counted as one that traced where the texel traced a ray.
+void addTexelRayCounts() {
+    addRayCounts();
+    if (countShadow + countReflection + countRefraction > 0u) countTraced();
+}
 
 // As ShadingParts.
 struct Parts {

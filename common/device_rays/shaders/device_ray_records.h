@@ -62,7 +62,8 @@ struct DeviceFrame {
     ivec4 size;           // x width, y height, z light count, w max depth
     vec4 settings;        // x importance cut-off, y Walewski blend (1 or 0), z shadows (1 or 0), w ray cones (1 or 0)
     uvec4 effects;        // traced at the first hit: x shadows, y reflection, z refraction (1 or 0)
-    uvec4 rules;          // x depth_limit: 1 weighted, 0 local (DepthLimit)
+    uvec4 rules;          // x depth_limit: 1 weighted, 0 local (DepthLimit); y the technique's flags;
+                          // z 1: a compacted launch over TexelList's texels
 };
 
 // A ray to replay (benchmarks: the rays a frame traced, traced again on their own).
@@ -71,15 +72,24 @@ struct DeviceRay {
     vec4 directionTmax;  // xyz unit direction, w tmax
 };
 
+// The head of a compacted launch's texel list (device_gbuffer_inputs.glsl TexelList): the launch's
+// size as VkTraceRaysIndirectCommandKHR reads it, x the listed texels, y and z 1 (w unused).
+struct TexelListHeader {
+    uvec4 launch;
+};
+
+// A launch's counters: rays by kind, primary, shadow, reflection, refraction (RayStats' order),
+// medium errors, then its invocations: those launched and those that traced a ray (what rays per
+// invocation and a launch's idle invocations are read from).
 #ifdef __cplusplus
 inline constexpr unsigned kHasUvs = 1u, kHasTangents = 2u;
-// Counters: primary, shadow, reflection, refraction (RayStats' order), medium errors.
-inline constexpr unsigned kRayCounterCount = 5u;
+inline constexpr unsigned kLaunchedInvocations = 5u, kTracingInvocations = 6u, kRayCounterCount = 7u;
 static_assert(sizeof(DeviceMaterial) == 128 && sizeof(DeviceInstance) == 160 && sizeof(DeviceVertex) == 48);
-static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceRay) == 32);
+static_assert(sizeof(DeviceFrame) == 176 && sizeof(DeviceRay) == 32 && sizeof(TexelListHeader) == 16);
 }  // namespace hybridlab::device_rays
 #else
 const uint kHasUvs = 1u, kHasTangents = 2u;
+const uint kLaunchedInvocations = 5u, kTracingInvocations = 6u, kRayCounterCount = 7u;
 #endif
 
 #endif

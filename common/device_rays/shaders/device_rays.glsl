@@ -1,24 +1,20 @@
 // What every ray-tracing shader of the device backend (common/device_rays) shares: the scene's
-// buffers, the payloads, and the ray types' shader-binding-table indices.
+// buffers (with device_frame.glsl's frame, counters and output), the payloads, and the ray types'
+// shader-binding-table indices.
 #ifndef DEVICE_RAYS_GLSL
 #define DEVICE_RAYS_GLSL
 
 #extension GL_EXT_ray_tracing : require
 #extension GL_EXT_nonuniform_qualifier : require
 
-#include "device_ray_records.h"
+#include "device_frame.glsl"
 
 layout(set = 0, binding = 0) uniform accelerationStructureEXT topLevel;
-layout(std140, set = 0, binding = 1) uniform Frame { DeviceFrame frame; };
 layout(std430, set = 0, binding = 2) readonly buffer Materials { DeviceMaterial materials[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Lights { LightData lights[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Instances { DeviceInstance instances[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Vertices { DeviceVertex vertices[]; };
 layout(std430, set = 0, binding = 6) readonly buffer Indices { uint indices[]; };
-// Counted on the device: rays by kind (primary, shadow, reflection, refraction), then medium
-// errors (RayStats' order and mediumErrors).
-layout(std430, set = 0, binding = 7) buffer Counters { uint rayCounts[5]; };
-layout(std430, set = 0, binding = 8) writeonly buffer Output { vec4 radianceOut[]; };
 layout(set = 0, binding = 9) uniform sampler2DArray skyFaces;
 layout(set = 0, binding = 10) uniform sampler2D sceneTextures[];
 // Rays to replay (device_replay.rgen): frame.size.x of them, radiance rays first, then
