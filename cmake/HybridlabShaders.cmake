@@ -2,9 +2,10 @@
 # files at run time), looked up by file name with embeddedShader() (common/raster/embedded_shaders.h).
 # A folder adds its shaders with hybridlab_add_shaders() (or hybridlab_add_technique()); the top-level
 # CMakeLists.txt calls hybridlab_embed_shaders() once, after every folder, to compile them all into
-# one table. A shader's #include "x" finds x beside it first, then in common/raster/shaders (the
-# shared GLSL: the shading model, scene records, cube maps), then in common/device_rays/shaders (the
-# ray backend's: the ray tree, the G-buffer's rays, their records).
+# one table. A shader's #include "x" finds x beside it first, then in common/shading (the physics
+# written once for C++ and GLSL: the shading model, the composition, absorption), then in
+# common/raster/shaders (the shared GLSL: scene records, cube maps), then in
+# common/device_rays/shaders (the ray backend's: the ray tree, the G-buffer's rays, their records).
 find_program(GLSLC_EXECUTABLE glslc REQUIRED DOC "GLSL to SPIR-V compiler (Debian package glslc)")
 
 # hybridlab_add_shaders(SHADERS file...): files relative to the calling folder.
@@ -60,7 +61,7 @@ function(hybridlab_embed_shaders)
     add_custom_command(
       OUTPUT "${out}"
       COMMAND "${GLSLC_EXECUTABLE}" --target-env=vulkan1.3 -O -Werror -mfmt=num
-              -I "${PROJECT_SOURCE_DIR}/common/raster/shaders"
+              -I "${PROJECT_SOURCE_DIR}/common/shading" -I "${PROJECT_SOURCE_DIR}/common/raster/shaders"
               -I "${PROJECT_SOURCE_DIR}/common/device_rays/shaders" -MD -MF "${out}.d" -o "${out}" "${path}"
       DEPENDS "${path}"
       DEPFILE "${out}.d"

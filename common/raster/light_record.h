@@ -1,5 +1,5 @@
 #pragma once
-// A scene light as the shaders read it (raster_records::LightData, shading.glsl's sampleLight):
+// A scene light as the shaders read it (raster_records::LightData, shading.glsl's sampleLightRecord):
 // one function for the raster lighting pass and the device ray tracer, which read the same record.
 #include "common/raster/shaders/raster_records.h"
 #include "common/scene/light.h"

@@ -28,6 +28,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "common/shading/absorption.h"
+
 namespace hybridlab {
 
 class MediumStack {
@@ -87,13 +89,10 @@ private:
 
 inline const MediumStack MediumStack::kAmbient;
 
-// Beer-Lambert transmittance of a segment of `length` in media of total absorption `a`. Exactly 1
-// for a = 0 (also for an infinite length, where exp(-0 * inf) would be NaN).
-inline glm::vec3 segmentTransmittance(glm::vec3 a, float length) {
-    glm::vec3 t(1.0f);
-    for (int c = 0; c < 3; ++c)
-        if (a[c] > 0.0f) t[c] = std::exp(-a[c] * length);
-    return t;
-}
+// Beer-Lambert transmittance of a segment (common/shading/absorption.h, written once for both ray
+// backends with a shadow ray's optical depth at a crossing).
+using shading_language::crossingOpticalDepth;
+using shading_language::segmentTransmittance;
+using shading_language::shadowRayTransmittance;
 
 }  // namespace hybridlab

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/scene/camera.h"
+#include "common/shading/ray_geometry.h"
 
 namespace hybridlab {
 
@@ -27,13 +28,10 @@ inline RayCone pixelCone(const Camera& camera, int imageHeight) {
     return {0.0f, std::atan(2.0f * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / h)};
 }
 
-// log2 of the footprint's extent in uv units at a hit: the chapter's level of detail
-// Delta_0 + log2 |W| - log2 |n . d| without the texture's size (diffuseTextureValue adds it), with
-// Delta_0 = uvDensityLod the triangle's 0.5 log2(uv area / world area). -inf without a footprint.
+// log2 of the footprint's extent in uv units at a hit (common/shading/ray_geometry.h, written once
+// for both ray backends); -inf without a footprint.
 inline float uvFootprintLod(float uvDensityLod, const RayCone& coneAtHit, glm::vec3 direction, glm::vec3 geometricNormal) {
-    if (coneAtHit.width <= 0.0f) return -std::numeric_limits<float>::infinity();
-    const float cosine = std::max(std::abs(glm::dot(direction, geometricNormal)), 1e-4f);
-    return uvDensityLod + std::log2(coneAtHit.width / cosine);
+    return shading_language::uvFootprintLod(uvDensityLod, coneAtHit.width, direction, geometricNormal);
 }
 
 }  // namespace hybridlab

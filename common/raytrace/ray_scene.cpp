@@ -48,8 +48,7 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
                              RTCRayN_dir_y(args->ray, args->N, 0) * RTCHitN_Ng_y(args->hit, args->N, 0) +
                              RTCRayN_dir_z(args->ray, args->N, 0) * RTCHitN_Ng_z(args->hit, args->N, 0);
         const bool entering = cosine < 0.0f;
-        if (std::isfinite(ctx->tmax)) ctx->opticalDepth += (entering ? 1.0f : -1.0f) * m.absorption * (ctx->tmax - t);
-        else ctx->opticalDepth += (entering ? -1.0f : 1.0f) * m.absorption * t;
+        ctx->opticalDepth += crossingOpticalDepth(m.absorption, entering, t, std::isfinite(ctx->tmax) ? ctx->tmax : -1.0f);
     }
     ctx->transmittance *= occluderTransmittance(m);
     if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
@@ -332,10 +331,7 @@ glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir,
     timedEmbreeCall(callClock_, [&] { rtcOccluded1(top_, &ctx.base, &r); });
     // Embree sets tfar to -inf when a hit was accepted: an opaque caster, or transmittance gone.
     if (r.tfar == -std::numeric_limits<float>::infinity()) return glm::vec3(0.0f);
-    if (std::isfinite(tmax)) ctx.opticalDepth += startAbsorption * tmax;
-    if (ctx.opticalDepth == glm::vec3(0.0f)) return ctx.transmittance;
-    // Negative only where crossings do not pair up (an open or overlapping mesh): no absorption.
-    return ctx.transmittance * segmentTransmittance(glm::max(ctx.opticalDepth, glm::vec3(0.0f)), 1.0f);
+    return shadowRayTransmittance(ctx.transmittance, ctx.opticalDepth, startAbsorption, std::isfinite(tmax) ? tmax : -1.0f);
 }
 
 void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {

@@ -1,26 +1,9 @@
 #pragma once
-// The one shading model (DESIGN.md "The shading model"). Every technique and the reference call
-// these functions; shaders/shading.glsl (common/raster) computes
-// the same in GLSL, held equal by RasterLighting (tests/raster/test_raster_lighting.cpp). All colours are linear.
-//
-// Local colour at a surface point P with shading normal N, view direction V (towards the eye):
-//   C = emission + ambient * sceneAmbient * T
-//       + sum over lights l of  vis_l * E_l * ( diffuse * T * max(N.L, 0)
-//                                               + specular * max(N.H, 0)^exponent * [N.L > 0] )
-// with T the diffuse texture (1 without one), L the unit direction to the light, H = norm(L + V),
-// and E_l the light's radiance at P:
-//   directional: colour * intensity
-//   point:       colour * intensity / d^2
-//   spot:        colour * intensity / d^2 * smoothstep(cos outer, cos inner, cos angle to axis)
-// vis_l is the shadow transmittance (1 unshadowed; hard shadows; an occluder that casts shadows
-// lets (1 - opacity) * diffuse through, its diffuse colour being its tint).
-//
-// Composition at a hit (reflected radiance M, refracted radiance R):
-//   o_m * M + (1 - o_m) * (o_r * R + (1 - o_r) * C)
-// with o_m = reflectivity, or the exact unpolarised Fresnel reflectance when the material asks for
-// it, and o_r = 1 - opacity. Total internal reflection sends everything to the reflected ray
-// (R = M). Walewski 2019 eqs. (5)-(6) average this with the same expression taken in the other
-// order; that is the selectable BlendRule::Walewski2019.
+// The one shading model (DESIGN.md "The shading model") on the scene's C++ records. The physics
+// is written once, for C++ and GLSL, in common/shading (direct_lighting.h: the local colour's
+// terms; reflection_refraction.h; composition.h: the composition and the rays of a hit); the
+// functions here hand it the scene's materials and lights, and add what only the host does (the
+// sky's cube map, the mip chains). All colours are linear.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -31,8 +14,16 @@
 
 #include "common/image/mip_chain.h"
 #include "common/scene/scene.h"
+#include "common/shading/composition.h"
+#include "common/shading/direct_lighting.h"
+#include "common/shading/reflection_refraction.h"
 
 namespace hybridlab {
+
+using shading_language::fresnelDielectric;
+using shading_language::LightSample;
+using shading_language::reflectDirection;
+using shading_language::refractDirection;
 
 // What local shading needs to know about a surface point.
 struct SurfacePoint {
@@ -57,11 +48,6 @@ inline DiffuseTexture makeDiffuseTexture(const Material& m, const MipChain* mips
 inline glm::vec3 diffuseTextureValue(const Material& m, const DiffuseTexture& texture, glm::vec2 uv, float uvLod);
 
 // Radiance arriving at `p` from light `l` ignoring shadows, and the unit direction towards it.
-struct LightSample {
-    glm::vec3 radiance;
-    glm::vec3 toLight;   // unit
-    float distance;      // to the light; infinity for directional lights
-};
 LightSample sampleLight(const Light& light, glm::vec3 p);
 
 // The cosines of a spot light's inner and outer cone half-angles. A tracer computes them once per
@@ -82,27 +68,16 @@ inline glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 
 // Shadow transmittance through one occluder with this material.
 inline glm::vec3 occluderTransmittance(const Material& m);
 
-// Perfect mirror direction of incident direction d about normal n (both unit; d towards surface).
-glm::vec3 reflectDirection(glm::vec3 d, glm::vec3 n);
-
-// Snell refraction of unit incident d through unit normal n (n against d) with eta = n1 / n2.
-// Returns false on total internal reflection.
-bool refractDirection(glm::vec3 d, glm::vec3 n, float eta, glm::vec3& out);
-
-// Exact unpolarised Fresnel reflectance for cos of the incidence angle and n1, n2; 1 under total
-// internal reflection. At normal incidence ((n1 - n2) / (n1 + n2))^2.
-float fresnelDielectric(float cosIncident, float n1, float n2);
-
 enum class BlendRule { Design, Walewski2019 };
 
-// The composition rule (see top of file).
-glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, BlendRule rule = BlendRule::Design);
+// The composition rule (composition.h).
+inline glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, BlendRule rule = BlendRule::Design);
 
 // The local colour C for which compose(om, orr, M, R, C, rule) equals `composite` (both rules are
 // affine in C with slope (1 - o_m)(1 - o_r)); `fallback` where that slope is too small for C to
 // matter. Recovers the rasterizer's shadow-mapped C from its composed pixel.
-glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 composite, glm::vec3 fallback,
-                         BlendRule rule = BlendRule::Design);
+inline glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 composite, glm::vec3 fallback,
+                                BlendRule rule = BlendRule::Design);
 
 // Sky radiance in a world direction: the cube map (OpenGL face convention) or the constant colour.
 glm::vec3 skyRadiance(const Scene& scene, glm::vec3 direction);
@@ -113,8 +88,7 @@ glm::vec3 skyRadiance(const Scene& scene, glm::vec3 direction);
 inline DiffuseTexture makeDiffuseTexture(const Material& m, const MipChain* mips) {
     if (!mips) return {};
     const Image& base = mips->level(0);
-    return {mips, 0.5f * std::log2(static_cast<float>(base.width()) * static_cast<float>(base.height()) *
-                                   std::abs(m.textureTiling.x * m.textureTiling.y))};
+    return {mips, shading_language::textureUvUnitLod(static_cast<float>(base.width()), static_cast<float>(base.height()), m.textureTiling)};
 }
 
 inline glm::vec3 diffuseTextureValue(const Material& m, const DiffuseTexture& texture, glm::vec2 uv, float uvLod) {
@@ -124,51 +98,39 @@ inline glm::vec3 diffuseTextureValue(const Material& m, const DiffuseTexture& te
     return glm::vec3(texture.mips->sampleTrilinearWrap(t.x, t.y, uvLod + texture.uvUnitLod));
 }
 
+// The light's type as the shaders' records code it (kLight*).
+inline std::uint32_t lightTypeCode(Light::Type type) {
+    return type == Light::Type::Directional ? raster_records::kLightDirectional
+           : type == Light::Type::Point     ? raster_records::kLightPoint
+                                            : raster_records::kLightSpot;
+}
+
 inline LightSample sampleLight(const Light& light, const SpotCone& cone, glm::vec3 p) {
-    LightSample s;
-    const glm::vec3 e = light.color * light.intensity;
-    if (light.type == Light::Type::Directional) {
-        s.toLight = -light.direction;
-        s.distance = std::numeric_limits<float>::infinity();
-        s.radiance = e;
-        return s;
-    }
-    glm::vec3 d = light.position - p;
-    float d2 = glm::dot(d, d);
-    s.distance = std::sqrt(d2);
-    s.toLight = d / s.distance;
-    s.radiance = e / d2;
-    if (light.type == Light::Type::Spot) {
-        float cosAngle = glm::dot(-s.toLight, light.direction);
-        const float cosOuter = cone.cosOuter, cosInner = cone.cosInner;
-        float x = cosInner > cosOuter ? std::clamp((cosAngle - cosOuter) / (cosInner - cosOuter), 0.0f, 1.0f)
-                                      : (cosAngle >= cosOuter ? 1.0f : 0.0f);
-        s.radiance *= x * x * (3.0f - 2.0f * x);  // smoothstep, as POV-Ray's spotlight falloff
-    }
-    return s;
+    return shading_language::sampleLight(lightTypeCode(light.type), light.color * light.intensity, light.position, light.direction,
+                                         cone.cosInner, cone.cosOuter, p);
 }
 
 inline glm::vec3 blinnPhong(const SurfacePoint& s, glm::vec3 textureValue, glm::vec3 toViewer, const LightSample& light) {
     const Material& m = *s.material;
-    float nl = glm::dot(s.normal, light.toLight);
-    if (nl <= 0.0f) return glm::vec3(0.0f);
-    glm::vec3 c = m.diffuse * textureValue * nl;
-    if (m.specular != glm::vec3(0.0f)) {  // most matte materials: skip the pow
-        glm::vec3 h = glm::normalize(light.toLight + toViewer);
-        c += m.specular * std::pow(std::max(glm::dot(s.normal, h), 0.0f), m.specularExponent);
-    }
-    return light.radiance * c;
+    return shading_language::blinnPhong(s.normal, m.diffuse * textureValue, m.specular, m.specularExponent, toViewer, light);
 }
 
 // Inline, not for the arithmetic but for the call: a vec3 argument assembled from scalars just
 // before it is stored apart and reloaded as one, a failed store-to-load forwarding per hit.
 inline glm::vec3 unlitTerm(const Scene& scene, const SurfacePoint& s, glm::vec3 textureValue) {
-    return s.material->emission + s.material->ambient * scene.ambient * textureValue;
+    return shading_language::unlitTerm(s.material->emission, s.material->ambient, scene.ambient, textureValue);
 }
 
 inline glm::vec3 occluderTransmittance(const Material& m) {
-    if (!m.castsShadows) return glm::vec3(1.0f);
-    return (1.0f - m.opacity) * m.diffuse;
+    return shading_language::occluderTransmittance(m.castsShadows, m.opacity, m.diffuse);
+}
+
+inline glm::vec3 compose(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 C, BlendRule rule) {
+    return shading_language::compose(om, orr, M, R, C, rule == BlendRule::Walewski2019);
+}
+
+inline glm::vec3 uncomposeLocal(float om, float orr, glm::vec3 M, glm::vec3 R, glm::vec3 composite, glm::vec3 fallback, BlendRule rule) {
+    return shading_language::uncomposeLocal(om, orr, M, R, composite, fallback, rule == BlendRule::Walewski2019);
 }
 
 }  // namespace hybridlab

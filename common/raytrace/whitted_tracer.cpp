@@ -103,42 +103,24 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
     const Material& m = *hit.material;
     const Scene& scene = rays_.scene();
     // Work on the side the ray arrives from.
-    const bool entering = glm::dot(incoming, hit.geometricNormal) < 0.0f;
-    const glm::vec3 ng = entering ? hit.geometricNormal : -hit.geometricNormal;
-    glm::vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
+    const shading_language::ArrivalSide side = shading_language::arrivalSide(incoming, hit.geometricNormal, hit.shadingNormal, m.ior, scene.ambientIor);
+    const glm::vec3 ng = side.geometricNormal, n = side.shadingNormal;
+    // The composition's weights, the depth limit, the importance cut-off and whether C weighs
+    // (common/shading/composition.h).
+    const shading_language::HitScattering scattering =
+        shading_language::scatterAtHit(incoming, n, side.n1, side.n2, m.reflectivity, m.fresnel, m.opacity, depth, settings_.maxDepth,
+                                       settings_.depthLimit == DepthLimit::Local, importance, settings_.importanceCutoff,
+                                       effects.reflection, effects.refraction);
+    const bool tracesRays = scattering.tracesRays, tir = scattering.tir, traceM = scattering.traceM, traceR = scattering.traceR;
+    const float weightM = scattering.weightM, weightR = scattering.weightR;
 
     ShadingParts parts;
-    parts.transparency = 1.0f - m.opacity;
-    const float orr = parts.transparency;
-    const float n1 = entering ? scene.ambientIor : m.ior, n2 = entering ? m.ior : scene.ambientIor;
-    const float cosi = std::max(-glm::dot(incoming, n), 0.0f);
-    const float om = m.fresnel ? fresnelDielectric(cosi, n1, n2) : m.reflectivity;
-    parts.reflectivity = om;
-    // C alone where the surface neither reflects nor refracts, or at the depth limit with "local";
-    // at the limit with "weighted" the rays not traced count 0 (under total internal reflection too).
-    parts.composes = (om > 0.0f || orr > 0.0f) && !(depth >= settings_.maxDepth && settings_.depthLimit == DepthLimit::Local);
-    const bool tracesRays = parts.composes && depth < settings_.maxDepth;
-    glm::vec3 refracted;
-    const bool tir = tracesRays && orr > 0.0f && !refractDirection(incoming, n, n1 / n2, refracted);
-    // Total internal reflection sends everything to the reflected ray.
-    const float weightM = tir ? om + (1.0f - om) * orr : om;
-    const float weightR = tir ? 0.0f : (1.0f - om) * orr;
-    auto worthTracing = [&](float w) { return w > 0.0f && importance * w >= settings_.importanceCutoff; };
-    const bool traceM = tracesRays && effects.reflection && worthTracing(weightM);
-    const bool traceR = tracesRays && !tir && effects.refraction && worthTracing(weightR);
-
-    // C weighs (1 - o_m)(1 - o_r) in the composition under both rules. It also stands in for a ray
-    // not traced (the importance cut-off): the reflected one, weighted by weightM (which the
-    // refracted one copies under total internal reflection), or the refracted one, whose weight
-    // carries the factor o_r under both rules. Where none of these weighs (clear glass, total
-    // internal reflection, a perfect mirror, each with its rays traced), the composed radiance does
-    // not depend on C: its shading and shadow rays are skipped, C = 0 leaving the sum bit for bit
-    // the same.
-    const bool localWeighs = !parts.composes || (om < 1.0f && orr < 1.0f) ||
-                             (tracesRays && ((!traceM && weightM > 0.0f) || (!tir && !traceR && orr > 0.0f)));
+    parts.transparency = scattering.transparency;
+    parts.reflectivity = scattering.reflectivity;
+    parts.composes = scattering.composes;
     if (local) {
         parts.local = *local;
-    } else if (shadeC == LocalColor::Always || localWeighs) {
+    } else if (shadeC == LocalColor::Always || scattering.localWeighs) {
         // The footprint's level of detail (a log2) only where a texture reads it.
         const float uvLod = m.diffuseTexture != kNoTexture ? uvFootprintLod(hit.uvDensityLod, footprint, incoming, hit.geometricNormal)
                                                            : -std::numeric_limits<float>::infinity();
@@ -147,7 +129,7 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
     }
     if (!tracesRays) return parts;
 
-    const glm::vec3 reflected = reflectDirection(incoming, n);
+    const glm::vec3 reflected = scattering.reflectedDirection, refracted = scattering.refractedDirection;
     // The sky only where a term is asked for; a term of weight 0 keeps the local colour.
     EnvironmentTerms sky{parts.local, parts.local};
     if (weightM > 0.0f && (environment || !effects.reflection)) sky.reflected = skyRadiance(scene, reflected);
@@ -169,7 +151,7 @@ ShadingParts WhittedTracer::shadeSurface(const SurfaceHit& hit, glm::vec3 incomi
     } else if (traceR) {
         ++stats.refraction;
         MediumStack inside = media;
-        if (!(entering ? inside.enter(hit.object, m.absorption) : inside.leave(hit.object))) ++stats.mediumErrors;
+        if (!(side.entering ? inside.enter(hit.object, m.absorption) : inside.leave(hit.object))) ++stats.mediumErrors;
         parts.refracted =
             radiance({offsetRayOrigin(hit.position, -ng), refracted}, depth + 1, importance * weightR, stats, footprint, inside);
     }

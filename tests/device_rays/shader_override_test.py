@@ -42,7 +42,8 @@ def primary_rays(stdout):
 
 def main():
     hybridlab, source, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-    includes = ["-I", str(source / "common" / "raster" / "shaders"), "-I", str(source / "common" / "device_rays" / "shaders")]
+    includes = ["-I", str(source / "common" / "shading"), "-I", str(source / "common" / "raster" / "shaders"),
+                "-I", str(source / "common" / "device_rays" / "shaders")]
     glslc = shutil.which("glslc")
     if not glslc:
         print("Skipped\nno glslc")

@@ -1,5 +1,5 @@
-// The deferred lighting pass in GLSL against the C++ shading functions it computes again (DESIGN.md "The
-// shading model"; common/raster/shaders/shading.glsl): on every texel of a read-back G-buffer,
+// The deferred lighting pass in GLSL against the C++ shading functions (DESIGN.md "The shading
+// model"; both compile common/shading, the pass reading the G-buffer and the lights' records): on every texel of a read-back G-buffer,
 // the C++ local term (shadows off: visibility 1), the C++ sky where nothing was hit, and with
 // environment mapping the C++ composition with the sky in the reflected and refracted directions,
 // agree with the GPU's output to within 1e-3 in linear light.

@@ -1,7 +1,8 @@
-// The media a device ray travels in and Beer-Lambert absorption along it: in GLSL,
-// MediumStack and segmentTransmittance (common/raytrace/medium_stack.h), which states the rule.
-// These few lines mirror that header; change both together. One difference: an entry is the
-// object and its material, 16 bits each, the absorption read from the material. A pending ray
+// The media a device ray travels in: MediumStack (common/raytrace/medium_stack.h, which states
+// the rule) on the device; Beer-Lambert absorption along a segment is common/shading/absorption.h,
+// written once for both backends. The stack's push and pop mirror the C++'s few lines (change
+// both together) because its entries differ: here an entry is the object and its material, 16
+// bits each, the absorption read from the material. A pending ray
 // carries its stack (device_whitted_tree.glsl), and the ray-generation shader's stack of pending
 // rays lives in the ray-tracing stack, which NVIDIA's driver bounds: with the C++'s layout (a vec3
 // an entry) 48 pending rays took 14.6 KB an invocation and lost the device (H200, driver 580; 32
@@ -9,6 +10,8 @@
 // Include after device_rays.glsl (the materials).
 #ifndef DEVICE_MEDIUM_STACK_GLSL
 #define DEVICE_MEDIUM_STACK_GLSL
+
+#include "absorption.h"
 
 const int kMediumCapacity = 8;  // MediumStack::kCapacity
 
@@ -52,23 +55,6 @@ bool mediumLeave(inout MediumStack s, uint object) {
         return true;
     }
     return false;
-}
-
-// Beer-Lambert transmittance of a segment of `len` in media of total absorption `a`. Exactly 1
-// for a = 0 (also for an infinite length, where exp(-0 * inf) would be NaN).
-vec3 segmentTransmittance(vec3 a, float len) {
-    vec3 t = vec3(1.0);
-    for (int c = 0; c < 3; ++c)
-        if (a[c] > 0.0) t[c] = exp(-a[c] * len);
-    return t;
-}
-
-// A shadow ray's optical depth gained at an absorbing crossing at distance t: +-a (D - t) towards
-// a light at distance D, entering (+) or leaving (-); -+a t towards a directional light (D < 0
-// here: infinite), which lies outside every medium (medium_stack.h, RayScene's shadowFilter).
-vec3 crossingOpticalDepth(vec3 a, bool entering, float t, float D) {
-    if (D >= 0.0) return (entering ? 1.0 : -1.0) * a * (D - t);
-    return (entering ? -1.0 : 1.0) * a * t;
 }
 
 #endif

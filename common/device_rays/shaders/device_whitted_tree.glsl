@@ -1,6 +1,7 @@
 // The Whitted ray tree on the device, as WhittedTracer (common/raytrace/whitted_tracer.cpp)
-// with the one shading model (shading.glsl): what every ray-generation shader that shades hits
-// shares. device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at
+// with the one shading model (common/shading, written once for both backends: the local colour's
+// terms, the composition, which rays a hit traces, absorption): what every ray-generation shader
+// that shades hits shares. device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at
 // G-buffer texels (the hybrids' secondary rays). Each function below computes what the C++
 // function it names computes; the DeviceRays tests (tests/device_rays/test_device_rays.cpp) hold the images
 // and ray counts of both backends equal.
@@ -8,7 +9,7 @@
 // The ray tree is iterated with an explicit stack rather than recursed through closest-hit
 // shaders. Recursion would need maxRayRecursionDepth >= max_depth + 2 (shadow rays from the
 // deepest hit), and devices promise as little as 1; each level would also hold its payload live.
-// The iteration needs a recursion depth of 1 only. Composition (shading.glsl compose()) is linear
+// The iteration needs a recursion depth of 1 only. Composition (composition.h compose()) is linear
 // in the reflected, refracted and local terms, so each stack entry carries its throughput (its
 // weight in the pixel's radiance) and adds its local term when popped; the importance cut-off
 // (Walewski 2019 §3.3) looks at the product of weights along the path, which no traversal order
@@ -17,7 +18,7 @@
 #define DEVICE_WHITTED_TREE_GLSL
 
 #include "device_rays.glsl"
-#include "ray_geometry.glsl"
+#include "ray_geometry.h"
 #include "shading.glsl"
 #include "sky.glsl"
 #include "device_medium_stack.glsl"
@@ -101,7 +102,7 @@ vec3 diffuseTextureValue(DeviceMaterial m, vec2 uv, float uvLod) {
     if (m.textures.x < 0) return vec3(1.0);
     vec2 t = uv * m.tilingOffset.xy + m.tilingOffset.zw;
     vec2 size = vec2(textureSize(sceneTextures[nonuniformEXT(m.textures.x)], 0));
-    float lod = uvLod + 0.5 * log2(size.x * size.y * abs(m.tilingOffset.x * m.tilingOffset.y));
+    float lod = uvLod + textureUvUnitLod(size.x, size.y, m.tilingOffset.xy);
     return textureLod(sceneTextures[nonuniformEXT(m.textures.x)], t, lod).rgb;
 }
 
@@ -117,20 +118,17 @@ vec3 transmittance(vec3 origin, vec3 direction, float tmax, vec3 startAbsorption
     traceRayEXT(topLevel, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, kShadowRay, 0, kShadowRay,
                 origin, 0.0, direction, min(tmax, 3.0e38), 1);
     if (shadow.missed == 0u) return vec3(0.0);
-    vec3 opticalDepth = shadow.opticalDepth + (finite ? startAbsorption * tmax : vec3(0.0));
-    if (opticalDepth == vec3(0.0)) return shadow.transmittance;
-    // Negative only where crossings do not pair up (an open or overlapping mesh): no absorption.
-    return shadow.transmittance * segmentTransmittance(max(opticalDepth, vec3(0.0)), 1.0);
+    return shadowRayTransmittance(shadow.transmittance, shadow.opticalDepth, startAbsorption, shadow.lightDistance);
 }
 
 // As WhittedTracer::localColor().
 vec3 localColor(Surface s, DeviceMaterial m, vec3 n, vec3 ng, vec3 toViewer, bool shadowRays, float uvLod, vec3 mediumAbsorption) {
     vec3 tex = diffuseTextureValue(m, s.uv, uvLod);
-    vec3 c = unlitTerm(m.emission.rgb, m.ambient.rgb * tex, frame.ambient.rgb);
+    vec3 c = unlitTerm(m.emission.rgb, m.ambient.rgb, frame.ambient.rgb, tex);
     vec3 shadowOrigin = offsetRayOrigin(s.position, ng);
     for (int i = 0; i < frame.size.z; ++i) {
         LightData light = lights[i];
-        LightSample ls = sampleLight(light, s.position);
+        LightSample ls = sampleLightRecord(light, s.position);
         vec3 direct = blinnPhong(n, m.diffuse.rgb * tex, m.specular.rgb, m.specular.a, toViewer, ls);
         if (direct == vec3(0.0)) continue;  // facing away, or outside a spot cone: no ray needed
         if (light.shadow.x >= 0 && frame.settings.z != 0.0 && shadowRays) {
@@ -171,32 +169,22 @@ struct HitShading {
 // where h.local is 0.
 HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, MediumStack media,
                     bvec3 effects, bool localGiven, vec3 givenLocal, bool localIfWeighted) {
-    const float cutoff = frame.settings.x;
     HitShading h;
     // Work on the side the ray arrives from.
-    bool entering = dot(incoming, s.geometricNormal) < 0.0;
-    vec3 ng = entering ? s.geometricNormal : -s.geometricNormal;
-    vec3 n = entering ? s.shadingNormal : -s.shadingNormal;
-    h.transparency = 1.0 - m.optical.z;
-    float orr = h.transparency;
-    float n1 = entering ? frame.ambient.a : m.optical.y, n2 = entering ? m.optical.y : frame.ambient.a;
-    float cosi = max(-dot(incoming, n), 0.0);
-    float om = m.optical.w != 0.0 ? fresnelDielectric(cosi, n1, n2) : m.optical.x;
-    h.reflectivity = om;
-    // C alone where the surface neither reflects nor refracts, or at the depth limit with "local"
-    // (depth_limit); at the limit with "weighted" the rays not traced count 0 (also under total
-    // internal reflection, where C's weight is the same).
-    h.composes = !(om <= 0.0 && orr <= 0.0) && !(depth >= frame.size.w && frame.rules.x == 0u);
-    bool tracesRays = h.composes && depth < frame.size.w;
-    vec3 refracted;
-    h.tir = tracesRays && orr > 0.0 && !refractDirection(incoming, n, n1 / n2, refracted);
-    // Total internal reflection sends everything to the reflected ray.
-    float weightM = h.tir ? om + (1.0 - om) * orr : om;
-    float weightR = h.tir ? 0.0 : (1.0 - om) * orr;
-    bool traceM = tracesRays && effects.y && weightM > 0.0 && importance * weightM >= cutoff;
-    bool traceR = tracesRays && !h.tir && effects.z && weightR > 0.0 && importance * weightR >= cutoff;
-    // C only where it weighs, as WhittedTracer::shadeSurface decides.
-    bool localWeighs = !h.composes || (om < 1.0 && orr < 1.0) || (tracesRays && ((!traceM && weightM > 0.0) || (!h.tir && !traceR && orr > 0.0)));
+    ArrivalSide side = arrivalSide(incoming, s.geometricNormal, s.shadingNormal, m.optical.y, frame.ambient.a);
+    vec3 ng = side.geometricNormal, n = side.shadingNormal;
+    // The composition's weights, the depth limit, the importance cut-off and whether C weighs
+    // (composition.h).
+    HitScattering scattering = scatterAtHit(incoming, n, side.n1, side.n2, m.optical.x, m.optical.w != 0.0, m.optical.z, depth, frame.size.w,
+                                            frame.rules.x == 0u, importance, frame.settings.x, effects.y, effects.z);
+    h.reflectivity = scattering.reflectivity;
+    h.transparency = scattering.transparency;
+    h.composes = scattering.composes;
+    h.tir = scattering.tir;
+    bool tracesRays = scattering.tracesRays;
+    float weightM = scattering.weightM, weightR = scattering.weightR;
+    bool traceM = scattering.traceM, traceR = scattering.traceR;
+    bool localWeighs = scattering.localWeighs;
     if (localGiven) {
         h.local = givenLocal;
     } else if (!localIfWeighted || localWeighs) {
@@ -211,7 +199,7 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
     h.refracted.value = vec3(0.0);
     h.skyReflected = h.skyRefracted = h.local;
     if (!tracesRays) return h;
-    vec3 reflected = reflectDirection(incoming, n);
+    vec3 reflected = scattering.reflectedDirection, refracted = scattering.refractedDirection;
     if (weightM > 0.0) h.skyReflected = skyRadiance(reflected);
     if (weightR > 0.0) h.skyRefracted = skyRadiance(refracted);
     if (h.tir) h.skyRefracted = h.skyReflected;
@@ -231,7 +219,7 @@ HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float
     } else if (traceR) {
         h.refracted.traced = true;
         MediumStack inside = media;
-        if (!(entering ? mediumEnter(inside, s.object, s.material) : mediumLeave(inside, s.object))) ++countMediumErrors;
+        if (!(side.entering ? mediumEnter(inside, s.object, s.material) : mediumLeave(inside, s.object))) ++countMediumErrors;
         h.refracted.ray = PendingRay(offsetRayOrigin(s.position, -ng), importance * weightR, refracted, depth + 1, vec3(1.0), coneWidth, inside);
     }
     return h;

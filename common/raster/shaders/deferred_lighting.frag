@@ -103,9 +103,10 @@ void main() {
     vec3 toViewer = -incoming;
 
     // As WhittedTracer::localColor, with shadow maps in place of shadow rays.
-    vec3 c = unlitTerm(texelFetch(gEmission, pixel, 0).rgb, texelFetch(gAmbient, pixel, 0).rgb, frame.sceneAmbient.rgb);
+    // The G-buffer's ambient colour is textured already (T = 1 here).
+    vec3 c = unlitTerm(texelFetch(gEmission, pixel, 0).rgb, texelFetch(gAmbient, pixel, 0).rgb, frame.sceneAmbient.rgb, vec3(1.0));
     for (uint i = 0u; i < frame.counts.x; ++i) {
-        LightSample ls = sampleLight(lights[i], p);
+        LightSample ls = sampleLightRecord(lights[i], p);
         vec3 direct = blinnPhong(n, diffuse, specular.rgb, specular.a, toViewer, ls);
         if (direct == vec3(0.0)) continue;
         if (kShadows) direct *= shadowVisibility(lights[i], p, n);
@@ -115,20 +116,16 @@ void main() {
     if (kEnvironmentMapping) {
         // WhittedTracer::shade with the sky standing in for the reflected and refracted rays.
         vec4 optical = texelFetch(gOptical, pixel, 0);
-        float orr = 1.0 - optical.z;
         float n1 = entering ? frame.sceneAmbient.a : optical.y, n2 = entering ? optical.y : frame.sceneAmbient.a;
-        float cosi = max(-dot(incoming, n), 0.0);
-        float om = optical.w > 0.5 ? fresnelDielectric(cosi, n1, n2) : optical.x;
-        if (om > 0.0 || orr > 0.0) {
-            vec3 refracted;
-            bool tir = orr > 0.0 && !refractDirection(incoming, n, n1 / n2, refracted);
-            float weightM = tir ? om + (1.0 - om) * orr : om;
-            float weightR = tir ? 0.0 : (1.0 - om) * orr;
+        // The composition's weights as at a traced hit of depth 0 that traces both rays
+        // (composition.h), the sky standing in for each.
+        HitScattering e = scatterAtHit(incoming, n, n1, n2, optical.x, optical.w > 0.5, optical.z, 0, 1, false, 1.0, 0.0, true, true);
+        if (e.composes) {
             vec3 M = c, R = c;
-            if (weightM > 0.0) M = skyRadiance(reflectDirection(incoming, n));
-            if (tir) R = M;
-            else if (weightR > 0.0) R = skyRadiance(refracted);
-            c = compose(om, orr, M, R, c, kWalewskiBlend);
+            if (e.weightM > 0.0) M = skyRadiance(e.reflectedDirection);
+            if (e.tir) R = M;
+            else if (e.weightR > 0.0) R = skyRadiance(e.refractedDirection);
+            c = compose(e.reflectivity, e.transparency, M, R, c, kWalewskiBlend);
         }
     }
     outColor = vec4(c, 1.0);

@@ -1,0 +1,141 @@
+#!/usr/bin/python3
+"""The physics in common/shading is written once (common/shading/shading_language.h): no copy of it.
+
+A function or struct that a header of common/shading defines (SHARED_FUNCTION, struct) has that one
+definition. Exit status 1, one line a problem, when
+  - a shader (GLSL: .glsl, .vert, .frag, .comp, .rgen, .rchit, .rmiss, .rahit, .rint) defines a
+    function or struct of that name,
+  - a C++ source outside common/shading defines a function of that name whose body calls neither
+    shading_language::NAME nor another overload of NAME (an overload that hands the one definition
+    the scene's C++ records is fine; a second body of the physics is not).
+The check runs first on a scratch tree with known problems and must find exactly those.
+
+usage: one_source_check.py SOURCE_DIR
+"""
+import os
+import re
+import sys
+import tempfile
+
+SHARED_DIR = os.path.join("common", "shading")
+SHADER_EXTENSIONS = {".glsl", ".vert", ".frag", ".comp", ".rgen", ".rchit", ".rmiss", ".rahit", ".rint"}
+CPP_EXTENSIONS = {".h", ".hpp", ".cpp"}
+SKIPPED_DIRS = {".git", "node_modules", "__pycache__"}
+SHARED_FUNCTION = re.compile(r"\bSHARED_FUNCTION\s+\w+\s+(\w+)\s*\(")
+STRUCT = re.compile(r"^\s*struct\s+(\w+)\s*\{", re.MULTILINE)
+# A definition: a return type (a word, possibly qualified or templated), the name, a parameter list
+# without braces or semicolons, then optional qualifiers and the body's brace.
+DEFINITION = re.compile(r"^[ \t]*(?:(?:inline|static|constexpr|\[\[[^\]]*\]\])\s+)*[\w:<>]+[ \t]*[&*]?[ \t]+(?:\w+::)*(\w+)\s*"
+                        r"\(([^;{}()]*(?:\([^;{}()]*\)[^;{}()]*)*)\)\s*(?:const\s*)?(?:noexcept\s*)?\{", re.MULTILINE)
+
+
+def shared_names(root):
+    """Names of the functions and structs common/shading defines."""
+    functions, structs = set(), set()
+    folder = os.path.join(root, SHARED_DIR)
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".h"):
+            text = open(os.path.join(folder, name), encoding="utf-8").read()
+            functions.update(SHARED_FUNCTION.findall(text))
+            structs.update(STRUCT.findall(text))
+    return functions, structs
+
+
+def body_at(text, open_brace):
+    """The text of the braced block that starts at open_brace."""
+    depth = 0
+    for i in range(open_brace, len(text)):
+        if text[i] == "{":
+            depth += 1
+        elif text[i] == "}":
+            depth -= 1
+            if depth == 0:
+                return text[open_brace:i + 1]
+    return text[open_brace:]
+
+
+def source_files(root):
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if d not in SKIPPED_DIRS and not d.startswith("build")
+                         and not os.path.exists(os.path.join(folder, d, "CMakeCache.txt")))
+        for name in sorted(files):
+            yield os.path.join(folder, name)
+
+
+def problems(root):
+    functions, structs = shared_names(root)
+    found = []
+    if not functions:
+        return [f"{SHARED_DIR}: no SHARED_FUNCTION found (has the convention changed?)"]
+    for path in source_files(root):
+        relative = os.path.relpath(path, root)
+        extension = os.path.splitext(path)[1]
+        if relative.startswith(SHARED_DIR + os.sep) or extension not in SHADER_EXTENSIONS | CPP_EXTENSIONS:
+            continue
+        text = open(path, encoding="utf-8", errors="replace").read()
+        line_of = lambda offset: text.count("\n", 0, offset) + 1
+        for match in DEFINITION.finditer(text):
+            name = match.group(1)
+            if name not in functions:
+                continue
+            if extension in SHADER_EXTENSIONS:
+                found.append(f"{relative}:{line_of(match.start(1))}: defines {name}(), which {SHARED_DIR} defines once for "
+                             "C++ and GLSL: include it instead")
+            elif not re.search(rf"\b{name}\s*\(", body_at(text, match.end() - 1)):
+                found.append(f"{relative}:{line_of(match.start(1))}: defines {name}() without calling shading_language::{name}() "
+                             f"(the one definition in {SHARED_DIR}) or an overload that does")
+        if extension in SHADER_EXTENSIONS:
+            for match in STRUCT.finditer(text):
+                if match.group(1) in structs:
+                    found.append(f"{relative}:{line_of(match.start(1))}: defines struct {match.group(1)}, which {SHARED_DIR} "
+                                 "defines once for C++ and GLSL")
+    return found
+
+
+def self_check():
+    """The check on a scratch tree: it must find exactly the planted copies."""
+    files = {
+        "common/shading/shading_language.h": "#define SHARED_FUNCTION inline\n",
+        "common/shading/physics.h": ("struct Sample {\n    vec3 v;\n};\n"
+                                     "SHARED_FUNCTION vec3 twice(vec3 v) { return 2.0f * v; }\n"
+                                     "SHARED_FUNCTION float half(float x,\n                         float y) { return 0.5f * x; }\n"),
+        "common/raster/shaders/copy.glsl": "vec3 twice(vec3 v) {\n    return v + v;\n}\nvec3 other(vec3 v) { return v; }\n",
+        "common/raster/shaders/struct_copy.rgen": "struct Sample {\n    vec3 v;\n};\nvoid main() { twice(vec3(1.0)); }\n",
+        "common/raytrace/adapter.h": ("inline glm::vec3 twice(const Thing& t) { return shading_language::twice(t.v); }\n"
+                                      "glm::vec3 twice(const Other& o) { return twice(o.thing); }\n"),
+        "common/raytrace/copy.cpp": "float half(float x, float y) {\n    return x * 0.5f;\n}\nfloat g() { return half(1.0f, 2.0f); }\n",
+    }
+    expected = ["common/raster/shaders/copy.glsl:1: defines twice()",
+                "common/raster/shaders/struct_copy.rgen:1: defines struct Sample",
+                "common/raytrace/copy.cpp:1: defines half() without"]
+    with tempfile.TemporaryDirectory() as root:
+        for relative, text in files.items():
+            path = os.path.join(root, relative)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+        found = sorted(problems(root))
+    if len(found) != len(expected) or not all(f.startswith(e) for f, e in zip(found, expected)):
+        print("one_source_check.py: the self-check on a scratch tree found", found, "expected", expected, file=sys.stderr)
+        return False
+    return True
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    if not self_check():
+        return 1
+    root = sys.argv[1]
+    found = problems(root)
+    for line in found:
+        print(line)
+    functions, structs = shared_names(root)
+    print(f"{len(functions)} functions and {len(structs)} structs of {SHARED_DIR}, each defined once: "
+          f"{'no' if not found else len(found)} copies found")
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
