@@ -82,23 +82,72 @@ def resolution(r):
     return "%dx%d" % (r["width"], r["height"])
 
 
-# The names the tables give the metrics: FLIP on the display images and HDR-FLIP on the linear
-# ones (Andersson et al. 2021) are told apart wherever both are shown.
-METRIC_LABELS = {"ssim": "SSIM", "flip": "FLIP (LDR)", "flip_hdr": "HDR-FLIP", "psnr": "PSNR dB"}
+def _built_in_metric_table():
+    """The metric table of metrics/metric_table.h, the one place it is defined, as a result set
+    carries it (experiment.json's "metric_table"): what sets written before they carried one were
+    scored with."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "metrics", "metric_table.h")
+    with open(header) as f:
+        text = f.read()
+    table = text[text.index("kMetricTable[] = {"):]
+    number = lambda v: None if v == "kUnbounded" else float(v)
+    rows = re.findall(r'^\s*\{"(\w+)", "([^"]*)", Better::(Higher|Lower), ([\w.]+), ([\w.]+), "([\w.]+)", "(\w*)", (true|false), (true|false), (\d+), [\d.]+\},$',
+                      table[:table.index("};")], re.M)
+    if not rows:
+        raise RuntimeError("no metrics in %s" % header)
+    return [{"key": key, "label": label, "better": better.lower(), "range": [number(low), number(high)], "field": field,
+             "colormap": colormap or None, "scored": scored == "true", "summarised": summarised == "true", "digits": int(digits)}
+            for key, label, better, low, high, field, colormap, scored, summarised, digits in rows]
+
+
+BUILT_IN_METRICS = _built_in_metric_table()
+_FIELDS = {m["key"]: m["field"] for m in BUILT_IN_METRICS}
+
+
+def metric_table(result_dir):
+    """The metrics a result set was scored with, in the order tables list them: experiment.json's
+    "metric_table" (the runner writes it), else the built-in table. Each is a dict with "key",
+    "label", "better" ("higher" or "lower"), "range" ([low, high], None where unbounded), "field",
+    "colormap" (None without an error map), "scored" (the verdict ranks by it) and "summarised"
+    (summary tables show it) and "digits" (the decimals tables show)."""
+    try:
+        with open(os.path.join(result_dir, "experiment.json")) as f:
+            table = json.load(f).get("metric_table")
+    except (OSError, ValueError, AttributeError):
+        table = None
+    return table or BUILT_IN_METRICS
+
+
+def summarised(table):
+    """The metrics of `table` that summary tables show."""
+    return [m for m in table if m["summarised"]]
+
+
+def higher_is_better(m):
+    return m["better"] == "higher"
+
+
+def metric_cell(m, value, missing="-"):
+    """A table cell of metric `m`'s `value`, at its decimals."""
+    return fmt(value, "%%.%df" % m["digits"], missing)
+
+
+def best_value(m):
+    """The value of an image equal to its reference (the best end of the range); None where unbounded."""
+    return m["range"][1] if higher_is_better(m) else m["range"][0]
 
 
 def metric(r, region, name):
-    """SSIM, RMSE, PSNR (dB), FLIP or HDR-FLIP mean of a record on 'whole' or 'masked'; None if
-    absent (the region, or the metric: a config's `metrics` may leave it out, and result sets
-    written before HDR-FLIP have none)."""
-    m = r["metrics"].get(region)
-    if not m:
-        return None
-    if name in ("flip", "flip_hdr"):
-        return m[name]["mean"] if name in m else None
-    if name == "psnr":
-        return m.get("psnr_db")
-    return m.get(name)
+    """The value of metric `name` (a key of the metric table) of a record on 'whole' or 'masked';
+    None if absent (the region, or the metric: a config's `metrics` may leave it out, and older
+    result sets lack the metrics added since). A metric's value lies at its field (a dotted path)
+    in the region's scores; a metric added outside the built-in table has its key for field."""
+    value = r["metrics"].get(region)
+    for part in _FIELDS.get(name, name).split("."):
+        if not isinstance(value, dict) or part not in value:
+            return None
+        value = value[part]
+    return value
 
 
 def fmt(value, spec="%.3f", missing="-"):

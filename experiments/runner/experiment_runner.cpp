@@ -77,6 +77,7 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, const
             {"runs_total", runsTotal},
             {"shard", {{"index", o.shardIndex}, {"count", o.shardCount}, {"partition", kPartition}, {"runs", runsInShard}, {"estimated_cost", estimatedCost}}},
             {"metrics", metricNames(config)},
+            {"metric_table", metricTableJson()},
             {"program", programVersionHash()},
             {"resolution_scale", config.resolutionScale},
             {"device", deviceRecord()}};
