@@ -14,6 +14,50 @@ import sys
 import jsonschema
 
 SCHEMA_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "results.schema.json")
+MIGRATIONS_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "results.migrations.json")
+
+
+def migrations():
+    """The steps that take an older record to the current schema_version (results.migrations.json)."""
+    with open(MIGRATIONS_PATH) as f:
+        return json.load(f)["steps"]
+
+
+MIGRATIONS = migrations()
+SCHEMA_VERSION = MIGRATIONS[-1]["to"]
+
+
+def _renamed(values, rename, prefixes):
+    """`values` (a record's stages or counters) with its keys renamed; values that meet under one
+    name add up, number by number."""
+    out = {}
+    for key, value in values.items():
+        key = rename.get(key, key)
+        for old, new in prefixes.items():
+            if key.startswith(old):
+                key = new + key[len(old):]
+        if key in out and isinstance(value, dict):
+            out[key] = {k: out[key].get(k, 0.0) + v for k, v in value.items()}
+        elif key in out:
+            out[key] += value
+        else:
+            out[key] = value
+    return out
+
+
+def migrate(record):
+    """The record as the current schema_version has it: the one place old result sets' names are
+    read (each step of results.migrations.json in turn, from the record's version; none is version 1)."""
+    version = record.get("schema_version", 1)
+    for step in MIGRATIONS:
+        if step["from"] < version:
+            continue
+        for field in set(step.get("rename", {})) | set(step.get("rename_prefixes", {})):
+            if field in record:
+                record[field] = _renamed(record[field], step.get("rename", {}).get(field, {}), step.get("rename_prefixes", {}).get(field, {}))
+        version = step["to"]
+    record["schema_version"] = version
+    return record
 
 
 def is_result_set(result_dir):
@@ -23,21 +67,22 @@ def is_result_set(result_dir):
 
 
 def load(result_dir):
-    """The records of a result set, ordered by run index: results.json, or where the runner has not
+    """The records of a result set (migrated to the current schema_version), ordered by run index:
+    results.json, or where the runner has not
     written it (still running, or killed), the records in runs/ themselves, which lack only what
     needs the whole set (temporal errors); `hybridlab report` or `hybridlab run --resume` writes
     results.json."""
     path = os.path.join(result_dir, "results.json")
     if os.path.isfile(path):
         with open(path) as f:
-            return json.load(f)
+            return [migrate(r) for r in json.load(f)]
     runs = os.path.join(result_dir, "runs")
     records = []
     # Temporary files of an interrupted write start with a dot: not records.
     for name in os.listdir(runs):
         if name.endswith(".json") and not name.startswith("."):
             with open(os.path.join(runs, name)) as f:
-                records.append(json.load(f))
+                records.append(migrate(json.load(f)))
     sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (result_dir, len(records), runs))
     return sorted(records, key=lambda r: r["index"])
 
@@ -171,34 +216,19 @@ def _stage_vocabulary():
 STAGE_VOCABULARY = _stage_vocabulary()
 STAGE_KINDS = [name for name, _ in STAGE_VOCABULARY]
 
-# Result sets written before the vocabulary name some stages otherwise: read under the names they
-# have now. Two were several kinds of work in one and stay as they are (charted as such): `raster`
-# (heuristic_rt's and ssr_fallback's rasterizer frame: shadow maps, G-buffer, lighting, read-back)
-# and `other` (layered_em's rasterizer frame with the lens pass, and the lens composited).
-OLD_STAGE_NAMES = {"rast": "raster", "heur": "heuristic", "rayt": "trace", "ray_trace": "trace",
-                   "gbuffer_rays": "gbuffer.rays", "gbuffer_upload": "gbuffer.upload", "visible_pixels": "heuristic.visible_pixels",
-                   "seam_blur": "blend.seam_blur", "composite": "blend", "vertex_ray_tracing": "trace.lens_vertices",
-                   "texture_coordinates": "lens.texture_coordinates", "tessellation": "lens.tessellation"}
 # The stages of the rasterizer's frame (techniques/shared/raster_stages.h) but a technique's own
 # passes (ssr, lens.draw): the "raster" time of the papers' tables.
 RASTERIZER_STAGES = ("shadow_maps", "gbuffer", "gbuffer.upload", "heuristic.visible_pixels", "lighting", "readback", "overhead", "raster")
 
 
-def stage_name(name):
-    return OLD_STAGE_NAMES.get(name, name)
-
-
 def stage_kind(name):
     """The kind of work a stage is charted under: its name before the first dot."""
-    return stage_name(name).split(".")[0]
+    return name.split(".")[0]
 
 
 def stages(r):
-    """A record's median stage times (ms) by their names in the vocabulary."""
-    out = {}
-    for name, s in r["stages"].items():
-        out[stage_name(name)] = out.get(stage_name(name), 0.0) + s["median"]
-    return out
+    """A record's median stage times (ms) by name."""
+    return {name: s["median"] for name, s in r["stages"].items()}
 
 
 def stage_kinds(r):
@@ -215,9 +245,9 @@ def kind_order(kinds):
 
 
 def stage(r, name, missing=None):
-    """The median time (ms) of a record's stage `name` (either vocabulary; exactly that stage, not
-    its details); `missing` if the technique has no such stage."""
-    return stages(r).get(stage_name(name), missing)
+    """The median time (ms) of a record's stage `name` (exactly that stage, not its details);
+    `missing` if the technique has no such stage."""
+    return stages(r).get(name, missing)
 
 
 def raster_ms(r, missing=None):

@@ -2,7 +2,8 @@
 viewer's ES modules (report/viewer/*.js), its styles and settings.json (what the report knows that
 the records do not: the title, the reference's parameters, the settings found not applicable, the
 report's colour of each setting, the metric table (the result set's, or the built-in one for a set
-older than that), the error maps' colour tables, and where the result set lies).
+older than that), the steps that read older records as current ones (results.migrations.json),
+the error maps' colour tables, and where the result set lies).
 
 The viewer reads the result set itself: results.json, and the images the records name (EXR
 decoded in the browser, PNG natively), with no second copy, so its own files are the same few
@@ -15,6 +16,8 @@ import shutil
 import tomllib
 
 import matplotlib
+
+import results as rs
 
 VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewer")
 # zlib for the EXRs' ZIP blocks (exr.js): Debian's node-pako, as an ES module; copied as .js, the
@@ -71,6 +74,7 @@ def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, m
         "not_applicable": [[scene, size, name, why] for (scene, size, name), why in sorted(not_applicable.items())],
         "colours": colours,
         "metrics": metric_table,
+        "migrations": rs.MIGRATIONS,
         # The runner's error maps' colour tables (OpenCV takes its viridis and magma from
         # matplotlib): the viewer reads a map's values back from its colours and draws its own.
         "colormaps": {name: colour_table(name) for name in ("viridis", "magma")},

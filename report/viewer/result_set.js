@@ -1,7 +1,8 @@
 // The result set as the viewer reads it: the records of results.json (what the runner wrote: the
 // images' paths are the result set's own) and the report's settings.json (title, the report's
-// colour of each setting, the settings not applicable to a scene, the metric table), grouped into
-// scenes, sizes, views, frames and technique settings.
+// colour of each setting, the settings not applicable to a scene, the metric table, the steps that
+// read older records as current ones), grouped into scenes, sizes, views, frames and technique
+// settings.
 
 import { scoresOf } from './metric_readout.js';
 
@@ -15,6 +16,37 @@ function distinct(values) {
 
 // Numbers inside names by value: "budget=5000" before "budget=20000".
 const naturalOrder = new Intl.Collator('en', { numeric: true }).compare;
+
+// `values` (a record's stages or counters) with its keys renamed; values that meet under one name
+// add up, number by number.
+function renamed(values, rename, prefixes) {
+  const out = {};
+  for (let [key, value] of Object.entries(values)) {
+    key = rename[key] ?? key;
+    for (const [old, now] of Object.entries(prefixes)) if (key.startsWith(old)) key = now + key.slice(old.length);
+    if (!(key in out)) out[key] = value;
+    else if (typeof value === 'object') out[key] = Object.fromEntries(Object.entries(value).map(([k, v]) => [k, (out[key][k] ?? 0) + v]));
+    else out[key] += value;
+  }
+  return out;
+}
+
+// The record as the current schema_version has it: the one place old result sets' names are read,
+// each step of experiments/results.migrations.json (settings.json's `migrations`) in turn from the
+// record's version (none: 1), as report/results.py migrate() does.
+export function migrated(record, steps) {
+  let version = record.schema_version ?? 1;
+  const r = { ...record };
+  for (const step of steps) {
+    if (step.from < version) continue;
+    for (const field of new Set([...Object.keys(step.rename || {}), ...Object.keys(step.rename_prefixes || {})])) {
+      if (r[field]) r[field] = renamed(r[field], (step.rename || {})[field] || {}, (step.rename_prefixes || {})[field] || {});
+    }
+    version = step.to;
+  }
+  r.schema_version = version;
+  return r;
+}
 
 // A technique with its parameter set, named as the report names it (report/results.py variant()).
 export function variantOf(r) {
@@ -51,7 +83,7 @@ export class ResultSet {
     this.metricTable = settings.metrics;
     const base = settings.result_set ? `${settings.result_set}/` : '';
     const notApplicable = new Map((settings.not_applicable || []).map(([scene, size, name, why]) => [keyOf(scene, size, '', '', name), why]));
-    this.runs = records.map((r) => runOf(r, base, notApplicable, this.metricTable));
+    this.runs = records.map((r) => runOf(migrated(r, settings.migrations || []), base, notApplicable, this.metricTable));
     this.byId = new Map(this.runs.map((r) => [r.id, r]));
     this.byKey = new Map(this.runs.map((r) => [keyOf(r.scene, r.size, r.view, r.frame, r.variant), r]));
   }

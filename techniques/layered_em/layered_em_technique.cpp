@@ -180,7 +180,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     result.counters["triangles"] = static_cast<double>(triangles);
     result.counters["lens_pixels"] = static_cast<double>(lensPixels);
     result.counters["pixels_ray_traced"] = 0.0;
-    // The rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
+    // The rasterizer's GPU passes (lens.draw is the lens pass) and its wall clock.
     for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
     recordRasterWork(raster_, result);
     result.counters["raster_wall_ms"] = raster_.wallMilliseconds();

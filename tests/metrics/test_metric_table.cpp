@@ -80,7 +80,7 @@ TEST(MetricTable, AMetricAddedInOnePlaceReachesTheRecordTheReportAndTheViewer) {
     EXPECT_CONTAINS(test::readTextFile(report / "index.html"), "<th>Throwaway score</th>");
 
     // The viewer's read-out under the run's image, through the report's copy of its modules.
-    const test::CommandOutput viewer = test::commandOutput("node '" + (test::sourceDir() / "tests/report/viewer/read_out_scores.mjs").string() +
+    const test::CommandOutput viewer = test::commandOutput("node '" + (test::sourceDir() / "tests/report/viewer/read_out_runs.mjs").string() +
                                                            "' '" + report.string() + "'");
     ASSERT_EQ(viewer.exitStatus, 0) << viewer.out;
     EXPECT_CONTAINS(viewer.out, " · Throwaway score 0.2500");

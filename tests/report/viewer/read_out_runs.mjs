@@ -1,9 +1,9 @@
-// Prints what the viewer of a report reads out below each run's image: the score lines of every
-// run, through the report's own copies of the viewer's modules (result_set.js, metric_readout.js)
-// and its settings.json, as the browser would load them. One line a run: its id, then its lines
-// joined by " | ".
+// Prints what the viewer of a report reads out below each run's image: its stages by name and its
+// score lines, through the report's own copies of the viewer's modules (result_set.js,
+// metric_readout.js) and its settings.json, as the browser would load them. One line a run: its
+// id, its stage names, then its score lines, joined by " | ".
 //
-//   node read_out_scores.mjs REPORT_DIR
+//   node read_out_runs.mjs REPORT_DIR
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -16,5 +16,6 @@ const settings = JSON.parse(fs.readFileSync(path.join(reportDir, 'viewer', 'sett
 const records = JSON.parse(fs.readFileSync(path.join(reportDir, settings.result_set, 'results.json'), 'utf8'));
 const results = new ResultSet(records, settings);
 for (const run of results.runs) {
-  console.log(`${run.id}: ${metricReadout(results.metricTable, run.scores, run.temporal).map((l) => l.text).join(' | ')}`);
+  const lines = metricReadout(results.metricTable, run.scores, run.temporal).map((l) => l.text);
+  console.log(`${run.id}: stages ${Object.keys(run.stages).join(', ')} | ${lines.join(' | ')}`);
 }
