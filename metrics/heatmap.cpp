@@ -1,5 +1,7 @@
 #include "metrics/heatmap.h"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,12 @@
 namespace hybridlab {
 
 const char* colorMapName(ColorMap map) { return map == ColorMap::Viridis ? "viridis" : "magma"; }
+
+ColorMap colorMapNamed(std::string_view name) {
+    for (ColorMap map : {ColorMap::Viridis, ColorMap::Magma})
+        if (name == colorMapName(map)) return map;
+    throw std::out_of_range("no colour map named '" + std::string(name) + "'");
+}
 
 namespace {
 

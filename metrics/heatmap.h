@@ -3,6 +3,7 @@
 // stated value range, with a legend strip below the map that shows the colour bar and the range,
 // for the viewer and the report.
 #include <string>
+#include <string_view>
 
 #include <opencv2/core.hpp>
 
@@ -13,6 +14,8 @@ namespace hybridlab {
 enum class ColorMap { Viridis, Magma };
 
 const char* colorMapName(ColorMap map);
+// The colour map colorMapName calls `name`; throws std::out_of_range for another name.
+ColorMap colorMapNamed(std::string_view name);
 
 // The values shown from the first colour of the map (low) to the last (high); values outside
 // are clamped.

@@ -1,5 +1,6 @@
 #include "metrics/metrics.h"
 
+#include <stdexcept>
 #include <string>
 
 #include "common/core/input_error.h"
@@ -8,18 +9,29 @@ namespace hybridlab {
 
 namespace {
 
-RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, const MetricMaps& maps, const cv::Mat1b* region,
-                            const MetricSelection& selection) {
+// `test` and `reference` in the error space; `displayTest` and `displayReference` the display images.
+RegionMetrics regionMetrics(const cv::Mat3f& test, const cv::Mat3f& reference, const cv::Mat3f& displayTest, const cv::Mat3f& displayReference,
+                            const MetricMaps& maps, const cv::Mat1b* region, const MetricSelection& selection) {
     RegionMetrics m;
     m.pixels = region ? static_cast<std::size_t>(cv::countNonZero(*region)) : test.total();
     if (selection.ssim) m.ssim = ssimMean(maps.ssim, region);
     if (selection.error()) m.error = errorStats(test, reference, region);
     if (selection.flip) m.flip = flipStats(maps.flip, region);
     if (selection.flipHdr) m.flipHdr = flipStats(maps.flipHdr, region);
+    for (const AddedMetric& a : addedMetrics()) m.added[a.definition.key] = a.value(displayTest, displayReference, region);
     return m;
 }
 
 }  // namespace
+
+bool& MetricSelection::chosen(std::string_view key) {
+    if (key == "ssim") return ssim;
+    if (key == "flip") return flip;
+    if (key == "flip_hdr") return flipHdr;
+    if (key == "rmse") return rmse;
+    if (key == "psnr") return psnr;
+    throw std::out_of_range("no metric flag named '" + std::string(key) + "'");
+}
 
 MetricReport computeMetrics(const Image& test, const Image& reference, const MetricOptions& options, const PixelMask* mask) {
     requireSameSize(test, "the test image", reference, "the reference image");
@@ -43,8 +55,8 @@ MetricReport computeMetrics(const Image& test, const Image& reference, const Met
     }
     if (chosen.error()) report.maps.absoluteDifference = absoluteDifferenceMap(errorTest, errorReference);
 
-    report.whole = regionMetrics(errorTest, errorReference, report.maps, nullptr, chosen);
-    if (mask) report.masked = regionMetrics(errorTest, errorReference, report.maps, &mask->pixels(), chosen);
+    report.whole = regionMetrics(errorTest, errorReference, displayTest, displayReference, report.maps, nullptr, chosen);
+    if (mask) report.masked = regionMetrics(errorTest, errorReference, displayTest, displayReference, report.maps, &mask->pixels(), chosen);
     return report;
 }
 

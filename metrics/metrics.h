@@ -2,7 +2,10 @@
 // Every metric of one test image against its reference, over the whole image and over an
 // optional mask (for example the pixels of reflective objects, or those a technique ray traced):
 // the numbers behind every chart (DESIGN.md "Experiments and results").
+#include <map>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -12,6 +15,7 @@
 #include "metrics/flip.h"
 #include "metrics/hdr_flip.h"
 #include "metrics/metric_input.h"
+#include "metrics/metric_table.h"
 #include "metrics/ssim.h"
 
 namespace hybridlab {
@@ -28,6 +32,9 @@ struct MetricSelection {
 
     bool error() const { return rmse || psnr; }  // both come from the difference (errorStats)
     bool any() const { return ssim || flip || flipHdr || error(); }
+    // The flag of kMetricTable's metric `key` (metric_table.h); throws std::out_of_range for another.
+    bool& chosen(std::string_view key);
+    bool chosen(std::string_view key) const { return const_cast<MetricSelection&>(*this).chosen(key); }
 };
 
 struct MetricOptions {
@@ -45,6 +52,7 @@ struct RegionMetrics {
     ErrorStats error;   // RMSE, PSNR
     FlipStats flip;     // LDR-FLIP
     FlipStats flipHdr;  // HDR-FLIP
+    std::map<std::string, double> added;  // the metrics added at run time (metric_table.h), by key
 };
 
 // A metric not selected is left at its default (zero), its map empty.

@@ -35,6 +35,7 @@ nlohmann::json regionJson(const RegionMetrics& m, const MetricSelection& chosen)
                          {"weighted_first_quartile", m.flipHdr.weightedFirstQuartile},
                          {"weighted_third_quartile", m.flipHdr.weightedThirdQuartile}};
     }
+    for (const auto& [key, value] : m.added) j[key] = numberOrNull(value);
     return j;
 }
 
@@ -52,11 +53,19 @@ std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report, std::optiona
     if (chosen.error()) {
         const double high = differenceHigh.value_or(largestDifference(report));
         // A legend from 0 to 0 says nothing; equal images show the bottom colour on 0 to 1.
-        maps.push_back({"diff.png", "|T-R|", ColorMap::Viridis, {0.0, high > 0.0 ? high : 1.0}, &report.maps.absoluteDifference});
+        maps.push_back({"diff", "|T-R|", ColorMap::Viridis, {0.0, high > 0.0 ? high : 1.0}, &report.maps.absoluteDifference});
     }
-    if (chosen.ssim) maps.push_back({"ssim.png", "SSIM", ColorMap::Viridis, {0.0, 1.0}, &report.maps.ssim});
-    if (chosen.flip) maps.push_back({"flip.png", "FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flip});
-    if (chosen.flipHdr) maps.push_back({"flip_hdr.png", "HDR-FLIP", ColorMap::Magma, {0.0, 1.0}, &report.maps.flipHdr});
+    // Each metric of the table that has a map, in the table's colours and range.
+    const auto values = [&](std::string_view key) -> const cv::Mat1f* {
+        if (key == "ssim") return &report.maps.ssim;
+        if (key == "flip") return &report.maps.flip;
+        if (key == "flip_hdr") return &report.maps.flipHdr;
+        return nullptr;
+    };
+    for (const MetricDefinition& m : kMetricTable) {
+        if (!*m.colorMap || !chosen.chosen(m.key)) continue;
+        maps.push_back({m.key, m.label, colorMapNamed(m.colorMap), {m.low, m.high}, values(m.key)});
+    }
     return maps;
 }
 
@@ -76,8 +85,8 @@ nlohmann::json reportJson(const MetricReport& report, const ReportSources& sourc
     j["masked"] = report.masked ? regionJson(*report.masked, report.options.selection) : nlohmann::json(nullptr);
     nlohmann::json maps = nlohmann::json::object();
     for (const HeatmapSpec& h : reportHeatmaps(report, differenceHigh)) {
-        maps[fs::path(h.file).stem().string()] = {
-            {"file", h.file}, {"colormap", colorMapName(h.colorMap)}, {"range", {h.range.low, h.range.high}}};
+        maps[h.name] = {
+            {"file", h.file()}, {"colormap", colorMapName(h.colorMap)}, {"range", {h.range.low, h.range.high}}};
     }
     j["maps"] = maps;
     return j;
@@ -87,7 +96,7 @@ void writeReportFiles(const fs::path& dir, const MetricReport& report, const Rep
     createDirectories(dir);
     std::vector<std::function<void()>> maps;
     for (const HeatmapSpec& h : reportHeatmaps(report, differenceHigh)) {
-        maps.push_back([&dir, h] { writePng(dir / h.file, heatmapWithLegend(*h.values, h.range, h.colorMap, h.title)); });
+        maps.push_back([&dir, h] { writePng(dir / h.file(), heatmapWithLegend(*h.values, h.range, h.colorMap, h.title)); });
     }
     runInParallel(maps);  // each PNG's encoding is serial
     const std::string text = reportJson(report, sources, differenceHigh).dump(2) + "\n";

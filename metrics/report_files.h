@@ -19,18 +19,20 @@ struct ReportSources {
     std::optional<std::string> mask;
 };
 
-// One heat map of a report: its file name, colour map and range.
+// One heat map of a report: its name (the metric's key, or "diff"), colour map and range.
 struct HeatmapSpec {
-    const char* file;
-    const char* title;
+    std::string name;
+    std::string title;
     ColorMap colorMap;
     LegendRange range;
     const cv::Mat1f* values;
+
+    std::string file() const { return name + ".png"; }
 };
 
 // diff.png (|test - reference|, viridis, 0 to `differenceHigh`, by default the largest difference),
-// ssim.png (viridis, 0 to 1), flip.png and flip_hdr.png (magma, 0 to 1, as NVIDIA's FLIP tool
-// shows it), each if its metric was selected. A fixed `differenceHigh` lets the maps of several
+// and the map of each selected metric that has one, as metric_table.h colours it (ssim.png,
+// flip.png, flip_hdr.png). A fixed `differenceHigh` lets the maps of several
 // tests against one reference be read on one scale.
 std::vector<HeatmapSpec> reportHeatmaps(const MetricReport& report, std::optional<double> differenceHigh = std::nullopt);
 

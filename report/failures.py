@@ -4,8 +4,9 @@ technique's quality and frame time behave frame by frame, and where they break.
 Per scene, path and resolution one figure, a row per technique and a series per setting: frame
 time, SSIM and FLIP per frame with each setting's worst frame marked and its median drawn, and the
 temporal error. A summary table per (scene, technique, setting): the worst-frame SSIM (and its
-frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst FLIP (LDR)
-and HDR-FLIP ("-" where a result set predates HDR-FLIP), the mean and worst temporal error and
+frame), the median SSIM, the worst SSIM on the reflective/refractive pixels, the worst frame of
+every other summarised metric of the result set's metric table (FLIP (LDR), HDR-FLIP: "-" where a
+result set predates the metric), the mean and worst temporal error and
 the frame-time spike (the largest frame time over the median), beside the same setting's median
 SSIM and frame time along the baseline scene's path (sponza-spheres by default) where the result
 set has that scene. A frame-time spike counts as a failure only where it is beyond the timing
@@ -73,10 +74,6 @@ def flip(r):
     return rs.metric(r, "whole", "flip")
 
 
-def flip_hdr(r):
-    return rs.metric(r, "whole", "flip_hdr")
-
-
 def temporal(r):
     return r.get("temporal_error")
 
@@ -98,8 +95,17 @@ def spike_beyond_noise(rows):
     return frame_ms(slowest) - t_median > repeat_spread(slowest)
 
 
-def sequence_summary(rows):
-    """The summary numbers of one sequence (see the module's docstring)."""
+# The metric the summary's headline columns (worst, median, masked and the baseline's) are on.
+HEADLINE = "ssim"
+
+
+def other_metrics(table):
+    """The summarised metrics of `table` besides the headline: a worst-frame column each."""
+    return [m for m in rs.summarised(table) if m["key"] != HEADLINE]
+
+
+def sequence_summary(rows, table=rs.BUILT_IN_METRICS):
+    """The summary numbers of one sequence (see the module's docstring); `table`: the metric table."""
     t_median = median_of(rows, frame_ms)
     t_max = max(frame_ms(r) for r in rows)
     temporals = [temporal(r) for r in rows if temporal(r) is not None]
@@ -108,8 +114,7 @@ def sequence_summary(rows):
         "worst_ssim": worst(rows, ssim),
         "median_ssim": median_of(rows, ssim),
         "worst_masked_ssim": worst(rows, masked_ssim),
-        "worst_flip": worst(rows, flip, higher_is_better=False),
-        "worst_flip_hdr": worst(rows, flip_hdr, higher_is_better=False),
+        "worst": {m["key"]: worst(rows, lambda r, k=m["key"]: rs.metric(r, "whole", k), rs.higher_is_better(m)) for m in other_metrics(table)},
         "temporal_mean": statistics.mean(temporals) if temporals else None,
         "temporal_worst": max(temporals) if temporals else None,
         "median_ms": t_median,
@@ -118,14 +123,15 @@ def sequence_summary(rows):
     }
 
 
-def baseline_summaries(seqs, baseline_scene):
+def baseline_summaries(seqs, baseline_scene, table):
     """The baseline scene's sequences by (resolution, technique setting)."""
-    return {(k[1], k[4]): sequence_summary(rows) for k, rows in seqs.items() if k[0] == baseline_scene}
+    return {(k[1], k[4]): sequence_summary(rows, table) for k, rows in seqs.items() if k[0] == baseline_scene}
 
 
-def summary_rows(seqs, baseline, baseline_scene):
+def summary_rows(seqs, baseline, baseline_scene, table):
     """One row per sequence outside the baseline scene: (key, its summary, the baseline's or None)."""
-    return [(k, sequence_summary(rows), baseline.get((k[1], k[4]))) for k, rows in sorted(seqs.items(), key=lambda item: rs.natural_key(item[0])) if k[0] != baseline_scene]
+    return [(k, sequence_summary(rows, table), baseline.get((k[1], k[4])))
+            for k, rows in sorted(seqs.items(), key=lambda item: rs.natural_key(item[0])) if k[0] != baseline_scene]
 
 
 def worst_beyond_noise(rows, value, higher_is_better=True):
@@ -209,18 +215,22 @@ def worst_cell(w, spec):
     return "-" if w is None else (spec + " (%d)") % (w[0], w[1]["frame"])
 
 
-HEADER = ["scene", "path", "size", "technique", "setting", "frames", "worst-frame SSIM (frame)", "median SSIM",
-          "worst SSIM refl./refr. (frame)", "worst FLIP (LDR) (frame)", "worst HDR-FLIP (frame)", "temporal error mean / worst",
-          "frame ms median", "frame-time spike (max / median)", "spike beyond noise"]
 BASELINE_HEADER = ["baseline median SSIM", "baseline frame ms median", "baseline spike"]
 
 
-def row_cells(key, s, b, with_baseline):
-    """The summary row's cells as text (Markdown and HTML share them); the worst SSIM cell is
-    returned separately with its run so that it can link to the viewer."""
+def header(table):
+    """The summary table's header: a worst-frame column per metric of other_metrics(table)."""
+    return (["scene", "path", "size", "technique", "setting", "frames", "worst-frame SSIM (frame)", "median SSIM", "worst SSIM refl./refr. (frame)"]
+            + ["worst %s (frame)" % m["label"] for m in other_metrics(table)]
+            + ["temporal error mean / worst", "frame ms median", "frame-time spike (max / median)", "spike beyond noise"])
+
+
+def row_cells(key, s, b, with_baseline, table):
+    """The summary row's cells as text (Markdown and HTML share them); the worst SSIM cell (the
+    seventh) links to the viewer."""
     scene, res, path, technique, variant = key
     cells = [scene, path, res, technique, variant, str(s["frames"]), worst_cell(s["worst_ssim"], "%.4f"), rs.fmt(s["median_ssim"], "%.4f"),
-             worst_cell(s["worst_masked_ssim"], "%.4f"), worst_cell(s["worst_flip"], "%.4f"), worst_cell(s["worst_flip_hdr"], "%.4f"),
+             worst_cell(s["worst_masked_ssim"], "%.4f")] + [worst_cell(s["worst"][m["key"]], "%%.%df" % m["digits"]) for m in other_metrics(table)] + [
              "%s / %s" % (rs.fmt(s["temporal_mean"], "%.5f"), rs.fmt(s["temporal_worst"], "%.5f")), rs.fmt(s["median_ms"], "%.1f"),
              rs.fmt(s["spike"], "%.2f"), "yes" if s["spike_beyond_noise"] else "no (noise)"]
     if with_baseline:
@@ -228,38 +238,38 @@ def row_cells(key, s, b, with_baseline):
     return cells
 
 
-def markdown_table(rows, link, with_baseline):
+def markdown_table(rows, link, with_baseline, table):
     """`link(run_id)`: the viewer on a run, from report.md."""
-    header = HEADER + (BASELINE_HEADER if with_baseline else [])
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    head = header(table) + (BASELINE_HEADER if with_baseline else [])
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for key, s, b in rows:
-        cells = row_cells(key, s, b, with_baseline)
+        cells = row_cells(key, s, b, with_baseline, table)
         if s["worst_ssim"]:
             cells[6] = "[%s](%s)" % (cells[6], link(s["worst_ssim"][1]["id"]))
         lines.append("| " + " | ".join(c.replace("|", "/") for c in cells) + " |")
     return lines
 
 
-def html_table(rows, link, with_baseline):
-    header = HEADER + (BASELINE_HEADER if with_baseline else [])
-    out = ['<div class="wide"><table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in header) + "</tr></thead><tbody>"]
+def html_table(rows, link, with_baseline, table):
+    head = header(table) + (BASELINE_HEADER if with_baseline else [])
+    out = ['<div class="wide"><table class="failures sortable"><thead><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in head) + "</tr></thead><tbody>"]
     for key, s, b in rows:
-        cells = [html.escape(c) for c in row_cells(key, s, b, with_baseline)]
+        cells = [html.escape(c) for c in row_cells(key, s, b, with_baseline, table)]
         if s["worst_ssim"]:
             cells[6] = '<a href="%s" title="the worst frame in the viewer">%s</a>' % (html.escape(link(s["worst_ssim"][1]["id"])), cells[6])
         out.append("<tr>" + "".join("<td>%s</td>" % c for c in cells) + "</tr>")
     return "\n".join(out) + "\n</tbody></table></div>"
 
 
-def write_section(records, out_dir, baseline_scene=BASELINE_SCENE, colours=None):
+def write_section(records, out_dir, baseline_scene=BASELINE_SCENE, colours=None, table=rs.BUILT_IN_METRICS):
     """Writes the figures, each setting in its report-wide colour (`colours`, palette.py's, by
     default those of `records`); returns the section as (HTML, Markdown lines), or None when no
-    path has two frames."""
+    path has two frames. `table`: the result set's metric table."""
     colours = colours or palette.setting_colours(records)
     seqs = sequences(records)
     if not seqs:
         return None
-    baseline = baseline_summaries(seqs, baseline_scene)
+    baseline = baseline_summaries(seqs, baseline_scene, table)
     figures = []
     by_path = collections.defaultdict(dict)
     for k, rows in seqs.items():
@@ -269,7 +279,7 @@ def write_section(records, out_dir, baseline_scene=BASELINE_SCENE, colours=None)
         title = "%s at %s along %s: per technique and frame" % (scene, res, path)
         rows = [r for seq in group.values() for r in seq]
         figures.append(((scene, res, path), save(failure_figure(group, title, baseline, colours), out_dir, name, rows)))
-    rows = summary_rows(seqs, baseline, baseline_scene)
+    rows = summary_rows(seqs, baseline, baseline_scene, table)
     with_baseline = bool(baseline)
     beyond = ("the slowest frame's 95% interval lies wholly above the path's median" if all("ci_low" in r["frame_ms"] for rows in seqs.values()
                                                                                              for r in rows)
@@ -281,8 +291,8 @@ def write_section(records, out_dir, baseline_scene=BASELINE_SCENE, colours=None)
     intro += (", beside the same setting's median SSIM and frame time along %s's path (the baseline)." % baseline_scene if with_baseline
               else ". (No baseline: the result set has no camera path of %s.)" % baseline_scene)
     intro += " The worst-frame SSIM opens that frame in the viewer."
-    page = ["<h2 id=\"failures\">Where methods fail</h2>", "<p>%s</p>" % html.escape(intro), html_table(rows, viewer.link, with_baseline)]
-    md = ["", "## Where methods fail", "", intro, ""] + markdown_table(rows, viewer.link, with_baseline)
+    page = ["<h2 id=\"failures\">Where methods fail</h2>", "<p>%s</p>" % html.escape(intro), html_table(rows, viewer.link, with_baseline, table)]
+    md = ["", "## Where methods fail", "", intro, ""] + markdown_table(rows, viewer.link, with_baseline, table)
     for (scene, res, path), svg in figures:
         page += ["<h3>%s at %s along %s</h3>" % (html.escape(scene), res, html.escape(path)), figure_files.embed_html(svg, out_dir)]
         md += ["", "### %s at %s along %s" % (scene, res, path), "", "![](%s)" % os.path.relpath(svg, out_dir)]

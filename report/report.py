@@ -79,7 +79,8 @@ def bar_words(times):
 
 
 def speed_accuracy_figure(v, title, clock=timing.WALL, colours=None):
-    """Time on `clock` (the wall clock's frame_ms by default) against SSIM and FLIP, a point per
+    """Time on `clock` (the wall clock's frame_ms by default) against each scored metric of the result
+    set's table (SSIM and FLIP), a point per
     applicable setting that has that clock (its median over the runs, a bar over that median's 95%
     interval, or from its best to its worst run in a result set without intervals), the Pareto
     front through the settings, the reference's frame time (wall clock only: it has no other), the
@@ -94,15 +95,15 @@ def speed_accuracy_figure(v, title, clock=timing.WALL, colours=None):
     untimed = [s.name for s in ordered if not time[s.name]]
     wall = clock is timing.WALL
     col = colours or palette.setting_colours([r for s in v.settings.values() for r in s.records])
-    fig, axes = plt.subplots(len(regions), 2, figsize=(13, 4.6 * len(regions)), squeeze=False)
+    scored = [m for m in v.table if m["scored"]]
+    fig, axes = plt.subplots(len(regions), len(scored), figsize=(6.5 * len(scored), 4.6 * len(regions)), squeeze=False)
     fig.subplots_adjust(left=0.06, right=0.70, top=0.9 if len(regions) > 1 else 0.86, bottom=0.1, hspace=0.32, wspace=0.25)
-    panels = [(axes[i][j], region, suffix, name, name == "ssim") for i, (region, suffix, _) in enumerate(regions)
-              for j, name in enumerate(("ssim", "flip"))]
+    panels = [(axes[i][j], region, suffix, m) for i, (region, suffix, _) in enumerate(regions) for j, m in enumerate(scored)]
     handles = {s.name: Line2D([], [], ls="none", marker="o", ms=5, color=col[s.name], mec="black", mew=0.3) for s in settings}
-    for ax, region, suffix, name, better_high in panels:
+    for ax, region, suffix, m in panels:
         points = []
         for s in settings:
-            y = s.score(region, name)
+            y = s.score(region, m["key"])
             if y is None:
                 continue
             t = time[s.name]
@@ -114,7 +115,7 @@ def speed_accuracy_figure(v, title, clock=timing.WALL, colours=None):
         shown = points * (2 if len(points) == 1 else 1)
         ax.scatter([p[0] for p in shown], [p[1] for p in shown], color=[col[p[2]] for p in shown], s=26, edgecolors="black",
                    linewidths=0.3, zorder=3).set_urls([point_links(v.settings[p[2]].records[:1])[0] for p in shown])
-        front = rs.pareto_front(points, better_high)
+        front = rs.pareto_front(points, rs.higher_is_better(m))
         handles["Pareto front"] = ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", lw=1)[0]
         if wall:
             handles["reference"] = ax.axvline(v.reference_ms, color="grey", ls="--", lw=1)
@@ -125,7 +126,7 @@ def speed_accuracy_figure(v, title, clock=timing.WALL, colours=None):
         ax.set_xlim(lo / 1.25, hi * 1.25)
         ax.set_xlabel("%s per frame (ms, log scale)\nmedian over runs; %s" % (clock.what, bar_words([time[s.name] for s in settings])),
                       fontsize=8)
-        ax.set_ylabel(("SSIM%s (higher is better)" if name == "ssim" else "FLIP mean%s (lower is better)") % suffix)
+        ax.set_ylabel("%s%s (%s is better)" % (m["label"], suffix, m["better"]))
         ax.grid(alpha=0.3, which="both")
         axis_format.score_axis(ax, [p[1] for p in points])
         ax.points = points
@@ -246,9 +247,13 @@ document.querySelectorAll('table.sortable th').forEach((th, i) => th.addEventLis
 </script>"""
 
 
-def runs_table(records, out_dir, result_dir):
-    head = ["run", "image", "scene", "view", "size", "technique", "parameters", "frame ms", "SSIM", "FLIP (LDR)", "HDR-FLIP", "PSNR dB",
-            "SSIM refl./refr.", "FLIP (LDR) refl./refr.", "HDR-FLIP refl./refr.", "temporal", "maps"]
+def runs_table(records, out_dir, result_dir, table):
+    """Every run: its images, setting, frame time, every metric of `table` on the whole image and the
+    summarised ones on the reflective and refractive pixels, temporal error and error maps."""
+    shown = [("whole", m, "") for m in table] + [("masked", m, " refl./refr.") for m in rs.summarised(table)]
+    head = (["run", "image", "scene", "view", "size", "technique", "parameters", "frame ms"] +
+            [m["label"] + suffix for _, m, suffix in shown] + ["temporal", "maps"])
+    maps_of = ["diff"] + [m["key"] for m in table if m["colormap"]]
     rows = []
     for r in records:
         img = rs.result_link(out_dir, result_dir, r["images"]["png"])
@@ -257,7 +262,7 @@ def runs_table(records, out_dir, result_dir):
             # The maps the record lists (result sets older than that list had these three).
             written = r["metrics"].get("maps") or ("diff", "ssim", "flip")
             maps = " ".join('<a href="%s">%s</a>' % (html.escape(rs.result_link(out_dir, result_dir, r["images"]["maps"] + "/" + m + ".png")), m)
-                            for m in ("diff", "ssim", "flip", "flip_hdr") if m in written)
+                            for m in maps_of if m in written)
         cells = [
             '<td data-v="%d"><a href="%s" title="open in the viewer">%d</a></td>' % (r["index"], html.escape(viewer.link(r["id"])), r["index"]),
             '<td><a href="%s"><img src="%s" width="96" loading="lazy" alt="%s"></a> <a href="%s">exr</a> <a href="%s">ref</a></td>'
@@ -269,13 +274,7 @@ def runs_table(records, out_dir, result_dir):
             "<td>%s</td>" % html.escape(r["label"]),
             "<td>%s</td>" % html.escape(r["parameters_text"]),
             "<td>%.2f</td>" % r["frame_ms"]["median"],
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "ssim"), "%.4f", missing=""),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "flip"), "%.4f", missing=""),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "flip_hdr"), "%.4f"),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "whole", "psnr"), "%.2f", missing=""),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "ssim"), "%.4f", missing=""),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "flip"), "%.4f", missing=""),
-            "<td>%s</td>" % rs.fmt(rs.metric(r, "masked", "flip_hdr"), "%.4f"),
+        ] + ["<td>%s</td>" % rs.metric_cell(m, rs.metric(r, region, m["key"])) for region, m, _ in shown] + [
             "<td>%s</td>" % rs.fmt(r.get("temporal_error"), "%.5f", missing=""),
             "<td>%s</td>" % maps,
         ]
@@ -284,31 +283,28 @@ def runs_table(records, out_dir, result_dir):
             + "\n</tbody></table>")
 
 
-def markdown_summary(records):
-    """Per scene and resolution: each variant's mean frame time, SSIM and FLIP, on the whole image and
-    on the reflective and refractive pixels where the scene has them."""
+def markdown_summary(records, table):
+    """Per scene and resolution: each variant's mean frame time and summarised metrics (of `table`),
+    on the whole image and on the reflective and refractive pixels where the scene has them."""
     lines = []
     groups = collections.defaultdict(list)
     for r in records:
         groups[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(groups.items()):
         regions = regions_of(rows) or [REGIONS[0]]
-        metrics = [(region, name) for region, _, _ in regions for name in ("ssim", "flip", "flip_hdr")]
-        suffixes = {region: suffix for region, suffix, _ in regions}
+        metrics = [(region, suffix, m) for region, suffix, _ in regions for m in rs.summarised(table)]
         lines += ["", "### %s at %s" % (scene, res), "",
                   "| technique | frames | frame ms (median, mean over frames) | %s |" %
-                  " | ".join(rs.METRIC_LABELS[name] + suffixes[region] for region, name in metrics),
+                  " | ".join(m["label"] + suffix for _, suffix, m in metrics),
                   "|---|---|---|" + "---|" * len(metrics)]
         by = collections.defaultdict(list)
         for r in rows:
             by[rs.variant(r)].append(r)
         for v, vs in sorted(by.items(), key=lambda item: rs.natural_key(item[0])):
             lines.append("| %s | %d | %.2f | %s |" % (v, len(vs), statistics.mean(r["frame_ms"]["median"] for r in vs), " | ".join(
-                # HDR-FLIP shows a dash where the result set predates it.
-                rs.fmt(rs.mean_known(rs.metric(r, region, name) for r in vs), "%.4f", missing="-" if name == "flip_hdr" else "")
-                for region, name in metrics)))
+                rs.metric_cell(m, rs.mean_known(rs.metric(r, region, m["key"]) for r in vs)) for region, _, m in metrics)))
         lines.append("| reference (whitted) | | %.2f | %s |" % (statistics.median(r["reference"]["frame_ms"] for r in rows),
-                                                              " | ".join("1" if name == "ssim" else "0" for _, name in metrics)))
+                                                              " | ".join(rs.fmt(rs.best_value(m), "%g") for _, _, m in metrics)))
     return "\n".join(lines)
 
 
@@ -359,13 +355,14 @@ def main():
     records = rs.load(a.result_dir)
     if not records:
         sys.exit("report: %s holds no runs" % a.result_dir)
+    table = rs.metric_table(a.result_dir)
     if viewer.missing():
         sys.exit("report: " + viewer.missing())
     # Every image the report reads, checked before anything is written.
     try:
         for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
             images.check(os.path.join(a.result_dir, path))
-        verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir)}
+        verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir, table)}
     except images.ImageError as e:
         print("report: %s" % e, file=sys.stderr)
         sys.exit(2)
@@ -388,7 +385,7 @@ def main():
         for path, prs in sorted(paths.items()):
             figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path), colours))
         sections.append((scene, res, figs))
-    failure_html, failure_md = failures.write_section(records, a.out, a.baseline, colours) or ("", [])
+    failure_html, failure_md = failures.write_section(records, a.out, a.baseline, colours, table) or ("", [])
     device_html, device_md = device.write(a.result_dir, records)
     verdict_html, verdict_md = verdict.write(list(verdicts.values()), viewer.link)
 
@@ -407,16 +404,16 @@ def main():
         verdict=verdict_html, device=device_html, runs=len(records),
         csv=html.escape(rs.result_link(a.out, a.result_dir, "results.csv")), json=html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
         viewer=html.escape(viewer.serve_command(a.result_dir, a.out)), clock=html.escape(timing.clock_note(records)),
-        figures="\n".join(figure_html), failures=failure_html, table=runs_table(records, a.out, a.result_dir), script=TABLE_SCRIPT)
+        figures="\n".join(figure_html), failures=failure_html, table=runs_table(records, a.out, a.result_dir, table), script=TABLE_SCRIPT)
     with open(os.path.join(a.out, "index.html"), "w") as f:
         f.write(page)
     viewer.write_viewer(records, a.out, a.result_dir, title,
                         {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()},
-                        palette.hex_colours(colours))
+                        palette.hex_colours(colours), table)
     md = ["# " + title] + verdict_md + ["", "## Measured on"] + device_md + ["", "## Every setting", "",
                                                     "%d runs; figures in figures/ (SVG and PDF); every run in index.html. %s" % (
                                                         len(records), timing.clock_note(records)),
-                                                    markdown_summary(records)]
+                                                    markdown_summary(records, table)]
     for scene, res, figs in sections:
         md += ["", "## %s at %s" % (scene, res)] + ["![](%s) ([PDF](%s))" % (os.path.relpath(f, a.out), os.path.relpath(f, a.out)[:-4] + ".pdf")
                                                     for f in figs]

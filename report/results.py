@@ -14,6 +14,50 @@ import sys
 import jsonschema
 
 SCHEMA_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "results.schema.json")
+MIGRATIONS_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments", "results.migrations.json")
+
+
+def migrations():
+    """The steps that take an older record to the current schema_version (results.migrations.json)."""
+    with open(MIGRATIONS_PATH) as f:
+        return json.load(f)["steps"]
+
+
+MIGRATIONS = migrations()
+SCHEMA_VERSION = MIGRATIONS[-1]["to"]
+
+
+def _renamed(values, rename, prefixes):
+    """`values` (a record's stages or counters) with its keys renamed; values that meet under one
+    name add up, number by number."""
+    out = {}
+    for key, value in values.items():
+        key = rename.get(key, key)
+        for old, new in prefixes.items():
+            if key.startswith(old):
+                key = new + key[len(old):]
+        if key in out and isinstance(value, dict):
+            out[key] = {k: out[key].get(k, 0.0) + v for k, v in value.items()}
+        elif key in out:
+            out[key] += value
+        else:
+            out[key] = value
+    return out
+
+
+def migrate(record):
+    """The record as the current schema_version has it: the one place old result sets' names are
+    read (each step of results.migrations.json in turn, from the record's version; none is version 1)."""
+    version = record.get("schema_version", 1)
+    for step in MIGRATIONS:
+        if step["from"] < version:
+            continue
+        for field in set(step.get("rename", {})) | set(step.get("rename_prefixes", {})):
+            if field in record:
+                record[field] = _renamed(record[field], step.get("rename", {}).get(field, {}), step.get("rename_prefixes", {}).get(field, {}))
+        version = step["to"]
+    record["schema_version"] = version
+    return record
 
 
 def is_result_set(result_dir):
@@ -23,21 +67,22 @@ def is_result_set(result_dir):
 
 
 def load(result_dir):
-    """The records of a result set, ordered by run index: results.json, or where the runner has not
+    """The records of a result set (migrated to the current schema_version), ordered by run index:
+    results.json, or where the runner has not
     written it (still running, or killed), the records in runs/ themselves, which lack only what
     needs the whole set (temporal errors); `hybridlab report` or `hybridlab run --resume` writes
     results.json."""
     path = os.path.join(result_dir, "results.json")
     if os.path.isfile(path):
         with open(path) as f:
-            return json.load(f)
+            return [migrate(r) for r in json.load(f)]
     runs = os.path.join(result_dir, "runs")
     records = []
     # Temporary files of an interrupted write start with a dot: not records.
     for name in os.listdir(runs):
         if name.endswith(".json") and not name.startswith("."):
             with open(os.path.join(runs, name)) as f:
-                records.append(json.load(f))
+                records.append(migrate(json.load(f)))
     sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (result_dir, len(records), runs))
     return sorted(records, key=lambda r: r["index"])
 
@@ -82,23 +127,72 @@ def resolution(r):
     return "%dx%d" % (r["width"], r["height"])
 
 
-# The names the tables give the metrics: FLIP on the display images and HDR-FLIP on the linear
-# ones (Andersson et al. 2021) are told apart wherever both are shown.
-METRIC_LABELS = {"ssim": "SSIM", "flip": "FLIP (LDR)", "flip_hdr": "HDR-FLIP", "psnr": "PSNR dB"}
+def _built_in_metric_table():
+    """The metric table of metrics/metric_table.h, the one place it is defined, as a result set
+    carries it (experiment.json's "metric_table"): what sets written before they carried one were
+    scored with."""
+    header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "metrics", "metric_table.h")
+    with open(header) as f:
+        text = f.read()
+    table = text[text.index("kMetricTable[] = {"):]
+    number = lambda v: None if v == "kUnbounded" else float(v)
+    rows = re.findall(r'^\s*\{"(\w+)", "([^"]*)", Better::(Higher|Lower), ([\w.]+), ([\w.]+), "([\w.]+)", "(\w*)", (true|false), (true|false), (\d+), [\d.]+\},$',
+                      table[:table.index("};")], re.M)
+    if not rows:
+        raise RuntimeError("no metrics in %s" % header)
+    return [{"key": key, "label": label, "better": better.lower(), "range": [number(low), number(high)], "field": field,
+             "colormap": colormap or None, "scored": scored == "true", "summarised": summarised == "true", "digits": int(digits)}
+            for key, label, better, low, high, field, colormap, scored, summarised, digits in rows]
+
+
+BUILT_IN_METRICS = _built_in_metric_table()
+_FIELDS = {m["key"]: m["field"] for m in BUILT_IN_METRICS}
+
+
+def metric_table(result_dir):
+    """The metrics a result set was scored with, in the order tables list them: experiment.json's
+    "metric_table" (the runner writes it), else the built-in table. Each is a dict with "key",
+    "label", "better" ("higher" or "lower"), "range" ([low, high], None where unbounded), "field",
+    "colormap" (None without an error map), "scored" (the verdict ranks by it) and "summarised"
+    (summary tables show it) and "digits" (the decimals tables show)."""
+    try:
+        with open(os.path.join(result_dir, "experiment.json")) as f:
+            table = json.load(f).get("metric_table")
+    except (OSError, ValueError, AttributeError):
+        table = None
+    return table or BUILT_IN_METRICS
+
+
+def summarised(table):
+    """The metrics of `table` that summary tables show."""
+    return [m for m in table if m["summarised"]]
+
+
+def higher_is_better(m):
+    return m["better"] == "higher"
+
+
+def metric_cell(m, value, missing="-"):
+    """A table cell of metric `m`'s `value`, at its decimals."""
+    return fmt(value, "%%.%df" % m["digits"], missing)
+
+
+def best_value(m):
+    """The value of an image equal to its reference (the best end of the range); None where unbounded."""
+    return m["range"][1] if higher_is_better(m) else m["range"][0]
 
 
 def metric(r, region, name):
-    """SSIM, RMSE, PSNR (dB), FLIP or HDR-FLIP mean of a record on 'whole' or 'masked'; None if
-    absent (the region, or the metric: a config's `metrics` may leave it out, and result sets
-    written before HDR-FLIP have none)."""
-    m = r["metrics"].get(region)
-    if not m:
-        return None
-    if name in ("flip", "flip_hdr"):
-        return m[name]["mean"] if name in m else None
-    if name == "psnr":
-        return m.get("psnr_db")
-    return m.get(name)
+    """The value of metric `name` (a key of the metric table) of a record on 'whole' or 'masked';
+    None if absent (the region, or the metric: a config's `metrics` may leave it out, and older
+    result sets lack the metrics added since). A metric's value lies at its field (a dotted path)
+    in the region's scores; a metric added outside the built-in table has its key for field."""
+    value = r["metrics"].get(region)
+    for part in _FIELDS.get(name, name).split("."):
+        if not isinstance(value, dict) or part not in value:
+            return None
+        value = value[part]
+    return value
 
 
 def fmt(value, spec="%.3f", missing="-"):
@@ -122,34 +216,19 @@ def _stage_vocabulary():
 STAGE_VOCABULARY = _stage_vocabulary()
 STAGE_KINDS = [name for name, _ in STAGE_VOCABULARY]
 
-# Result sets written before the vocabulary name some stages otherwise: read under the names they
-# have now. Two were several kinds of work in one and stay as they are (charted as such): `raster`
-# (heuristic_rt's and ssr_fallback's rasterizer frame: shadow maps, G-buffer, lighting, read-back)
-# and `other` (layered_em's rasterizer frame with the lens pass, and the lens composited).
-OLD_STAGE_NAMES = {"rast": "raster", "heur": "heuristic", "rayt": "trace", "ray_trace": "trace",
-                   "gbuffer_rays": "gbuffer.rays", "gbuffer_upload": "gbuffer.upload", "visible_pixels": "heuristic.visible_pixels",
-                   "seam_blur": "blend.seam_blur", "composite": "blend", "vertex_ray_tracing": "trace.lens_vertices",
-                   "texture_coordinates": "lens.texture_coordinates", "tessellation": "lens.tessellation"}
 # The stages of the rasterizer's frame (techniques/shared/raster_stages.h) but a technique's own
 # passes (ssr, lens.draw): the "raster" time of the papers' tables.
 RASTERIZER_STAGES = ("shadow_maps", "gbuffer", "gbuffer.upload", "heuristic.visible_pixels", "lighting", "readback", "overhead", "raster")
 
 
-def stage_name(name):
-    return OLD_STAGE_NAMES.get(name, name)
-
-
 def stage_kind(name):
     """The kind of work a stage is charted under: its name before the first dot."""
-    return stage_name(name).split(".")[0]
+    return name.split(".")[0]
 
 
 def stages(r):
-    """A record's median stage times (ms) by their names in the vocabulary."""
-    out = {}
-    for name, s in r["stages"].items():
-        out[stage_name(name)] = out.get(stage_name(name), 0.0) + s["median"]
-    return out
+    """A record's median stage times (ms) by name."""
+    return {name: s["median"] for name, s in r["stages"].items()}
 
 
 def stage_kinds(r):
@@ -166,9 +245,9 @@ def kind_order(kinds):
 
 
 def stage(r, name, missing=None):
-    """The median time (ms) of a record's stage `name` (either vocabulary; exactly that stage, not
-    its details); `missing` if the technique has no such stage."""
-    return stages(r).get(stage_name(name), missing)
+    """The median time (ms) of a record's stage `name` (exactly that stage, not its details);
+    `missing` if the technique has no such stage."""
+    return stages(r).get(name, missing)
 
 
 def raster_ms(r, missing=None):

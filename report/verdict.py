@@ -3,11 +3,13 @@
 A setting (a technique with one parameter set) is summarised over the runs of one scene and size
 (every view and frame): its frame time is the median over those runs of each run's median frame
 time, with the 95% interval of that median beside it (timing.py; the best and the worst run in a
-result set without intervals); its SSIM, FLIP (LDR) and HDR-FLIP (on the whole image and on the
-reflective/refractive pixels) are medians over the same runs. From these:
+result set without intervals); its summarised metrics (the result set's metric table: SSIM, FLIP
+(LDR) and HDR-FLIP, on the whole image and on the reflective/refractive pixels) are medians over
+the same runs. From these:
 
 - the Pareto-optimal settings: no other setting is at least as fast and at least as good on every
-  score (SSIM and FLIP; HDR-FLIP is shown beside them), and strictly better in one; each marked
+  score (the table's scored metrics: SSIM and FLIP; HDR-FLIP, which judges the same error on the
+  linear images, is shown beside them), and strictly better in one; each marked
   where it is tied in time with the next faster one;
 - per quality threshold (SSIM >= 0.99, 0.97, 0.95, whole image and reflective/refractive pixels)
   the fastest setting reaching it, with its speed-up over the reference and over `rt_only`; where
@@ -36,10 +38,8 @@ import timing
 
 THRESHOLDS = (0.99, 0.97, 0.95)
 REGIONS = (("whole", "whole image"), ("masked", "refl./refr. pixels"))
-SCORES = (("whole", "ssim", True), ("whole", "flip", False), ("masked", "ssim", True), ("masked", "flip", False))
-# Shown beside the scores but not one of them: HDR-FLIP (Andersson et al. 2021) judges the same
-# error as FLIP on the linear images, so the Pareto front stays on the display images' scores.
-SHOWN = SCORES + (("whole", "flip_hdr", False), ("masked", "flip_hdr", False))
+# The metric the quality thresholds are set on.
+THRESHOLD_METRIC = "ssim"
 # Walewski 2019's "ray tracing only": the speed-up every hybrid is read against.
 RT_ONLY = "rt_only"
 
@@ -47,13 +47,16 @@ RT_ONLY = "rt_only"
 class Setting:
     """One technique setting over the runs of one scene and size."""
 
-    def __init__(self, name, records):
+    def __init__(self, name, records, table):
         self.name = name
         self.records = records
         self.technique = records[0]["technique"]
         self.time = timing.setting_time(records)  # the median of the runs' medians, and its bar
         self.ms = self.time.ms
-        self.scores = {(region, name): self._median(region, name) for region, name, _ in SHOWN}
+        # (region, metric, higher is better) of the scores that rank settings.
+        self.ranked = [(region, m["key"], rs.higher_is_better(m)) for region, _ in REGIONS for m in table if m["scored"]]
+        self.scores = {(region, m["key"]): self._median(region, m["key"]) for region, _ in REGIONS
+                       for m in table if m["scored"] or m["summarised"]}
         self.not_applicable = None  # the reason, where the setting changes nothing on the scene
 
     def _median(self, region, name):
@@ -62,15 +65,15 @@ class Setting:
         return statistics.median(values) if values else None
 
     def score(self, region, name):
-        return self.scores[(region, name)]
+        return self.scores.get((region, name))
 
 
-def settings_of(records):
-    """The settings of one scene and size's records, by name."""
+def settings_of(records, table):
+    """The settings of one scene and size's records, by name, scored by the metrics of `table`."""
     by = collections.defaultdict(list)
     for r in records:
         by[rs.variant(r)].append(r)
-    return {name: Setting(name, rows) for name, rows in sorted(by.items())}
+    return {name: Setting(name, rows, table) for name, rows in sorted(by.items())}
 
 
 def image_digest(result_dir, r):
@@ -103,7 +106,7 @@ def mark_not_applicable(settings, result_dir):
 
 def dominates(a, b):
     """`a` is at least as fast and as good as `b` on every score both have, and better in one."""
-    pairs = [(a.ms, b.ms, False)] + [(a.score(rg, n), b.score(rg, n), hi) for rg, n, hi in SCORES]
+    pairs = [(a.ms, b.ms, False)] + [(a.score(rg, n), b.score(rg, n), hi) for rg, n, hi in a.ranked]
     pairs = [(x, y, hi) for x, y, hi in pairs if x is not None and y is not None]
     no_worse = all((x >= y) if hi else (x <= y) for x, y, hi in pairs)
     better = any((x > y) if hi else (x < y) for x, y, hi in pairs)
@@ -128,7 +131,7 @@ def fastest_of(candidates, tolerance):
 def fastest_reaching(settings, region, threshold, tolerance=timing.DEFAULT_TOLERANCE):
     """The fastest applicable settings whose median SSIM on `region` is at least `threshold`: one,
     or several tied in time; [] when none reaches it."""
-    ok = [s for s in settings.values() if not s.not_applicable and (s.score(region, "ssim") or 0.0) >= threshold]
+    ok = [s for s in settings.values() if not s.not_applicable and (s.score(region, THRESHOLD_METRIC) or 0.0) >= threshold]
     return fastest_of(ok, tolerance)
 
 
@@ -166,19 +169,20 @@ def rt_only_setting(settings):
     if not runs:
         return None
     default = [s for s in runs if not s.records[0]["parameters_text"]]
-    return default[0] if default else max(runs, key=lambda s: s.score("whole", "ssim") or 0.0)
+    return default[0] if default else max(runs, key=lambda s: s.score("whole", THRESHOLD_METRIC) or 0.0)
 
 
 class SceneVerdict:
-    def __init__(self, scene, size, records, result_dir):
+    def __init__(self, scene, size, records, result_dir, table):
         self.scene, self.size = scene, size
-        self.settings = settings_of(records)
+        self.table = table
+        self.settings = settings_of(records, table)
         mark_not_applicable(self.settings, result_dir)
         self.reference_ms = statistics.median(r["reference"]["frame_ms"] for r in records)
         self.tolerance = timing.tolerance(records)
         self.rt_only = rt_only_setting(self.settings)
         self.pareto = pareto(self.settings)
-        self.regions = [(rg, label) for rg, label in REGIONS if any(s.score(rg, "ssim") is not None for s in self.settings.values())]
+        self.regions = [(rg, label) for rg, label in REGIONS if any(s.score(rg, THRESHOLD_METRIC) is not None for s in self.settings.values())]
         # Per row: the settings reaching the threshold that none reaching it beats ([] for none).
         self.thresholds = [(rg, label, t, fastest_reaching(self.settings, rg, t, self.tolerance))
                            for rg, label in self.regions for t in THRESHOLDS]
@@ -261,9 +265,9 @@ class SceneVerdict:
         for region, label in self.regions:
             reached = [(t, tied) for rg, _, t, tied in self.thresholds if rg == region and tied]
             if not reached:
-                best = max(self.applicable(), key=lambda s: s.score(region, "ssim") or 0.0)
+                best = max(self.applicable(), key=lambda s: s.score(region, THRESHOLD_METRIC) or 0.0)
                 parts.append("no setting reaches SSIM %.2f on the %s (best: %s, %s)" % (THRESHOLDS[-1], label, best.name,
-                                                                                      rs.fmt(best.score(region, "ssim"), "%.4f")))
+                                                                                      rs.fmt(best.score(region, THRESHOLD_METRIC), "%.4f")))
                 continue
             t, tied = reached[0]
             tie = Tie(tied, self.tolerance)
@@ -285,11 +289,13 @@ class SceneVerdict:
         return text + "."
 
 
-def verdicts(records, result_dir):
+def verdicts(records, result_dir, table=None):
+    """A verdict per scene and size; `table`: the metric table (by default the result set's)."""
+    table = table or rs.metric_table(result_dir)
     groups = collections.defaultdict(list)
     for r in records:
         groups[(r["scene"], rs.resolution(r))].append(r)
-    return [SceneVerdict(scene, size, rows, result_dir) for (scene, size), rows in sorted(groups.items())]
+    return [SceneVerdict(scene, size, rows, result_dir, table) for (scene, size), rows in sorted(groups.items())]
 
 
 def speedup_text(value, spec="%.2f"):
@@ -310,15 +316,15 @@ def time_bar_text(s, as_interval):
 def pareto_table(v):
     regions = ["whole"] + (["masked"] if any(rg == "masked" for rg, _ in v.regions) else [])
     suffix = {"whole": "", "masked": " refl./refr."}
-    scores = [(region, name) for region in regions for name in ("ssim", "flip", "flip_hdr")]
+    scores = [(region, m) for region in regions for m in rs.summarised(v.table)]
     as_interval = any(s.time.is_interval for s in v.pareto)
     header = ["setting", "frame ms (median)", "95% interval ms" if as_interval else "best-worst ms", "tied in time with", "x ref.",
-              "x rt_only"] + [rs.METRIC_LABELS[name] + suffix[region] for region, name in scores]
+              "x rt_only"] + [m["label"] + suffix[region] for region, m in scores]
     rows = []
     for s, tied in zip(v.pareto, v.tied_with_faster(v.pareto)):
         ref, rt = v.speedups(s)
         rows.append([s, "%.2f" % s.ms, time_bar_text(s, as_interval), tied or "", speedup_text(ref), speedup_text(rt)]
-                    + [rs.fmt(s.score(region, name), "%.4f") for region, name in scores])
+                    + [rs.metric_cell(m, s.score(region, m["key"])) for region, m in scores])
     return header, rows
 
 

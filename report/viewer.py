@@ -1,7 +1,9 @@
 """The side-by-side technique viewer of a report: viewer.html, and viewer/ beside it holding the
 viewer's ES modules (report/viewer/*.js), its styles and settings.json (what the report knows that
 the records do not: the title, the reference's parameters, the settings found not applicable, the
-report's colour of each setting, the error maps' colour tables, and where the result set lies).
+report's colour of each setting, the metric table (the result set's, or the built-in one for a set
+older than that), the steps that read older records as current ones (results.migrations.json),
+the error maps' colour tables, and where the result set lies).
 
 The viewer reads the result set itself: results.json, and the images the records name (EXR
 decoded in the browser, PNG natively), with no second copy, so its own files are the same few
@@ -14,6 +16,8 @@ import shutil
 import tomllib
 
 import matplotlib
+
+import results as rs
 
 VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewer")
 # zlib for the EXRs' ZIP blocks (exr.js): Debian's node-pako, as an ES module; copied as .js, the
@@ -55,10 +59,10 @@ def serve_command(result_dir, out_dir):
     return command
 
 
-def write_viewer(records, out_dir, result_dir, title, not_applicable, colours):
+def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, metric_table):
     """viewer.html and viewer/ in `out_dir` for the result set in `result_dir`; `not_applicable`:
     {(scene, size, setting name): why} for the settings the verdict left out; `colours`: {setting
-    name: "#rrggbb"}, the report's."""
+    name: "#rrggbb"}, the report's; `metric_table`: results.metric_table's."""
     viewer_dir = os.path.join(out_dir, "viewer")
     shutil.rmtree(viewer_dir, ignore_errors=True)  # whatever an earlier report left there
     os.makedirs(viewer_dir)
@@ -69,6 +73,8 @@ def write_viewer(records, out_dir, result_dir, title, not_applicable, colours):
         "reference_parameters": reference_parameters(result_dir),
         "not_applicable": [[scene, size, name, why] for (scene, size, name), why in sorted(not_applicable.items())],
         "colours": colours,
+        "metrics": metric_table,
+        "migrations": rs.MIGRATIONS,
         # The runner's error maps' colour tables (OpenCV takes its viridis and magma from
         # matplotlib): the viewer reads a map's values back from its colours and draws its own.
         "colormaps": {name: colour_table(name) for name in ("viridis", "magma")},

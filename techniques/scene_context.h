@@ -19,7 +19,6 @@ public:
 
     // Built at first call (time recorded in rayScene().buildMilliseconds()), then moved to `time`.
     RayScene& rayScene(double time);
-    bool hasRayScene() const { return rays_ != nullptr; }
 
     // Created at first call (uploads the scene to the GPU); throws VulkanUnavailable without a device.
     // With `features.rayTracing`, a rasterizer of its own on the ray-tracing device, the one
@@ -30,7 +29,6 @@ public:
     // call (on VulkanDevice::shared({.rayTracing = true})), then moved to `time`. Throws
     // VulkanUnavailable when the device has no ray tracing.
     DeviceRayScene& deviceRayScene(double time);
-    bool hasDeviceRayScene() const { return deviceRays_ != nullptr; }
 
 private:
     const Scene& scene_;

@@ -5,11 +5,13 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/image/image.h"
 #include "common/scene/camera.h"
+#include "techniques/cache_bake_command.h"
 #include "techniques/parameters.h"
 #include "techniques/scene_context.h"
 
@@ -69,6 +71,9 @@ struct TechniqueInfo {
     // (1): what `hybridlab run --shard` balances shards by (shard_partition.h). A class, not a
     // measurement of any one scene.
     double relativeCost = 1.0;
+    // The subcommand that bakes what prepare() caches on disk ahead of rendering, for a technique
+    // that caches anything (layered_em: `hybridlab bake-em`); the program finds it here.
+    std::optional<CacheBakeCommand> bakeCommand;
 };
 
 // The registry (registry.cpp), in display order.

@@ -134,7 +134,6 @@ DirectoryLock::DirectoryLock(const fs::path& dir) : file_(dir / kFileName) {
         if (!holder) continue;  // released meanwhile
         if (isStale(*holder)) {
             removeStaleLock(file_, *holder);
-            tookOver_ = true;
             continue;
         }
         ::unlink(candidate.c_str());

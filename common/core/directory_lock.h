@@ -22,12 +22,9 @@ public:
     DirectoryLock& operator=(const DirectoryLock&) = delete;
 
     static constexpr const char* kFileName = ".lock";
-    // Whether the lock was taken over from a process that had died holding it.
-    bool tookOverStaleLock() const { return tookOver_; }
 
 private:
     std::filesystem::path file_;
-    bool tookOver_ = false;
 };
 
 }  // namespace hybridlab

@@ -133,7 +133,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         r.timer.end(cb);
     }
     if (request.hostGBuffer) {
-        r.timer.begin(cb, "gbuffer_upload");
+        r.timer.begin(cb, "gbuffer.upload");
         r.gbuffer.recordUpload(cb, *request.hostGBuffer);
         r.timer.end(cb);
         frame.draws = 0;
@@ -145,7 +145,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         frame.draws = r.gbuffer.record(cb, viewProj);
         r.timer.end(cb);
         if (request.occlusionQueries) {
-            r.timer.begin(cb, "visible_pixels");
+            r.timer.begin(cb, "heuristic.visible_pixels");
             r.gbuffer.recordVisiblePixelQueries(cb, viewProj, r.occlusion);
             r.timer.end(cb);
         }

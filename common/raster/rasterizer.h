@@ -35,7 +35,7 @@ struct RasterRequest {
     bool occlusionQueries = false;      // visible pixels per object by precise occlusion queries in a depth-equal pass
     // A G-buffer made on the host (primary rays: techniques/shared/ray_cast_gbuffer.h), holding every
     // colour target at the request's size: the G-buffer pass is skipped and these are uploaded in its
-    // place (stage "gbuffer_upload"); nothing of the G-buffer is read back and occlusion queries are
+    // place (stage "gbuffer.upload"); nothing of the G-buffer is read back and occlusion queries are
     // not available. Null: the G-buffer pass.
     const GBuffer* hostGBuffer = nullptr;
     // The colour targets were written on the device since gbufferStorage() at the request's size
@@ -61,10 +61,11 @@ struct RasterFrame {
     GBuffer gbuffer;                      // the requested targets
     Image lighting;                       // when RasterRequest::lighting: linear RGBA (the P-buffer)
     std::vector<std::uint64_t> visiblePixelsByQuery;  // per object, when RasterRequest::occlusionQueries
-    // GPU timestamps per pass, in order: shadow_maps (when shadows are on; near 0 when the maps were
-    // kept), gbuffer (depth pre-pass included; gbuffer_upload instead with a host G-buffer, none
-    // with one written on the device), visible_pixels (when asked), lighting (when asked), the
-    // request's own passes by name, readback (the copies).
+    // GPU timestamps per pass, in order, each named as the stage it is (techniques/stage_names.h):
+    // shadow_maps (when shadows are on; near 0 when the maps were kept), gbuffer (depth pre-pass
+    // included; gbuffer.upload instead with a host G-buffer, none with one written on the device),
+    // heuristic.visible_pixels (when asked), lighting (when asked), the request's own passes by
+    // name, readback (the copies).
     std::vector<RasterStageTime> gpuStages;
     // Wall clock: recording the commands, submission until completion, unpacking the read-back.
     double recordMilliseconds = 0.0, submitMilliseconds = 0.0, unpackMilliseconds = 0.0;

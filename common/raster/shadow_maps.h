@@ -32,7 +32,6 @@ public:
     int firstLayer(std::size_t light) const { return first_[light]; }
     int layerCount(std::size_t light) const { return count_[light]; }
     std::size_t layers() const { return layers_.size(); }
-    const std::vector<ShadowLayerData>& layerData() const { return layers_; }
 
     // For the lighting pass: the layer data and the depth array with a comparison sampler.
     VkBuffer layerBuffer() const { return layerBuffer_.buffer(); }

@@ -15,7 +15,8 @@ void addRunCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 void addExportPovCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
-void addBakeEmCommand(CLI::App& app);
+// The bake commands of the techniques that have one (TechniqueInfo::bakeCommand): `bake-em`.
+void addBakeCommands(CLI::App& app);
 void addBundleCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 // `hybridlab help [COMMAND]`: the program's help, or one command's; added last, so that it knows them all.

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addReportCommand(app);
     hybridlab::cli::addExportPovCommand(app);
     hybridlab::cli::addCompareCommand(app);
-    hybridlab::cli::addBakeEmCommand(app);
+    hybridlab::cli::addBakeCommands(app);
     hybridlab::cli::addBundleCommand(app);
     hybridlab::cli::addViewCommand(app);
     app.add_flag("--version")->description("Print the program version on one line, then exit; `--version --json`: this machine's device record "

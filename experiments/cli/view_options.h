@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/scene/view.h"
-#include "experiments/cli/number_validators.h"
+#include "common/core/cli_number_validators.h"
 
 namespace hybridlab::cli {
 

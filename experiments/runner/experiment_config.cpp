@@ -93,19 +93,14 @@ std::string parametersText(const ParameterList& set) {
     return text.empty() ? "the defaults" : text;
 }
 
-// The one list of `metrics` names, in the order results list them, each with the flag of the
-// config that records its choice (Config: ExperimentConfig, const or not).
-template <class Config>
-auto metricFlags(Config& c) {
-    return std::array{std::pair{"ssim", &c.metrics.ssim}, std::pair{"flip", &c.metrics.flip},
-                      std::pair{"flip_hdr", &c.metrics.flipHdr}, std::pair{"rmse", &c.metrics.rmse},
-                      std::pair{"psnr", &c.metrics.psnr}, std::pair{"temporal", &c.temporalError}};
-}
+// The `metrics` names, in the order results list them: the metric table's (metrics/metric_table.h)
+// and the temporal error between path frames.
+constexpr const char* kTemporal = "temporal";
 
 std::vector<std::string> allMetricNames() {
-    ExperimentConfig c;
     std::vector<std::string> names;
-    for (const auto& [name, flag] : metricFlags(c)) names.push_back(name);
+    for (const MetricDefinition& m : kMetricTable) names.push_back(m.key);
+    names.push_back(kTemporal);
     return names;
 }
 
@@ -118,7 +113,8 @@ void readMetricsAndKeep(const TomlTable& e, ExperimentConfig& c) {
     const std::vector<std::string> all = allMetricNames();
     const std::vector<std::string> metrics = e.choiceArray("metrics", all, all);
     if (metrics.empty()) e.fail("metrics", "an empty list measures nothing (metrics: " + commaSeparated(all) + ")");
-    for (const auto& [name, flag] : metricFlags(c)) *flag = contains(metrics, name);
+    for (const MetricDefinition& m : kMetricTable) c.metrics.chosen(m.key) = contains(metrics, m.key);
+    c.temporalError = contains(metrics, kTemporal);
     const std::vector<std::string> keep = e.choiceArray("keep", kKeepNames, kKeepNames);
     c.keepDebugImages = contains(keep, "debug_images");
     c.keepErrorMaps = contains(keep, "error_maps") && c.metrics.any();
@@ -354,8 +350,9 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
 
 std::vector<std::string> metricNames(const ExperimentConfig& config) {
     std::vector<std::string> names;
-    for (const auto& [name, chosen] : metricFlags(config))
-        if (*chosen) names.push_back(name);
+    for (const MetricDefinition& m : kMetricTable)
+        if (config.metrics.chosen(m.key)) names.push_back(m.key);
+    if (config.temporalError) names.push_back(kTemporal);
     return names;
 }
 

@@ -23,12 +23,12 @@
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
 #include "common/core/process_cpu_clock.h"
+#include "common/core/progress.h"
 #include "common/core/wall_clock.h"
 #include "experiments/runner/device_record.h"
 #include "experiments/runner/gpu_clocks.h"
 #include "experiments/runner/interleaved_timing.h"
 #include "experiments/runner/timing_statistics.h"
-#include "experiments/runner/progress.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/results_store.h"
 #include "experiments/runner/run_record.h"
@@ -77,6 +77,7 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, const
             {"runs_total", runsTotal},
             {"shard", {{"index", o.shardIndex}, {"count", o.shardCount}, {"partition", kPartition}, {"runs", runsInShard}, {"estimated_cost", estimatedCost}}},
             {"metrics", metricNames(config)},
+            {"metric_table", metricTableJson()},
             {"program", programVersionHash()},
             {"resolution_scale", config.resolutionScale},
             {"device", deviceRecord()}};

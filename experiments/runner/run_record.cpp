@@ -67,6 +67,7 @@ json imagesJson(const RunImages& i) {
 
 json toJson(const RunRecord& r) {
     json j;
+    j["schema_version"] = r.schemaVersion;
     j["index"] = r.index;
     j["id"] = r.id;
     j["scene"] = r.scene;
@@ -274,6 +275,7 @@ RunImages imagesFrom(const json& j, const std::string& where) {
 RunRecord fromJson(const json& j) {
     FieldReader f(j, "$");
     RunRecord r;
+    r.schemaVersion = f.getOptional<int>("schema_version").value_or(1);
     r.index = f.get<std::size_t>("index");
     r.id = f.get<std::string>("id");
     r.scene = f.get<std::string>("scene");

@@ -14,6 +14,10 @@
 
 namespace hybridlab {
 
+// The version of the record's format that toJson writes. A reader of an older record reads it as
+// this one through the steps of experiments/results.migrations.json, whose last step ends here.
+inline constexpr int kResultsSchemaVersion = 2;
+
 // The median, minimum and maximum of a time over the timed rounds; for the frame's clocks also the
 // median's distribution-free 95% interval (timing_statistics.h).
 struct Spread {
@@ -65,6 +69,9 @@ struct RunImages {
 };
 
 struct RunRecord {
+    // The format the record was written in: kResultsSchemaVersion, or an older record's own
+    // version (1 where it has none), which a round trip keeps.
+    int schemaVersion = kResultsSchemaVersion;
     // What ran.
     std::size_t index = 0;  // the run's place in the plan
     std::string id;

@@ -7,6 +7,7 @@
 import { ResultSet, REFERENCE } from './result_set.js';
 import { fit, zoomAbout, pan, imagePixel, cssTransform } from './view_transform.js';
 import { paneContent, nextErrorLayer } from './pane_content.js';
+import { metricReadout } from './metric_readout.js';
 import { loadImage, isLoading, valuesAt } from './images.js';
 import { actionOf, helpHtml } from './shortcuts.js';
 import { DISPLAY_TRANSFORMS, DEFAULT_TRANSFORM, drawImage, legendOf, legendHtml, pixelColour, runnerMapValues } from './display.js';
@@ -150,15 +151,9 @@ function infoHtml(c) {
   let time = `frame ${c.frameMs.toFixed(2)} ms`;
   if (c.stages) time += ': ' + Object.entries(c.stages).map(([k, v]) => `${escapeHtml(k)} ${v.toFixed(2)}`).join(', ');
   lines.push(`<div class="time">${time}</div>`);
-  const m = c.metrics;
-  if (m) {
-    const f = (v, d) => (v === null || v === undefined ? '-' : v.toFixed(d));
-    // HDR-FLIP is absent (a dash) in result sets written before the runner scored it.
-    let text = `SSIM ${f(m.ssim, 4)} &middot; FLIP (LDR) ${f(m.flip, 4)} &middot; HDR-FLIP ${f(m.flip_hdr, 4)} &middot; PSNR ${f(m.psnr, 2)} dB`;
-    if (m.temporal !== null && m.temporal !== undefined) text += ` &middot; temporal ${f(m.temporal, 5)}`;
-    lines.push(`<div class="metrics">${text}</div>`);
-    if (m.masked_ssim !== null && m.masked_ssim !== undefined) {
-      lines.push(`<div class="metrics masked">refl./refr.: SSIM ${f(m.masked_ssim, 4)} &middot; FLIP (LDR) ${f(m.masked_flip, 4)} &middot; HDR-FLIP ${f(m.masked_flip_hdr, 4)}</div>`);
+  if (c.scores) {
+    for (const line of metricReadout(results.metricTable, c.scores, c.temporal)) {
+      lines.push(`<div class="metrics${line.masked ? ' masked' : ''}">${escapeHtml(line.text)}</div>`);
     }
   }
   return lines.join('');

@@ -1,7 +1,10 @@
 // The result set as the viewer reads it: the records of results.json (what the runner wrote: the
 // images' paths are the result set's own) and the report's settings.json (title, the report's
-// colour of each setting, the settings not applicable to a scene), grouped into scenes, sizes,
-// views, frames and technique settings.
+// colour of each setting, the settings not applicable to a scene, the metric table, the steps that
+// read older records as current ones), grouped into scenes, sizes, views, frames and technique
+// settings.
+
+import { scoresOf } from './metric_readout.js';
 
 export const REFERENCE = 'reference';
 
@@ -14,21 +17,44 @@ function distinct(values) {
 // Numbers inside names by value: "budget=5000" before "budget=20000".
 const naturalOrder = new Intl.Collator('en', { numeric: true }).compare;
 
+// `values` (a record's stages or counters) with its keys renamed; values that meet under one name
+// add up, number by number.
+function renamed(values, rename, prefixes) {
+  const out = {};
+  for (let [key, value] of Object.entries(values)) {
+    key = rename[key] ?? key;
+    for (const [old, now] of Object.entries(prefixes)) if (key.startsWith(old)) key = now + key.slice(old.length);
+    if (!(key in out)) out[key] = value;
+    else if (typeof value === 'object') out[key] = Object.fromEntries(Object.entries(value).map(([k, v]) => [k, (out[key][k] ?? 0) + v]));
+    else out[key] += value;
+  }
+  return out;
+}
+
+// The record as the current schema_version has it: the one place old result sets' names are read,
+// each step of experiments/results.migrations.json (settings.json's `migrations`) in turn from the
+// record's version (none: 1), as report/results.py migrate() does.
+export function migrated(record, steps) {
+  let version = record.schema_version ?? 1;
+  const r = { ...record };
+  for (const step of steps) {
+    if (step.from < version) continue;
+    for (const field of new Set([...Object.keys(step.rename || {}), ...Object.keys(step.rename_prefixes || {})])) {
+      if (r[field]) r[field] = renamed(r[field], (step.rename || {})[field] || {}, (step.rename_prefixes || {})[field] || {});
+    }
+    version = step.to;
+  }
+  r.schema_version = version;
+  return r;
+}
+
 // A technique with its parameter set, named as the report names it (report/results.py variant()).
 export function variantOf(r) {
   return r.label + (r.parameters_text ? ` [${r.parameters_text}]` : '');
 }
 
-const metric = (r, region, name) => {
-  const m = r.metrics && r.metrics[region];
-  if (!m) return null;
-  if (name === 'flip' || name === 'flip_hdr') return m[name] ? m[name].mean : null;
-  if (name === 'psnr') return m.psnr_db ?? null;
-  return m[name] ?? null;
-};
-
 // One run as the viewer shows it; `base`: the result set's folder as seen from viewer.html.
-function runOf(r, base, notApplicable) {
+function runOf(r, base, notApplicable, metricTable) {
   const file = (path) => encodeURI(base + path);
   const size = `${r.width}x${r.height}`;
   const maps = {};
@@ -41,11 +67,7 @@ function runOf(r, base, notApplicable) {
     technique: r.technique, label: r.label, variant, parameters_text: r.parameters_text,
     image: file(r.images.exr), reference: file(r.reference.exr), png: file(r.images.png), reference_png: file(r.reference.png), frame_ms: r.frame_ms.median, reference_ms: r.reference.frame_ms,
     stages: Object.fromEntries(Object.entries(r.stages || {}).map(([k, s]) => [k, s.median])),
-    metrics: {
-      ssim: metric(r, 'whole', 'ssim'), flip: metric(r, 'whole', 'flip'), flip_hdr: metric(r, 'whole', 'flip_hdr'),
-      psnr: metric(r, 'whole', 'psnr'), masked_ssim: metric(r, 'masked', 'ssim'), masked_flip: metric(r, 'masked', 'flip'),
-      masked_flip_hdr: metric(r, 'masked', 'flip_hdr'), temporal: r.temporal_error ?? null,
-    },
+    scores: scoresOf(r, metricTable), temporal: r.temporal_error ?? null,
     maps,
     debug: Object.fromEntries(Object.entries(r.images.debug || {}).map(([k, v]) => [k, file(v)])),
     not_applicable: notApplicable.get(keyOf(r.scene, size, '', '', variant)) || null,
@@ -58,9 +80,10 @@ export class ResultSet {
     this.colours = settings.colours || {};
     this.colormaps = settings.colormaps;
     this.referenceParameters = settings.reference_parameters;
+    this.metricTable = settings.metrics;
     const base = settings.result_set ? `${settings.result_set}/` : '';
     const notApplicable = new Map((settings.not_applicable || []).map(([scene, size, name, why]) => [keyOf(scene, size, '', '', name), why]));
-    this.runs = records.map((r) => runOf(r, base, notApplicable));
+    this.runs = records.map((r) => runOf(migrated(r, settings.migrations || []), base, notApplicable, this.metricTable));
     this.byId = new Map(this.runs.map((r) => [r.id, r]));
     this.byKey = new Map(this.runs.map((r) => [keyOf(r.scene, r.size, r.view, r.frame, r.variant), r]));
   }

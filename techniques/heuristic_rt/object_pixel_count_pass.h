@@ -16,7 +16,7 @@ class ObjectPixelCountPass : public RasterFramePass {
 public:
     ObjectPixelCountPass(std::shared_ptr<VulkanDevice> device, std::size_t objectCount);
 
-    std::string name() const override { return "visible_pixels"; }
+    std::string name() const override { return "heuristic.visible_pixels"; }
     void record(VkCommandBuffer cb, const FrameTargets& targets) override;
     void finish() override;
 

@@ -37,7 +37,7 @@ public:
     // the EMs the draws point to are replaced (a new EM may take an old one's address).
     void forgetResidentTexels() { residentTexels_.clear(); }
 
-    std::string name() const override { return "lens_draw"; }
+    std::string name() const override { return "lens.draw"; }
     void record(VkCommandBuffer cb, const FrameTargets& targets) override;
     void finish() override;
 

@@ -4,6 +4,7 @@
 
 #include "common/core/atomic_file.h"
 #include "common/core/log.h"
+#include "techniques/layered_em/em_bake_command.h"
 #include "techniques/layered_em/em_cache.h"
 #include "techniques/layered_em/lens_draw.h"
 #include "techniques/make_technique_info.h"
@@ -59,12 +60,14 @@ TechniqueInfo LayeredEmTechnique::info() {
                     ParamSpec::boolean("viewpoint_blending", true, "blend the two nearest viewpoint samples (false: the nearest alone)"));
     parameters.bind(&P::emCache, ParamSpec::boolean("em_cache", true, "load and store baked EMs in the cache ($HYBRIDLAB_CACHE/layered-em)"));
     parameters.bind(&P::shadowMaps, shadowMapParameters());
-    return makeTechniqueInfo(
+    TechniqueInfo info = makeTechniqueInfo(
         "layered_em",
         "Hakura & Snyder 2001: layered inferred environment maps per lens system (baked), per-frame vertex ray tracing with "
         "adaptive tessellation, lens drawn with the EMs on the GPU",
         std::move(parameters), [](const P& p) { return std::make_unique<LayeredEmTechnique>(p); },
         /*relativeCost=*/0.3);  // a frame: vertex rays and one raster pass (the bake is per scene and cached)
+    info.bakeCommand = emBakeCommand();
+    return info;
 }
 
 EmBakeSettings LayeredEmTechnique::bakeSettings(const LayeredEmParameters& p) {
@@ -180,7 +183,7 @@ FrameResult LayeredEmTechnique::render(SceneContext& context, const FrameRequest
     result.counters["triangles"] = static_cast<double>(triangles);
     result.counters["lens_pixels"] = static_cast<double>(lensPixels);
     result.counters["pixels_ray_traced"] = 0.0;
-    // The rasterizer's GPU passes (lens_draw is the lens pass) and its wall clock.
+    // The rasterizer's GPU passes (lens.draw is the lens pass) and its wall clock.
     for (const RasterStageTime& g : raster_.gpuStages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
     recordRasterWork(raster_, result);
     result.counters["raster_wall_ms"] = raster_.wallMilliseconds();

@@ -49,9 +49,6 @@ public:
     void prepare(SceneContext& context) override;
     FrameResult render(SceneContext& context, const FrameRequest& frame) override;
 
-    // After prepare(): the layered EMs, one per lens system.
-    const std::vector<LayeredEm>& layeredEms() const { return ems_; }
-
 private:
     struct System;
     RasterRequest rasterRequest(const FrameRequest& frame);

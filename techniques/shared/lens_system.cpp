@@ -58,9 +58,8 @@ LensSystem::LensSystem(const Scene& scene, LensSystemInfo info, double time) : s
     environment_ = makeSceneSubset(scene, outside);
     lensRays_ = std::make_unique<RayScene>(lens_.scene, time);
     environmentRays_ = std::make_unique<RayScene>(environment_.scene, time);
-    Aabb box = lens_.scene.bounds(time);
+    const Aabb box = lens_.scene.bounds(time);
     center_ = 0.5f * (box.lo + box.hi);
-    radius_ = 0.5f * glm::length(box.hi - box.lo);
 }
 
 }  // namespace hybridlab

@@ -41,7 +41,6 @@ public:
     std::uint32_t environmentObject(std::uint32_t id) const { return environment_.objectMap[id]; }
     // The EM origin: the centre of the system's world bounds (§4.2 "the centroid of the local object").
     glm::vec3 center() const { return center_; }
-    float boundingRadius() const { return radius_; }
 
 private:
     const Scene& scene_;
@@ -49,7 +48,6 @@ private:
     SceneSubset lens_, environment_;
     std::unique_ptr<RayScene> lensRays_, environmentRays_;
     glm::vec3 center_{0.0f};
-    float radius_ = 0.0f;
 };
 
 }  // namespace hybridlab

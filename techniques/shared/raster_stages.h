@@ -10,20 +10,12 @@
 
 namespace hybridlab {
 
-// The stage a rasterizer pass is timed under. The rasterizer names its passes (and their work
-// counters, vk_<pass>_*) by what they draw; the stage names say what the work is for.
-inline std::string rasterPassStage(const std::string& pass) {
-    if (pass == "gbuffer_upload") return "gbuffer.upload";
-    if (pass == "visible_pixels") return "heuristic.visible_pixels";
-    if (pass == "lens_draw") return "lens.draw";
-    return pass;  // shadow_maps, gbuffer, lighting, ssr, readback
-}
-
-// Ends `clock`'s current stage, which rendered `frame` (and did nothing else worth a stage of its own).
+// Ends `clock`'s current stage, which rendered `frame` (and did nothing else worth a stage of its
+// own). The rasterizer's passes are named as the stages they are (RasterFrame::gpuStages).
 inline void lapRasterFrame(StageClock& clock, const RasterFrame& frame) {
     std::vector<StageTime> passes;
     for (const RasterStageTime& s : frame.gpuStages)
-        passes.push_back({rasterPassStage(s.name), s.milliseconds + (s.name == "readback" ? frame.unpackMilliseconds : 0.0)});
+        passes.push_back({s.name, s.milliseconds + (s.name == "readback" ? frame.unpackMilliseconds : 0.0)});
     clock.lap(passes, "overhead");
 }
 

@@ -144,7 +144,7 @@ TEST(GBufferUpload, LightsAsTheRasterizedGBuffer) {
     upload.hostGBuffer = &rasterized.gbuffer;
     const RasterFrame uploaded = raster->render(upload);
     EXPECT_EQ(uploaded.gpuMilliseconds("gbuffer"), 0.0);  // the G-buffer pass did not run
-    EXPECT_GT(uploaded.gpuMilliseconds("gbuffer_upload"), 0.0);
+    EXPECT_GT(uploaded.gpuMilliseconds("gbuffer.upload"), 0.0);
     EXPECT_EQ(uploaded.draws, 0u);
     ASSERT_EQ(uploaded.lighting.width(), 160);
     std::size_t differing = 0;

@@ -77,10 +77,20 @@ class Results(unittest.TestCase):
         self.assertIsNone(results.mean_known([None]))
 
     def test_stages_under_one_vocabulary(self):
-        r = {"stages": {"rast": {"median": 2.0}, "lighting": {"median": 1.0}, "ray_trace": {"median": 5.0}, "trace.lens_vertices": {"median": 0.5}}}
+        # A record of version 1 (no schema_version) with old stage and counter names, migrated.
+        r = results.migrate({"stages": {"rast": {"median": 2.0}, "lighting": {"median": 1.0}, "ray_trace": {"median": 5.0},
+                                        "trace.lens_vertices": {"median": 0.5}},
+                             "counters": {"vk_gbuffer_upload_input_primitives": 3.0, "rays_total": 7.0}})
+        self.assertEqual(r["schema_version"], results.SCHEMA_VERSION)
+        self.assertEqual(r["counters"], {"vk_gbuffer.upload_input_primitives": 3.0, "rays_total": 7.0})
         self.assertEqual(results.stages(r), {"raster": 2.0, "lighting": 1.0, "trace": 5.0, "trace.lens_vertices": 0.5})
         self.assertEqual(results.stage_kinds(r), {"raster": 2.0, "lighting": 1.0, "trace": 5.5})
-        self.assertEqual(results.stage(r, "rayt"), 5.0)
+        self.assertEqual(results.stage(r, "trace"), 5.0)
+        # Two old names of one stage add up; a current record is left as it is.
+        self.assertEqual(results.migrate({"stages": {"rayt": {"median": 1.0, "min": 1.0}, "ray_trace": {"median": 2.0, "min": 1.5}}})["stages"],
+                         {"trace": {"median": 3.0, "min": 2.5}})
+        current = {"schema_version": results.SCHEMA_VERSION, "stages": {"rast": {"median": 1.0}}}
+        self.assertEqual(results.migrate(dict(current)), current)
         self.assertEqual(results.raster_ms(r), 3.0)
         self.assertIsNone(results.raster_ms({"stages": {"trace": {"median": 1.0}}}))
         self.assertEqual(results.kind_order(["trace", "raster", "zzz"])[-1], "zzz")

@@ -67,7 +67,7 @@ def check_refusals(record):
         (lambda r: r.__setitem__("colour", 1), "$: unexpected 'colour'"),
         (lambda r: r["reference"].__setitem__("cache_hit", 1), "$.reference.cache_hit: expected boolean"),
         (lambda r: r["counters"].__setitem__("rays_total", "many"), "$.counters.rays_total: expected number"),
-        (lambda r: r["metrics"]["whole"].__setitem__("rmse", -1.0), "$.metrics.whole.rmse: -1.0 is below the minimum 0"),
+        (lambda r: r["metrics"]["whole"].__setitem__("pixels", -1), "$.metrics.whole.pixels: -1 is below the minimum 0"),
     ]
     for change, expected in cases:
         found = mutated(change)

@@ -134,14 +134,14 @@ TEST(StageNames, TheReportReadsTheSameVocabulary) {
     for (const StageName& s : kStageNames) EXPECT_NE(readme.find("| `" + std::string(s.name) + "` | "), std::string::npos) << s.name;
 }
 
-// A record of a result set written before the vocabulary: its one-to-one renamed stages are read
-// under the new names; the hybrids' lumped `raster` counts as the rasterizer's time.
+// A record of a result set written before the vocabulary: migrated, its one-to-one renamed stages
+// are read under the new names; the hybrids' lumped `raster` counts as the rasterizer's time.
 TEST(StageNames, OldResultSetsAreReadUnderTheNewNames) {
     const std::string record =
         "{\"stages\": {\"raster\": {\"median\": 4.0}, \"gbuffer_rays\": {\"median\": 2.0}, \"seam_blur\": {\"median\": 0.5}, "
         "\"composite\": {\"median\": 0.25}, \"vertex_ray_tracing\": {\"median\": 1.0}, \"rayt\": {\"median\": 8.0}}}";
-    const std::string out = resultsPy("r = " + record +
-                                      "; k = results.stage_kinds(r); print(sorted(k.items()), results.raster_ms(r), results.stage(r, \"blend\"))");
+    const std::string out = resultsPy("r = results.migrate(" + record +
+                                      "); k = results.stage_kinds(r); print(sorted(k.items()), results.raster_ms(r), results.stage(r, \"blend\"))");
     EXPECT_EQ(out, "[('blend', 0.75), ('gbuffer', 2.0), ('raster', 4.0), ('trace', 9.0)] 4.0 0.25\n");
 }
 

@@ -120,7 +120,7 @@ ensureDebugImages(resultDir);
     [(r) => delete r.frame_ms.median, "$.frame_ms: missing required 'median'"],
     [(r) => { r.colour = 1; }, "$: unexpected 'colour'"],
     [(r) => { r.images.png = 7; }, '$.images.png: must be string'],
-    [(r) => { r.metrics.whole.rmse = -1; }, '$.metrics.whole.rmse: must be >= 0'],
+    [(r) => { r.metrics.whole.pixels = -1; }, '$.metrics.whole.pixels: must be >= 0'],
   ];
   for (const [breakIt, expected] of broken) {
     const record = structuredClone(records[0]);

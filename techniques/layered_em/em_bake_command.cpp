@@ -1,21 +1,23 @@
-// `hybridlab bake-em`: bakes the layered EMs of every lens system of a scene (Hakura & Snyder
-// 2001 §4) into the on-disk cache ahead of rendering, with a progress bar and the time of each
-// stage. An entry already in the cache is reported and kept unless --force.
+#include "techniques/layered_em/em_bake_command.h"
+
 #include <cstdio>
 #include <memory>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "common/core/atomic_file.h"
+#include "common/core/cli_number_validators.h"
 #include "common/core/input_error.h"
+#include "common/core/progress.h"
 #include "common/image/image_io.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
-#include "experiments/cli/commands.h"
-#include "experiments/cli/number_validators.h"
-#include "experiments/runner/progress.h"
 #include "techniques/layered_em/em_cache.h"
 
-namespace hybridlab::cli {
+namespace hybridlab {
+
+using cli::numberIn;
 
 namespace {
 
@@ -153,12 +155,10 @@ void run(BakeEmOptions& o) {
     }
 }
 
-}  // namespace
-
-void addBakeEmCommand(CLI::App& app) {
+// The options of `hybridlab bake-em` on `cmd`, and its callback.
+void defineCommand(CLI::App& command) {
     auto o = std::make_shared<BakeEmOptions>();
-    auto* cmd = app.add_subcommand("bake-em", "Bake the layered environment maps of a scene's lens systems (Hakura & Snyder "
-                                              "2001) into the cache");
+    CLI::App* cmd = &command;
     cmd->add_option("--scene", o->scene, "Scene file, or the name of a built-in scene")->required();
     cmd->add_option("--system", o->system, "Only this lens system (a lens_group, or a lone lens object's name)");
     cmd->add_option("--cache", o->cache, "Cache folder (default: $HYBRIDLAB_CACHE/layered-em or ~/.cache/hybridlab/layered-em)");
@@ -193,4 +193,10 @@ void addBakeEmCommand(CLI::App& app) {
     cmd->callback([o] { run(*o); });
 }
 
-}  // namespace hybridlab::cli
+}  // namespace
+
+CacheBakeCommand emBakeCommand() {
+    return {"bake-em", "Bake the layered environment maps of a scene's lens systems (Hakura & Snyder 2001) into the cache", defineCommand};
+}
+
+}  // namespace hybridlab

@@ -1,4 +1,4 @@
-#include "experiments/runner/progress.h"
+#include "common/core/progress.h"
 
 #include <unistd.h>
 
