@@ -96,7 +96,7 @@ def check_files(clone, lines, failures):
 
 def check_setup(clone, hybridlab, readme, env, failures):
     """The set-up commands name what exists."""
-    commands = [l for b in blocks(section(readme, "Set up"), "sh") for l in b if l and not l.startswith("#")]
+    commands = [l for b in blocks(section(readme, "Quick start"), "sh") for l in b if l and not l.startswith("#")]
     if len(commands) != 2 or not commands[0].startswith("./setup.sh && ") or not commands[1].startswith("./setup.sh --tests && ctest "):
         failures.append("expected the two set-up commands, ./setup.sh ... and ./setup.sh --tests && ctest ..., got %s" % commands)
         return
