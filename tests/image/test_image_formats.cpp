@@ -17,42 +17,21 @@
 #include "common/core/input_error.h"
 #include "common/image/color.h"
 #include "common/image/image_io.h"
+#include "tests/support/decoded_image_checks.h"
 #include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {
 
+using test::expectSamePixels;
+using test::fileBytes;
+
 namespace fs = std::filesystem;
 
 fs::path fixtures() { return test::fixturesDir() / "image_formats"; }
 
-std::vector<unsigned char> fileBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void expectSamePixels(const Image& ours, const Image& theirs) {
-    ASSERT_EQ(ours.width(), theirs.width());
-    ASSERT_EQ(ours.height(), theirs.height());
-    for (int y = 0; y < ours.height(); ++y)
-        for (int x = 0; x < ours.width(); ++x)
-            for (int c = 0; c < 4; ++c) ASSERT_EQ(ours.at(x, y)[c], theirs.at(x, y)[c]) << "pixel " << x << "," << y << " channel " << c;
-}
-
 TEST(ImageFormats, EveryFileDecodesAsOpenImageIoDecodedIt) {
-    int files = 0;
-    for (const fs::directory_entry& e : fs::directory_iterator(fixtures() / "files")) {
-        const std::string name = e.path().filename().string();
-        SCOPED_TRACE(name);
-        ++files;
-        EXPECT_NO_THROW(checkImageFile(e.path()));
-        const Image ours = readImage(e.path());
-        expectSamePixels(ours, readImage(fixtures() / "decoded_by_openimageio" / (name + ".exr")));
-        // From memory (an image in a glTF buffer): the same decoder, the same values.
-        const std::vector<unsigned char> bytes = fileBytes(e.path());
-        expectSamePixels(readImageFromMemory(bytes.data(), bytes.size(), name), ours);
-    }
-    EXPECT_EQ(files, 20) << "fixtures missing from " << fixtures();
+    test::expectEveryFileDecodesAsOpenImageIoDecodedIt(fixtures(), 20);
 }
 
 // Truncated and corrupted copies of every fixture (a mini-fuzz, deterministic; the sanitizer

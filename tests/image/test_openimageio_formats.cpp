@@ -17,42 +17,22 @@
 #include "common/image/image_codecs.h"
 #include "common/image/image_io.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/decoded_image_checks.h"
 #include "tests/support/shell_command.h"
 #include "tests/support/test_support.h"
 
 namespace hybridlab {
 namespace {
 
+using test::expectSamePixels;
+using test::fileBytes;
+
 namespace fs = std::filesystem;
 
 fs::path fixtures() { return test::fixturesDir() / "image_formats" / "openimageio"; }
 
-std::vector<unsigned char> fileBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void expectSamePixels(const Image& ours, const Image& theirs) {
-    ASSERT_EQ(ours.width(), theirs.width());
-    ASSERT_EQ(ours.height(), theirs.height());
-    for (int y = 0; y < ours.height(); ++y)
-        for (int x = 0; x < ours.width(); ++x)
-            for (int c = 0; c < 4; ++c) ASSERT_EQ(ours.at(x, y)[c], theirs.at(x, y)[c]) << "pixel " << x << "," << y << " channel " << c;
-}
-
 TEST(OpenImageIoFormats, EveryFileDecodesAsOpenImageIoDecodedIt) {
-    int files = 0;
-    for (const fs::directory_entry& e : fs::directory_iterator(fixtures() / "files")) {
-        const std::string name = e.path().filename().string();
-        SCOPED_TRACE(name);
-        ++files;
-        EXPECT_NO_THROW(checkImageFile(e.path()));
-        const Image ours = readImage(e.path());
-        expectSamePixels(ours, readImage(fixtures() / "decoded_by_openimageio" / (name + ".exr")));
-        const std::vector<unsigned char> bytes = fileBytes(e.path());
-        expectSamePixels(readImageFromMemory(bytes.data(), bytes.size(), name), ours);
-    }
-    EXPECT_EQ(files, 5) << "fixtures missing from " << fixtures();
+    test::expectEveryFileDecodesAsOpenImageIoDecodedIt(fixtures(), 5);
 }
 
 // make_files.py writes 100 y + 10 x + c + 0.5 (RGB) and 100 y + 10 x + 0.25 (grey) at row y (from
