@@ -22,7 +22,7 @@ done
 
 PACKAGES=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git xz-utils
   # scene core and images
   libglm-dev libtomlplusplus-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR; OpenImageIO for
