@@ -393,6 +393,7 @@ void addTiming(RunRecord& record, const ExperimentConfig& config, const std::str
     }
     t.precision = config.timing.precision;
     t.precisionReached = timing.precisionReached;
+    t.budgetClock = timing.budgetClock == BudgetClock::CpuPerCore ? "cpu_per_core" : "wall";
     t.warmupMs = st.warmupMs;
     t.steady = st.steady;
     t.gpuClocks = gpuClocks;
@@ -534,6 +535,9 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     std::size_t done = 0;
     // Each scene and size's budget, shared by its groups (interleaved_timing.h).
     std::map<std::tuple<std::size_t, int, int>, int> groupsOfScene;
+    // The budget's clock (interleaved_timing.h): CPU time per core where the frames run on the CPU.
+    const std::string deviceType = deviceRecord().value("vulkan_device_type", std::string("none"));
+    const bool onCpu = deviceType == "cpu" || deviceType == "none";
     for (std::size_t k = 0; k < mine.size(); ++k)
         if (k == 0 || !sameGroup(*mine[k - 1], *mine[k])) ++groupsOfScene[{mine[k]->scene, mine[k]->width, mine[k]->height}];
     for (std::size_t first = 0; first < mine.size();) {
@@ -553,6 +557,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         if (pending.empty()) continue;
         TimingProtocol protocol = config.timing;
         protocol.groupBudgetMs = protocol.sceneBudgetMs / groupsOfScene.at({group.front()->scene, group.front()->width, group.front()->height});
+        protocol.budgetClock = onCpu ? BudgetClock::CpuPerCore : BudgetClock::Wall;
+        protocol.cores = usableCores();
         done += renderGroup(config, o, store, cache, active, group, pending, protocol, mixed, progress, done, summary);
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
     }

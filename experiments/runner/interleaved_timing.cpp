@@ -1,5 +1,7 @@
 #include "experiments/runner/interleaved_timing.h"
 
+#include <sched.h>
+
 #include <algorithm>
 
 #include "experiments/runner/timing_statistics.h"
@@ -33,6 +35,17 @@ bool precisionReached(const GroupTiming& g, double precision) {
 
 }  // namespace
 
+double budgetCost(const FrameClocks& c, const TimingProtocol& p) {
+    return p.budgetClock == BudgetClock::CpuPerCore ? c.cpuMs / std::max(p.cores, 1) : c.wallMs;
+}
+
+int usableCores() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) != 0) return 1;
+    return std::max(CPU_COUNT(&set), 1);
+}
+
 std::vector<double> wallTimes(const SettingTiming& s) {
     std::vector<double> v;
     for (const FrameClocks& c : s.rounds) v.push_back(c.wallMs);
@@ -56,6 +69,7 @@ std::optional<std::vector<double>> deviceTimes(const SettingTiming& s) {
 
 GroupTiming timeInterleaved(const std::vector<TimedRender>& settings, const TimingProtocol& p) {
     GroupTiming g;
+    g.budgetClock = p.budgetClock;
     g.settings.resize(settings.size());
     for (std::size_t i = 0; i < settings.size(); ++i) warmUp(settings[i], p, g.settings[i]);
     // Fewer rounds than an interval needs: exactly those (a quick check, a test), no more.
@@ -64,12 +78,13 @@ GroupTiming timeInterleaved(const std::vector<TimedRender>& settings, const Timi
     while (g.rounds < maxRounds) {
         if (g.rounds >= minRounds) {
             g.precisionReached = precisionReached(g, p.precision);
-            if (g.precisionReached || g.roundsMs >= p.groupBudgetMs) break;
+            if (g.precisionReached || g.budgetSpentMs >= p.groupBudgetMs) break;
         }
         for (std::size_t i : roundOrder(settings.size(), static_cast<std::size_t>(g.rounds), p.seed)) {
             const FrameClocks c = settings[i]();
             g.settings[i].rounds.push_back(c);
             g.roundsMs += c.wallMs;
+            g.budgetSpentMs += budgetCost(c, p);
         }
         ++g.rounds;
     }
@@ -86,6 +101,7 @@ GroupTiming timeSequential(const std::vector<TimedRender>& settings, const Timin
         for (int k = 0; k < rounds; ++k) {
             g.settings[i].rounds.push_back(settings[i]());
             g.roundsMs += g.settings[i].rounds.back().wallMs;
+            g.budgetSpentMs += budgetCost(g.settings[i].rounds.back(), p);
         }
     }
     g.precisionReached = precisionReached(g, p.precision);

@@ -42,6 +42,7 @@ json timingJson(const RunTiming& t) {
         j["device_ms"] = spreadJson(*t.device);
         j["device_ms_rounds"] = t.deviceRounds;
     }
+    if (t.budgetClock) j["budget_clock"] = *t.budgetClock;
     if (t.gpuClocks) j["gpu_clocks"] = *t.gpuClocks;
     return j;
 }
@@ -197,6 +198,7 @@ RunTiming timingFrom(const json& j, const std::string& where) {
     }
     t.precision = f.get<double>("precision");
     t.precisionReached = f.get<bool>("precision_reached");
+    t.budgetClock = f.getOptional<std::string>("budget_clock");
     t.warmupMs = f.get<double>("warmup_ms");
     t.steady = f.get<bool>("steady");
     if (const json* g = f.optional("gpu_clocks")) t.gpuClocks = *g;

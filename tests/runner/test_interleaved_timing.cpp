@@ -97,6 +97,32 @@ TEST(InterleavedTiming, RoundsStopAtThePrecisionOrTheBudget) {
     }
 }
 
+TEST(InterleavedTiming, OnTheCpuClockALoadedMachineTimesAsManyRoundsAsAnIdleOne) {
+    // Frames of two threads' work: 20 ms of CPU time, 10 ms of wall time on two idle cores, 40 ms
+    // with another process's load (a thread preempted in a parallel frame waits its turn).
+    // Every other frame 20% slower, so that the precision is never reached and the budget ends
+    // the rounds.
+    const auto frames = [](double wallMs) {
+        const auto setting = [wallMs, k = 0]() mutable { return FrameClocks{wallMs * (k++ % 2 ? 1.2 : 1.0), 20.0, std::nullopt}; };
+        return std::vector<TimedRender>{setting, setting};
+    };
+    TimingProtocol p;
+    p.warmupFrames = 0;
+    p.maxRounds = 100;
+    p.groupBudgetMs = 400;
+    p.cores = 2;
+    p.budgetClock = BudgetClock::CpuPerCore;
+    const GroupTiming idle = timeInterleaved(frames(10.0), p), loaded = timeInterleaved(frames(40.0), p);
+    EXPECT_EQ(idle.rounds, 20);  // 2 frames x 20 ms / 2 cores a round
+    EXPECT_EQ(loaded.rounds, idle.rounds);
+    EXPECT_DOUBLE_EQ(loaded.roundsMs, 4 * idle.roundsMs);
+    EXPECT_EQ(loaded.budgetClock, BudgetClock::CpuPerCore);
+    p.budgetClock = BudgetClock::Wall;  // on a GPU: the load costs rounds
+    EXPECT_EQ(timeInterleaved(frames(10.0), p).rounds, 19);  // 22 ms a round
+    EXPECT_EQ(timeInterleaved(frames(40.0), p).rounds, 6);   // the fewest, 88 ms a round
+    EXPECT_GE(usableCores(), 1);
+}
+
 TEST(InterleavedTiming, ADriftingLoadChangesARatioFarLessInterleavedThanSequential) {
     // Two settings of equal cost while the machine's load doubles over the experiment (another
     // job starting): timed one after the other, the second looks slower; interleaved, the ratio
