@@ -7,7 +7,8 @@ tied for fastest) reaching it.
     /usr/bin/python3 experiments/verdict_repeatability.py [--config experiments/configs/quick.toml]
         [--runs 3] [--busy N] [--out DIR] [--program build/hybridlab] [--reuse]
 
-Prints each run's wall time and rows, then how many rows name the same settings in every run.
+Prints each run's wall time, the load other processes put on the machine while it was timed
+(`timing.other_load`), and its rows, then how many rows name the same settings in every run.
 `--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
 reports result sets already in DIR/run-K instead of running them; `--against DIR` also counts the
 rows identical to the first run in DIR (say, quiet runs against runs under load). On a shared
@@ -65,6 +66,10 @@ def main():
                 subprocess.run([args.program, "run", args.config, "--out", out, "--quiet"], check=True)
                 print("run %d: %.1f s%s" % (k + 1, time.monotonic() - start, " (%d busy loops)" % args.busy if args.busy else ""), flush=True)
             tables.append(verdict_rows(out))
+            loads = sorted(r["timing"]["other_load"] for r in rs.load(out) if (r.get("timing") or {}).get("other_load") is not None)
+            if loads:
+                print("run %d: other processes' load while timed: median %.0f%%, max %.0f%% of the cores"
+                      % (k + 1, 100.0 * loads[len(loads) // 2], 100.0 * loads[-1]), flush=True)
     finally:
         for p in loops:
             p.kill()

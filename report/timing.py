@@ -37,6 +37,9 @@ import statistics
 CONFIDENCE = 0.95
 DEFAULT_TOLERANCE = 0.03
 MIN_VALUES = 6  # the fewest values with a 95% interval of the median
+# Other processes' share of the cores above which a run's times answer for a loaded machine: two
+# busy loops on this project's two-core machine slowed settings 1.6x to 3.0x, unequally.
+BUSY_MACHINE = 0.2
 FASTER, SLOWER, TIED = "faster", "slower", "tied"
 
 # The clocks a record may hold: its key (the summary's place), where its per-round times are, and
@@ -255,7 +258,8 @@ def describe_rule(records):
 
 def caveats(records):
     """Sentences on runs whose times the runner itself doubts: the precision not reached in the
-    rounds allowed, no steady state after the warm-up, the GPU's clocks changed while timed."""
+    rounds allowed, no steady state after the warm-up, other processes' load while timed
+    (`timing.other_load`), the GPU's clocks changed while timed."""
     timed = [r.get("timing") or {} for r in records]
     out = []
     missed = sum(t.get("precision_reached") is False for t in timed)
@@ -265,6 +269,13 @@ def caveats(records):
     unsteady = sum(t.get("steady") is False for t in timed)
     if unsteady:
         out.append("%d of %d runs had not reached a steady frame time after their warm-up." % (unsteady, len(records)))
+    loads = [t["other_load"] for t in timed if t.get("other_load") is not None]
+    loaded = [x for x in loads if x > BUSY_MACHINE]
+    if loaded:
+        out.append("%d of %d runs were timed while other processes used more than %.0f%% of the machine's cores (up to "
+                   "%.0f%%): load slows settings unequally (a parallel frame waits for its preempted thread, a serial one "
+                   "barely notices), so their ranks answer for a loaded machine; time them on a quiet one to rank for an "
+                   "idle machine." % (len(loaded), len(records), 100.0 * BUSY_MACHINE, 100.0 * max(loaded)))
     clocks = sum(bool((t.get("gpu_clocks") or {}).get("changed")) for t in timed)
     if clocks:
         out.append("The GPU's clocks changed while %d of %d runs were timed." % (clocks, len(records)))

@@ -22,6 +22,7 @@
 #include "common/scene/scene_file.h"
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
+#include "common/core/other_load.h"
 #include "common/core/process_cpu_clock.h"
 #include "common/core/progress.h"
 #include "common/core/wall_clock.h"
@@ -446,7 +447,9 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         });
     }
     const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
+    const OtherLoadMeter otherLoad;
     GroupTiming timing = timeInterleaved(renders, protocol);
+    const std::optional<double> otherLoadFraction = otherLoad.fraction();
     const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
     // Only the rounds' stage times: the warm-up's are not the setting's steady state.
     for (TimedSetting& s : settings) {
@@ -499,6 +502,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
         std::optional<nlohmann::json> gpuClocks;
         if (clocksBefore && clocksAfter) gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
         addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, gpuClocks);
+        record.timing->otherLoad = otherLoadFraction;
         // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
         // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = timingSeconds / static_cast<double>(pending.size()) + millisecondsSince(runStart) / 1000.0;

@@ -43,6 +43,7 @@ json timingJson(const RunTiming& t) {
         j["device_ms_rounds"] = t.deviceRounds;
     }
     if (t.budgetClock) j["budget_clock"] = *t.budgetClock;
+    if (t.otherLoad) j["other_load"] = *t.otherLoad;
     if (t.gpuClocks) j["gpu_clocks"] = *t.gpuClocks;
     return j;
 }
@@ -199,6 +200,7 @@ RunTiming timingFrom(const json& j, const std::string& where) {
     t.precision = f.get<double>("precision");
     t.precisionReached = f.get<bool>("precision_reached");
     t.budgetClock = f.getOptional<std::string>("budget_clock");
+    t.otherLoad = f.getOptional<double>("other_load");
     t.warmupMs = f.get<double>("warmup_ms");
     t.steady = f.get<bool>("steady");
     if (const json* g = f.optional("gpu_clocks")) t.gpuClocks = *g;

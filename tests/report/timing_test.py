@@ -121,6 +121,19 @@ class PairedComparison(unittest.TestCase):
         self.assertEqual(timing.tolerance(records), 0.05)
 
 
+class Caveats(unittest.TestCase):
+    def test_runs_timed_under_load_are_named(self):
+        g = sr.Group("s", [1.0] * 8)
+        quiet, busy = sr.timed_record(g, "hyb", "", [1.0] * 8), sr.timed_record(g, "hyb", "x", [1.0] * 8)
+        quiet["timing"]["other_load"], busy["timing"]["other_load"] = 0.05, 0.62
+        said = " ".join(timing.caveats([quiet, busy]))
+        self.assertIn("1 of 2 runs were timed while other processes used more than 20% of the machine's cores (up to 62%)", said)
+        quiet["timing"]["other_load"] = busy["timing"]["other_load"] = 0.1
+        self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
+        del quiet["timing"]["other_load"], busy["timing"]["other_load"]  # a result set measured before the meter
+        self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
+
+
 class SpeedUps(unittest.TestCase):
     def test_one_run_reads_the_records_speedup(self):
         g = sr.Group("s", [20.0, 21.0, 19.0, 22.0, 20.0, 20.5, 19.5, 21.5])
