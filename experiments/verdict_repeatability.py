@@ -11,7 +11,9 @@ Prints each run's wall time, the load other processes put on the machine while i
 (`timing.other_load`), and its rows, then how many rows name the same settings in every run.
 `--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
 reports result sets already in DIR/run-K instead of running them; `--against DIR` also counts the
-rows identical to the first run in DIR (say, quiet runs against runs under load). On a shared
+rows identical to the first run in DIR (say, quiet runs against runs under load); `--speedups
+rt_only` also checks every later run's speed-up over rt_only against the first run's interval
+(`--config experiments/configs/gbuffer_rays.toml --runs 2 --speedups rt_only`). On a shared
 machine, run quiet runs under `chrt -r 50` (ahead of everything else) and runs with `--busy` under
 `nice -n -20`: the runner and its busy loops then share the cores fairly, ahead of other work.
 Not `--busy` under `chrt`: real-time busy loops starve the runner's own threads that Mesa runs at
@@ -39,6 +41,28 @@ def verdict_rows(result_dir):
     return rows
 
 
+def speedups_held(first_dir, later_dir, over):
+    """Whether each run's speed-up over `over` ("rt_only", "reference") measured in `later_dir`
+    lies in the first run's 95% interval, or within 5% of its median: (lines, held, compared)."""
+    def by_setting(d):
+        return {(r["scene"], r["view"], r["frame"], r["label"], r["parameters_text"]): r for r in rs.load(d)}
+    first, later = by_setting(first_dir), by_setting(later_dir)
+    lines, held, compared = [], 0, 0
+    for key in sorted(set(first) & set(later)):
+        a, b = (first[key].get("speedup") or {}).get(over), (later[key].get("speedup") or {}).get(over)
+        if not a or not b:
+            continue
+        inside = a.get("low") is not None and a["low"] <= b["ratio"] <= a["high"]
+        close = abs(b["ratio"] / a["ratio"] - 1.0) <= 0.05
+        compared += 1
+        held += inside or close
+        lines.append("%s %s: %.3fx (%s) then %.3fx%s" % (
+            key[0], " ".join(x for x in (key[3], key[4]) if x), a["ratio"],
+            "%.3f-%.3f" % (a["low"], a["high"]) if a.get("low") is not None else "no interval", b["ratio"],
+            "" if inside or close else "   <- outside the interval and over 5% off"))
+    return lines, held, compared
+
+
 def busy_loops(count):
     return [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(count)]
 
@@ -52,6 +76,8 @@ def main():
     ap.add_argument("--program", default=os.path.join(HERE, "..", "build", "hybridlab"))
     ap.add_argument("--reuse", action="store_true", help="report the result sets already in --out")
     ap.add_argument("--against", help="a folder of earlier runs (run-1, ...): count the rows identical to its first")
+    ap.add_argument("--speedups", metavar="OVER", help="also compare each run's speed-ups over OVER (rt_only or "
+                    "reference) with the first run's: inside its 95%% interval, or within 5%%")
     args = ap.parse_args()
 
     loops = busy_loops(args.busy)
@@ -83,6 +109,12 @@ def main():
         scene, size, label, threshold = key
         print("%s %s SSIM >= %.2f %s: %s%s" % (scene, size, threshold, label, " | ".join(values), "" if agree else "   <- differs"))
     print("%d of %d verdict rows identical in all %d runs" % (same, len(keys), len(tables)))
+    if args.speedups:
+        first = os.path.join(args.out, "run-1")
+        for k in range(1, len(tables)):
+            lines, held, compared = speedups_held(first, os.path.join(args.out, "run-%d" % (k + 1)), args.speedups)
+            print("\n".join(lines))
+            print("run %d: %d of %d speed-ups over %s inside run 1's interval or within 5%% of it" % (k + 1, held, compared, args.speedups))
     if args.against:
         baseline = verdict_rows(os.path.join(args.against, "run-1"))
         for k, t in enumerate(tables):
