@@ -28,6 +28,7 @@ DeviceGBufferCast DeviceGBufferCaster::cast(const GBufferStorage& targets, const
     for (int i = 0; i < GBufferPass::kColorTargets; ++i)
         pipeline_.inputs().writeImage(i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, targets.views[i], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     RayLaunch launch{targets.width, targets.height, "gbuffer.rays"};
+    launch.readOutput = false;  // it writes the G-buffer's targets, not the radiance output
     launch.before = [&](VkCommandBuffer cb) {
         // Every texel is written: what the last frame left is discarded (from UNDEFINED), and the
         // last frame's readers finish first.

@@ -37,15 +37,20 @@ std::vector<VkDescriptorSetLayoutBinding> inputBindings() {
 GpuBuffer texelList(const VulkanDevice& dev, std::size_t texels) {
     return GpuBuffer(dev, sizeof(TexelListHeader) + texels * sizeof(std::uint32_t),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                     GpuBuffer::Memory::HostVisible);
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                     GpuBuffer::Memory::DeviceLocal);
 }
 
 DeviceGBufferTracer::DeviceGBufferTracer(const DeviceRayScene& scene, const std::string& raygenShader, const std::string& classifyShader)
     : scene_(scene), pipeline_(scene, raygenShader, inputBindings()) {
     const VulkanDevice& dev = pipeline_.device();
     nearest_ = createNearestSampler(dev, "the G-buffer tracer's sampler");
-    counts_ = GpuBuffer(dev, kTechniqueCounters * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    // Counted and listed in device memory, copied to the host at the end of each launch.
+    counts_ = GpuBuffer(dev, kTechniqueCounters * sizeof(std::uint32_t),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        GpuBuffer::Memory::DeviceLocal);
+    countsOnHost_ = GpuBuffer(dev, counts_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+    listHeaderOnHost_ = GpuBuffer(dev, sizeof(TexelListHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
     pipeline_.inputs().writeBuffer(13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, counts_.buffer());
     setObjectData({0u});
     if (!classifyShader.empty() && dev.traceRaysIndirect()) classify_ = createComputePipeline(dev, classifyShader, pipeline_.layout());
@@ -76,7 +81,7 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     image_ = &pipeline_.output(texelCount * sizeof(glm::vec4));
     const VkDeviceSize texelBytes = texelCount * kTexelRecords * sizeof(glm::vec4);
     if (!texels_.valid() || texels_.size() != texelBytes) {
-        texels_ = GpuBuffer(dev, texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        texels_ = GpuBuffer(dev, texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuBuffer::Memory::DeviceLocal);
         pipeline_.inputs().writeBuffer(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texels_.buffer());
     }
     // Rewritten every frame: the rasterizer recreates its targets when the frame size changes.
@@ -87,9 +92,16 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     // Without SSR the bindings still need valid images: the lit image stands in, unread.
     in.writeImage(10, sampled, ssrColor_ ? ssrColor_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
     in.writeImage(11, sampled, ssrHit_ ? ssrHit_ : targets.lighting, nearest_, VK_IMAGE_LAYOUT_GENERAL);
-    std::memset(counts_.mapped(), 0, kTechniqueCounters * sizeof(std::uint32_t));
-
     RayLaunch launch{targets.width, targets.height, "trace"};
+    launch.before = [&](VkCommandBuffer cb) { vkCmdFillBuffer(cb, counts_.buffer(), 0, VK_WHOLE_SIZE, 0); };
+    launch.readBack = [&](VkCommandBuffer cb) {
+        const VkBufferCopy counts{0, 0, counts_.size()};
+        vkCmdCopyBuffer(cb, counts_.buffer(), countsOnHost_.buffer(), 1, &counts);
+        if (compact) {
+            const VkBufferCopy header{0, 0, sizeof(TexelListHeader)};
+            vkCmdCopyBuffer(cb, list_.buffer(), listHeaderOnHost_.buffer(), 1, &header);
+        }
+    };
     if (compact) {
         if (list_.size() < sizeof(TexelListHeader) + texelCount * sizeof(std::uint32_t)) {
             list_ = texelList(dev, texelCount);
@@ -114,10 +126,23 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     DeviceGBufferTrace result;
     result.rays = counts.rays;
     result.invocations = counts.invocations;
-    if (compact) result.invocations.listed = static_cast<const TexelListHeader*>(list_.mapped())->launch.x;
-    std::memcpy(result.techniqueCounts.data(), counts_.mapped(), sizeof(result.techniqueCounts));
+    if (compact) result.invocations.listed = static_cast<const TexelListHeader*>(listHeaderOnHost_.mapped())->launch.x;
+    std::memcpy(result.techniqueCounts.data(), countsOnHost_.mapped(), sizeof(result.techniqueCounts));
     result.gpuStages = pipeline_.gpuStages();
     return result;
+}
+
+const glm::vec4* DeviceGBufferTracer::readTexels() {
+    const VulkanDevice& dev = pipeline_.device();
+    if (!texelsOnHost_.valid() || texelsOnHost_.size() != texels_.size())
+        texelsOnHost_ = GpuBuffer(dev, texels_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+    dev.submitAndWait([&](VkCommandBuffer cb) {
+        const VkBufferCopy all{0, 0, texels_.size()};
+        vkCmdCopyBuffer(cb, texels_.buffer(), texelsOnHost_.buffer(), 1, &all);
+        VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
+    });
+    return static_cast<const glm::vec4*>(texelsOnHost_.mapped());
 }
 
 }  // namespace hybridlab

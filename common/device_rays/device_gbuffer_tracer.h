@@ -16,6 +16,8 @@
 #include "common/raytrace/ray_stats.h"
 #include "common/raytrace/whitted_tracer.h"
 
+#include <glm/vec4.hpp>
+
 namespace hybridlab {
 
 struct DeviceGBufferTrace {
@@ -57,18 +59,24 @@ public:
     DeviceGBufferTrace trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
                              const std::function<void(VkCommandBuffer)>& after = {}, const std::string& afterStage = {});
 
-    // After trace(): the frame's image (vec4 per texel, row-major; host-visible) and the per-texel
-    // records (kTexelRecords vec4 each; device memory the host can map on every device it runs on).
-    const GpuBuffer& image() const { return *image_; }
+    // After trace(): the frame's image, vec4 per texel, row-major, copied to the host.
+    const GpuBuffer& image() const { return pipeline_.outputOnHost(); }
+    // The image and the per-texel records (kTexelRecords vec4 each) where the device writes them:
+    // device-local, read by the technique's pass after the trace.
+    const GpuBuffer& deviceImage() const { return *image_; }
     const GpuBuffer& texels() const { return texels_; }
+    // After trace(): the per-texel records copied to the host (a submission of its own, untimed:
+    // debug images and statistics only).
+    const glm::vec4* readTexels();
 
 private:
     const DeviceRayScene& scene_;
     DeviceRayPipeline pipeline_;
     UniqueSampler nearest_;
-    GpuBuffer objectData_, texels_, counts_;
+    GpuBuffer objectData_, texels_, texelsOnHost_, counts_, countsOnHost_;
     UniquePipeline classify_;  // null: full launches only
     GpuBuffer list_;           // TexelListHeader, then the listed texels
+    GpuBuffer listHeaderOnHost_;
     bool compact_ = true;
     const GpuBuffer* image_ = nullptr;
     VkImageView ssrColor_ = VK_NULL_HANDLE, ssrHit_ = VK_NULL_HANDLE;

@@ -154,7 +154,10 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
     descriptors_ = DescriptorSet(dev, descriptorBindings(textureCount));
     if (!inputs.empty()) inputs_ = DescriptorSet(dev, inputs);
     frame_ = GpuBuffer(dev, sizeof(DeviceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
-    counters_ = GpuBuffer(dev, kRayCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    counters_ = GpuBuffer(dev, kRayCounterCount * sizeof(std::uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          GpuBuffer::Memory::DeviceLocal);
+    countersOnHost_ = GpuBuffer(dev, counters_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
 
     VkWriteDescriptorSetAccelerationStructureKHR as{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
     VkAccelerationStructureKHR topLevel = scene.topLevel();
@@ -185,7 +188,9 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
 
 const GpuBuffer& DeviceRayPipeline::output(VkDeviceSize bytes) {
     if (!output_.valid() || output_.size() != bytes) {
-        output_ = GpuBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        output_ = GpuBuffer(device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                            GpuBuffer::Memory::DeviceLocal);
+        outputOnHost_ = GpuBuffer(device_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
         descriptors_.writeBuffer(8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output_.buffer());
     }
     return output_;
@@ -203,14 +208,16 @@ void DeviceRayPipeline::bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) 
 
 DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
     const VulkanDevice& dev = device_;
-    std::memset(counters_.mapped(), 0, kRayCounterCount * sizeof(std::uint32_t));
     dev.submitAndWait([&](VkCommandBuffer cb) {
         timer_.reset(cb);
+        vkCmdFillBuffer(cb, counters_.buffer(), 0, VK_WHOLE_SIZE, 0);
         if (launch.before) launch.before(cb);
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
         bindSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR);
-        // The rasterizer's targets the shaders may read were written by an earlier submission on this queue.
-        VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+        // The rasterizer's targets the shaders may read were written by an earlier submission on
+        // this queue; the counters were zeroed above.
+        VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
+                               VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                              VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &inputs, 0, nullptr, 0,
                              nullptr);
@@ -233,10 +240,11 @@ DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
                                           launch.height, 1);
         }
         timer_.end(cb);
-        VkPipelineStageFlags readers = VK_PIPELINE_STAGE_HOST_BIT;
+        // The trace's writes, read by the pass after it and by the copies to the host.
+        VkPipelineStageFlags readers = VK_PIPELINE_STAGE_TRANSFER_BIT;
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
         if (launch.after) {
             readers |= VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
             barrier.dstAccessMask |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -246,12 +254,22 @@ DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
             timer_.begin(cb, launch.afterStage);
             launch.after(cb);
             timer_.end(cb);
-            VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
+            VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
         }
+        // What the host reads: the counters, the image, and the caller's own.
+        const VkBufferCopy counters{0, 0, counters_.size()};
+        vkCmdCopyBuffer(cb, counters_.buffer(), countersOnHost_.buffer(), 1, &counters);
+        if (launch.readOutput) {
+            const VkBufferCopy image{0, 0, output_.size()};
+            vkCmdCopyBuffer(cb, output_.buffer(), outputOnHost_.buffer(), 1, &image);
+        }
+        if (launch.readBack) launch.readBack(cb);
+        VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
     });
     std::array<std::uint32_t, kRayCounterCount> c;
-    std::memcpy(c.data(), counters_.mapped(), sizeof(c));
+    std::memcpy(c.data(), countersOnHost_.mapped(), sizeof(c));
     DeviceLaunchCounts counts;
     counts.rays.primary = c[0];
     counts.rays.shadow = c[1];

@@ -59,6 +59,11 @@ struct RayLaunch {
     // Recorded after the trace: passes that read its output, GPU-timed as `afterStage`.
     std::function<void(VkCommandBuffer)> after;
     std::string afterStage;
+    // Recorded last, untimed, after a barrier that makes every write before it visible to
+    // transfers: the caller's copies of what the host reads back (made visible to the host after).
+    std::function<void(VkCommandBuffer)> readBack;
+    // Whether the radiance output is copied to the host (outputOnHost()).
+    bool readOutput = true;
 };
 
 class DeviceRayPipeline {
@@ -70,9 +75,11 @@ public:
     const VulkanDevice& device() const { return device_; }
 
     // The launch's buffers (rewritten by the caller before launch()): the frame's uniforms, the
-    // radiance output (binding 8, resized to `bytes`), the replayed rays (binding 11).
+    // radiance output (binding 8, resized to `bytes`; device-local), the replayed rays (binding 11).
     void setFrame(const device_rays::DeviceFrame& frame) { frame_.write(&frame, sizeof(frame)); }
     const GpuBuffer& output(VkDeviceSize bytes);
+    // After launch() (with readOutput): the radiance output's copy on the host, as many bytes.
+    const GpuBuffer& outputOnHost() const { return outputOnHost_; }
     void setReplayRays(GpuBuffer rays);
     // Set 1 (with `inputs` only), written by the caller before launch().
     DescriptorSet& inputs() { return inputs_; }
@@ -81,8 +88,8 @@ public:
     VkPipelineLayout layout() const { return program_->layout; }
     void bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) const;
 
-    // Zeroes the counters, records `launch` in one command buffer (before, the trace, after),
-    // submits it and waits; returns the counters.
+    // Records `launch` in one command buffer (the counters zeroed, before, the trace, after, the
+    // copies to the host), submits it and waits; returns the counters.
     DeviceLaunchCounts launch(const RayLaunch& launch);
     // After launch(): the trace's GPU stage, then the pass after it where there was one.
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
@@ -91,7 +98,10 @@ private:
     const VulkanDevice& device_;
     std::shared_ptr<const CompiledRayPipeline> program_;
     DescriptorSet descriptors_, inputs_;
-    GpuBuffer frame_, counters_, output_, replay_;
+    GpuBuffer frame_, replay_;
+    // Written by the shaders in device memory (on a discrete GPU, not across the bus); copied to
+    // the host at the end of each launch.
+    GpuBuffer counters_, countersOnHost_, output_, outputOnHost_;
     GpuTimer timer_;
 };
 

@@ -31,7 +31,9 @@ ReplayResult DeviceRayReplay::trace() {
     frame.size = glm::ivec4(static_cast<int>(radianceRays_), static_cast<int>(shadowRays_), 0, 0);
     pipeline_.setFrame(frame);
     const std::uint32_t rays = radianceRays_ + shadowRays_, width = std::min<std::uint32_t>(std::max(rays, 1u), 4096u);
-    const DeviceLaunchCounts counts = pipeline_.launch({width, (rays + width - 1) / width, "replay"});
+    RayLaunch launch{width, (rays + width - 1) / width, "replay"};
+    launch.readOutput = false;  // the replay writes no image
+    const DeviceLaunchCounts counts = pipeline_.launch(launch);
     ReplayResult r;
     r.hits = static_cast<std::uint32_t>(counts.rays.primary + counts.rays.shadow);
     for (const GpuStageTime& s : pipeline_.gpuStages()) r.gpuMilliseconds += s.milliseconds;

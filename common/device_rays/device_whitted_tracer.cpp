@@ -42,7 +42,7 @@ DeviceWhittedTracer::DeviceWhittedTracer(const DeviceRayScene& scene) : scene_(s
 DeviceTraceResult DeviceWhittedTracer::launch(const Camera& camera, int width, int height, const WhittedSettings& settings,
                                               TracedEffects effects) {
     pipeline_.setFrame(deviceFrame(scene_, camera, width, height, settings, effects));
-    output_ = &pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
+    pipeline_.output(static_cast<VkDeviceSize>(width) * height * sizeof(glm::vec4));
     const DeviceLaunchCounts counts = pipeline_.launch({static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), "trace"});
     DeviceTraceResult result;
     result.rays = counts.rays;
@@ -54,7 +54,7 @@ DeviceTraceResult DeviceWhittedTracer::launch(const Camera& camera, int width, i
 DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, int height, const WhittedSettings& settings,
                                              TracedEffects effects) {
     DeviceTraceResult result = launch(camera, width, height, settings, effects);
-    const auto* pixels = static_cast<const glm::vec4*>(output_->mapped());
+    const auto* pixels = static_cast<const glm::vec4*>(output().mapped());
     result.image = Image(width, height);
     std::copy(pixels, pixels + static_cast<std::size_t>(width) * height, result.image.data());
     return result;

@@ -38,13 +38,12 @@ public:
     DeviceTraceResult trace(const Camera& camera, int width, int height, const WhittedSettings& settings, TracedEffects effects = {});
     // As trace(), leaving the image where the device wrote it (output()); result.image stays empty.
     DeviceTraceResult launch(const Camera& camera, int width, int height, const WhittedSettings& settings, TracedEffects effects = {});
-    // After launch(): the image, vec4 per pixel, row-major, host-visible.
-    const GpuBuffer& output() const { return *output_; }
+    // After launch(): the image, vec4 per pixel, row-major, copied to the host.
+    const GpuBuffer& output() const { return pipeline_.outputOnHost(); }
 
 private:
     const DeviceRayScene& scene_;
     DeviceRayPipeline pipeline_;
-    const GpuBuffer* output_ = nullptr;
 };
 
 }  // namespace hybridlab

@@ -234,6 +234,68 @@ struct DeviceTraceSetting {
     std::vector<std::pair<std::string, ParamValue>> params;
 };
 
+double frameCounter(const FrameResult& f, const std::string& name) {
+    const auto it = f.counters.find(name);
+    return it == f.counters.end() ? 0.0 : it->second;
+}
+
+// By kind: rt_only's time per ray split by regression over the counts of settings 0, 1 and 2
+// (rt_only, its camera rays only, its camera and first-hit shadow rays) in the same round (T =
+// camera x P + shadow x S + secondary x (reflection + refraction); the shading of each hit falls on
+// the ray that found it), and each hybrid's trace from `firstHybrid` on against (1) rt_only's rays
+// beyond the camera rays, (T - T_camera-only) / (rays - P), and (2) rt_only's rays at the hybrid's
+// own mix of kinds: its shadow and secondary rays at rt_only's costs.
+void printByKind(const std::vector<DeviceTraceSetting>& settings, const std::vector<std::vector<FrameResult>>& frames,
+                 std::size_t firstHybrid) {
+    const auto counter = frameCounter;
+    struct ByKind {
+        double camera, shadow, secondary, beyondCamera;  // ns per ray
+    };
+    auto byKind = [&](std::size_t r) {
+        const FrameResult &full = frames[0][r], &cameraOnly = frames[1][r], &firstHit = frames[2][r];
+        const double tc = counter(cameraOnly, "gpu_trace_ms"), tf = counter(firstHit, "gpu_trace_ms"), t = counter(full, "gpu_trace_ms");
+        const double p = counter(full, "rays_primary"), sFirst = counter(firstHit, "rays_shadow"), s = counter(full, "rays_shadow");
+        const double secondary = counter(full, "rays_reflection") + counter(full, "rays_refraction");
+        ByKind k{};
+        k.camera = 1e6 * tc / p;
+        k.shadow = sFirst > 0.0 ? 1e6 * (tf - tc) / sFirst : 0.0;
+        k.secondary = secondary > 0.0 ? (1e6 * (t - tc) - k.shadow * s) / secondary : 0.0;
+        k.beyondCamera = 1e6 * (t - tc) / (s + secondary);
+        return k;
+    };
+    std::vector<ByKind> kinds;
+    const std::size_t rounds = frames[0].size();
+    for (std::size_t r = 0; r < rounds; ++r) kinds.push_back(byKind(r));
+    auto kindSummary = [&](double ByKind::* field) {
+        std::vector<double> v;
+        for (const ByKind& k : kinds) v.push_back(k.*field);
+        return summarize(v);
+    };
+    const Summary camera = kindSummary(&ByKind::camera), shadow = kindSummary(&ByKind::shadow),
+                  secondary = kindSummary(&ByKind::secondary), beyond = kindSummary(&ByKind::beyondCamera);
+    std::printf("\nrt_only's rays by kind (ns per ray, median [min, max] over the rounds; by regression over the counts of rt_only, "
+                "camera rays only, and camera + shadow rays)\n");
+    std::printf("camera %.1f [%.1f, %.1f], shadow %.1f [%.1f, %.1f], secondary %.1f [%.1f, %.1f]; beyond the camera rays %.1f [%.1f, %.1f]\n",
+                camera.median, camera.min, camera.max, shadow.median, shadow.min, shadow.max, secondary.median, secondary.min,
+                secondary.max, beyond.median, beyond.min, beyond.max);
+    std::printf("%-38s %28s %28s\n", "setting", "to rt_only beyond camera", "to rt_only at its ray mix");
+    for (std::size_t i = firstHybrid; i < settings.size(); ++i) {
+        std::vector<double> toBeyond, toMix;
+        for (std::size_t r = 0; r < rounds; ++r) {
+            const FrameResult& f = frames[i][r];
+            const ByKind& k = kinds[r];
+            const double ns = counter(f, "gpu_trace_ns_per_ray");
+            toBeyond.push_back(ns / k.beyondCamera);
+            // The trace's own rays: no camera rays (a cast G-buffer's are the gbuffer.rays stage's).
+            const double s = counter(f, "rays_shadow"), sec = counter(f, "rays_reflection") + counter(f, "rays_refraction");
+            toMix.push_back(1e6 * counter(f, "gpu_trace_ms") / (k.shadow * s + k.secondary * sec));
+        }
+        const Summary a = summarize(toBeyond), b = summarize(toMix);
+        std::printf("%-38s %7.3f [%.3f, %.3f]        %7.3f [%.3f, %.3f]\n", settings[i].label.c_str(), a.median, a.min, a.max, b.median, b.min,
+                    b.max);
+    }
+}
+
 // The device traces per ray: every setting rendered once a round (after one warm-up frame each), in
 // the same order every round so that a round's load falls on all of them; per setting the medians
 // of its trace's GPU time per ray (counter gpu_trace_ns_per_ray) and its ratio to rt_only's in the
@@ -244,6 +306,13 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
     const auto castGBuffer = std::make_pair(std::string("gbuffer"), ParamValue(std::string("rays")));
     const auto budgetParam = std::make_pair(std::string("budget"), ParamValue(budget));
     std::vector<DeviceTraceSetting> settings = {{"rt_only", "rt_only", {vulkan}}};
+    // rt_only cut down to its camera rays, then with their shadow rays: what its rays cost by kind
+    // (printByKind).
+    const auto depth0 = std::make_pair(std::string("max_depth"), ParamValue(0LL));
+    const auto noShadows = std::make_pair(std::string("shadows"), ParamValue(false));
+    settings.push_back({"rt_only, camera rays only", "rt_only", {vulkan, depth0, noShadows}});
+    settings.push_back({"rt_only, camera + shadow rays", "rt_only", {vulkan, depth0}});
+    const std::size_t firstHybrid = settings.size();
     // Each hybrid's ray stage launched over its classified texels and one invocation per texel.
     for (const DeviceTraceSetting& hybrid : std::vector<DeviceTraceSetting>{
              {"heuristic_rt, gbuffer raster", "heuristic_rt", {vulkan, budgetParam}},
@@ -271,10 +340,7 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
     std::vector<std::vector<FrameResult>> frames(settings.size());
     for (int r = 0; r < o.repeats; ++r)
         for (std::size_t i = 0; i < settings.size(); ++i) frames[i].push_back(techniques[i]->render(context, request));
-    auto counter = [](const FrameResult& f, const std::string& name) {
-        const auto it = f.counters.find(name);
-        return it == f.counters.end() ? 0.0 : it->second;
-    };
+    const auto counter = frameCounter;
     auto median = [&](std::size_t i, const std::string& name) {
         std::vector<double> v;
         for (const FrameResult& f : frames[i]) v.push_back(counter(f, name));
@@ -300,6 +366,8 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
                     ratio.median, ratio.min, ratio.max, median(i, "gpu_classify_ms"), median(i, "gpu_composite_ms"),
                     median(i, "gpu_gbuffer.rays_ns_per_ray"));
     }
+    printByKind(settings, frames, firstHybrid);
+
     // The whole frame by stage (wall clock; the device's stages by their GPU timestamps, the rest
     // of each submission's wall clock as overhead): what lies outside the trace.
     std::printf("\nframe stages (medians, ms)\n");

@@ -356,7 +356,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     gbuffer_.recordDeviceCast(result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
-        const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());
+        const glm::vec4* records = deviceTracer_->readTexels();
         const char* names[DeviceGBufferTracer::kTexelRecords] = {"heuristic_mask", "shadows", "reflections", "refractions"};
         for (std::uint32_t k = 0; k < DeviceGBufferTracer::kTexelRecords; ++k) {
             Image image(frame.width, frame.height);

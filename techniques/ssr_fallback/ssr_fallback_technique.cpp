@@ -404,7 +404,7 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     const DeviceGBufferTrace traced = deviceTracer_->trace(
         rasterizer.targets(), tracerSettings_, options,
         [&](VkCommandBuffer cb) {
-            deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->image(), frame.width, frame.height, blurRadius_, blurRange_,
+            deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->deviceImage(), frame.width, frame.height, blurRadius_, blurRange_,
                                      walewski);
         },
         "composite");
@@ -432,7 +432,7 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
     std::vector<ReflectionSource> source(n);
     std::vector<std::uint8_t> refractive(n);
-    const auto* records = static_cast<const glm::vec4*>(deviceTracer_->texels().mapped());
+    const glm::vec4* records = deviceTracer_->readTexels();
     for (std::size_t i = 0; i < n; ++i) {
         source[i] = static_cast<ReflectionSource>(static_cast<int>(records[DeviceGBufferTracer::kTexelRecords * i].w));
         refractive[i] = records[DeviceGBufferTracer::kTexelRecords * i + 3].y != 0.0f;
