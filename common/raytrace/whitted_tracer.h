@@ -1,8 +1,10 @@
 #pragma once
-// Recursive Whitted ray tracing (Whitted 1980; Walewski 2019 Listing 8c with the composition rule
-// of DESIGN.md): hard shadows from every light, reflection and refraction to a depth limit, the
-// local colour at the limit, the sky on a miss. The reference technique calls it from camera rays;
-// hybrid techniques call shade() from a G-buffer texel.
+// Whitted ray tracing (Whitted 1980; Walewski 2019 Listing 8c with the composition rule of
+// DESIGN.md) on Embree: hard shadows from every light, reflection and refraction to a depth limit,
+// the local colour at the limit, the sky on a miss. The tree's walk, what a hit shades and which
+// rays it spawns are common/shading/whitted_tree.h, written once for this backend and the
+// device's (device_whitted_tree.glsl); whitted_tracer.cpp gives it RayScene's rays. The reference
+// technique calls it from camera rays; hybrid techniques call shadeParts() from a G-buffer texel.
 #include <optional>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
 #include "common/raytrace/shading.h"
+#include "common/shading/whitted_tree_types.h"
 
 namespace hybridlab {
 
@@ -116,13 +119,6 @@ public:
                          float uvLod = -std::numeric_limits<float>::infinity(), glm::vec3 mediumAbsorption = glm::vec3(0.0f)) const;
 
 private:
-    // Whether shadeSurface() shades C where the composition gives it weight 0: always (a caller
-    // reads parts.local), or only if weighted (a caller that composes alone).
-    enum class LocalColor { Always, IfWeighted };
-    ShadingParts shadeSurface(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                              TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local, EnvironmentTerms* environment,
-                              const MediumStack& media, LocalColor shadeC) const;
-
     const RayScene& rays_;
     WhittedSettings settings_;
     std::vector<SpotCone> cones_;  // per light

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The physics in common/shading is written once (common/shading/shading_language.h): no copy of it.
 
-A function or struct that a header of common/shading defines (SHARED_FUNCTION, struct) has that one
-definition. Exit status 1, one line a problem, when
+A function or struct that a header of common/shading defines (SHARED_FUNCTION, BACKEND_FUNCTION,
+struct) has that one definition, and the Whitted ray tree's walk (common/shading/whitted_tree.h) is
+the one walk of both ray backends. Exit status 1, one line a problem, when
   - a shader (GLSL: .glsl, .vert, .frag, .comp, .rgen, .rchit, .rmiss, .rahit, .rint) defines a
     function or struct of that name,
   - a C++ source outside common/shading defines a function of that name whose body calls neither
@@ -21,7 +22,11 @@ SHARED_DIR = os.path.join("common", "shading")
 SHADER_EXTENSIONS = {".glsl", ".vert", ".frag", ".comp", ".rgen", ".rchit", ".rmiss", ".rahit", ".rint"}
 CPP_EXTENSIONS = {".h", ".hpp", ".cpp"}
 SKIPPED_DIRS = {".git", "node_modules", "__pycache__"}
-SHARED_FUNCTION = re.compile(r"\bSHARED_FUNCTION\s+\w+\s+(\w+)\s*\(")
+SHARED_FUNCTION = re.compile(r"\b(?:SHARED|BACKEND)_FUNCTION\s+(?:\w+\s+)+(\w+)\s*\(")
+# The files that give the walk of whitted_tree.h a backend: the Embree one and the device's.
+BACKEND_FILES = ["common/raytrace/whitted_tracer.cpp", "common/device_rays/shaders/device_whitted_tree.glsl"]
+# A radiance ray traced: Embree's closest hit, the device's radiance ray type.
+RADIANCE_RAY = re.compile(r"\.intersect\w*\s*\(|traceRayEXT\s*\([^;]*kRadianceRay")
 STRUCT = re.compile(r"^\s*struct\s+(\w+)\s*\{", re.MULTILINE)
 # A definition: a return type (a word, possibly qualified or templated), the name, a parameter list
 # without braces or semicolons, then optional qualifiers and the body's brace.
@@ -89,6 +94,29 @@ def problems(root):
                 if match.group(1) in structs:
                     found.append(f"{relative}:{line_of(match.start(1))}: defines struct {match.group(1)}, which {SHARED_DIR} "
                                  "defines once for C++ and GLSL")
+    for relative in BACKEND_FILES:
+        path = os.path.join(root, relative)
+        if not os.path.exists(path):
+            found.append(f"{relative}: missing (a ray backend of {SHARED_DIR}/whitted_tree.h)")
+            continue
+        found += backend_problems(relative, open(path, encoding="utf-8", errors="replace").read())
+    return found
+
+
+def backend_problems(relative, text):
+    """A backend calls the one walk and leaves the walking to it."""
+    line_of = lambda offset: text.count("\n", 0, offset) + 1
+    found = []
+    if not re.search(r"\btraceTree\s*\(", text):
+        found.append(f"{relative}: does not call traceTree() ({SHARED_DIR}/whitted_tree.h, the one walk of the ray tree)")
+    for match in DEFINITION.finditer(text):
+        body = body_at(text, match.end() - 1)
+        if re.search(r"\boffsetRayOrigin\s*\(", body):
+            found.append(f"{relative}:{line_of(match.start(1))}: {match.group(1)}() spawns a secondary ray: the walk of "
+                         f"{SHARED_DIR}/whitted_tree.h does that for both backends")
+        if match.group(1) != "traceRay" and RADIANCE_RAY.search(body):
+            found.append(f"{relative}:{line_of(match.start(1))}: {match.group(1)}() traces a radiance ray: only the backend's "
+                         f"traceRay() may, for the walk of {SHARED_DIR}/whitted_tree.h")
     return found
 
 
@@ -104,10 +132,23 @@ def self_check():
         "common/raytrace/adapter.h": ("inline glm::vec3 twice(const Thing& t) { return shading_language::twice(t.v); }\n"
                                       "glm::vec3 twice(const Other& o) { return twice(o.thing); }\n"),
         "common/raytrace/copy.cpp": "float half(float x, float y) {\n    return x * 0.5f;\n}\nfloat g() { return half(1.0f, 2.0f); }\n",
+        "common/shading/walk.h": "BACKEND_FUNCTION vec3 traceTree(BACKEND_PARAM PendingRay root) { return vec3(0.0f); }\n",
+        "common/device_rays/shaders/walk_copy.glsl": "vec3 traceTree(PendingRay root) {\n    return vec3(0.0);\n}\n",
+        BACKEND_FILES[0]: ("float Backend::traceRay(glm::vec3 o, glm::vec3 d) { return rays.intersect({o, d}, hit) ? hit.t : -1.0f; }\n"
+                           "glm::vec3 Tracer::radiance(const Ray& r) { return traceTree(backend, r); }\n"
+                           "glm::vec3 Tracer::shade(const Hit& h) {\n    return radiance({offsetRayOrigin(h.p, h.n), h.d});\n}\n"),
+        BACKEND_FILES[1]: ("float traceRay(vec3 o, vec3 d) {\n    traceRayEXT(topLevel, 0u, 0xFF, kRadianceRay, 0, kRadianceRay, o, 0.0, d, 1e38, 0);\n"
+                           "    return hit.t;\n}\n"
+                           "vec3 walk(vec3 o, vec3 d) {\n    traceRayEXT(topLevel, 0u, 0xFF, kRadianceRay, 0, kRadianceRay, o, 0.0, d, 1e38, 0);\n"
+                           "    return vec3(hit.t);\n}\n"),
     }
-    expected = ["common/raster/shaders/copy.glsl:1: defines twice()",
+    expected = ["common/device_rays/shaders/device_whitted_tree.glsl: does not call traceTree()",
+                "common/device_rays/shaders/device_whitted_tree.glsl:5: walk() traces a radiance ray",
+                "common/device_rays/shaders/walk_copy.glsl:1: defines traceTree()",
+                "common/raster/shaders/copy.glsl:1: defines twice()",
                 "common/raster/shaders/struct_copy.rgen:1: defines struct Sample",
-                "common/raytrace/copy.cpp:1: defines half() without"]
+                "common/raytrace/copy.cpp:1: defines half() without",
+                "common/raytrace/whitted_tracer.cpp:3: shade() spawns a secondary ray"]
     with tempfile.TemporaryDirectory() as root:
         for relative, text in files.items():
             path = os.path.join(root, relative)

@@ -1,7 +1,7 @@
 // Secondary rays from the G-buffer where it lies (the hybrids' ray stage on the raster's device):
 // the rasterizer's targets read as images of set 1, a texel taken as the surface a camera ray
 // would have hit there (as GBufferSurface, techniques/shared/gbuffer_surface.h), and its
-// ray tree (device_whitted_tree.glsl) split into the terms the hybrids blend (ShadingParts).
+// ray tree (device_whitted_tree.glsl) split into the terms the hybrids blend (HitParts, ShadingParts).
 #ifndef DEVICE_GBUFFER_RAYS_GLSL
 #define DEVICE_GBUFFER_RAYS_GLSL
 
@@ -50,43 +50,17 @@ void addTexelRayCounts() {
     if (countShadow + countReflection + countRefraction > 0u) countTraced();
 }
 
-// As ShadingParts.
-struct Parts {
-    vec3 local, reflected, refracted;
-    float reflectivity, transparency;
-    bool composes;
-    vec3 skyReflected, skyRefracted;  // EnvironmentTerms
-};
+// A hit's terms composed (ShadingParts::composed).
+vec3 composed(HitParts p) { return composedParts(p, frame.settings.y != 0.0); }
 
-vec3 composed(Parts p) { return p.composes ? compose(p.reflectivity, p.transparency, p.reflected, p.refracted, p.local, frame.settings.y != 0.0) : p.local; }
-
-// As WhittedTracer::shadeParts() in the ambient medium: the hit's terms, its secondary rays
-// traced with the ray tree. With `composedOnly` (a caller that reads composed() alone, as
-// WhittedTracer::shade()), C is shaded only where it weighs.
-Parts shadeParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects, bool localGiven,
-                 vec3 givenLocal, bool composedOnly) {
-    HitShading h = shadeHit(s, m, incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal, composedOnly);
-    Parts p;
-    p.local = h.local;
-    p.reflectivity = h.reflectivity;
-    p.transparency = h.transparency;
-    p.composes = h.composes;
-    p.skyReflected = h.skyReflected;
-    p.skyRefracted = h.skyRefracted;
-    // M, then R (under total internal reflection, M again), from one call site of the tree: lavapipe
-    // compiles each inlined copy of the loop anew.
-    for (int k = 0; k < 2; ++k) {
-        HitTerm term = k == 0 ? h.reflected : h.refracted;
-        vec3 v = k == 1 && h.tir ? p.reflected : term.value;
-        if (term.traced) {
-            if (k == 0) ++countReflection;
-            else ++countRefraction;
-            v = traceTree(term.ray);
-        }
-        if (k == 0) p.reflected = v;
-        else p.refracted = v;
-    }
-    return p;
+// As WhittedTracer::shadeParts() in the ambient medium: the hit's terms (shadeParts(),
+// whitted_tree.h), its secondary rays traced with the ray tree, the environment terms computed.
+// With `composedOnly` (a caller that reads composed() alone, as WhittedTracer::shade()), C is
+// shaded only where it weighs.
+HitParts shadeTexelParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects,
+                         bool localGiven, vec3 givenLocal, bool composedOnly) {
+    return shadeParts(s, surfaceMaterial(m), incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal,
+                      composedOnly, true);
 }
 
 #endif

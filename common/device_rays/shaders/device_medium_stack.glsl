@@ -2,11 +2,11 @@
 // the rule) on the device; Beer-Lambert absorption along a segment is common/shading/absorption.h,
 // written once for both backends. The stack's push and pop mirror the C++'s few lines (change
 // both together) because its entries differ: here an entry is the object and its material, 16
-// bits each, the absorption read from the material. A pending ray
-// carries its stack (device_whitted_tree.glsl), and the ray-generation shader's stack of pending
-// rays lives in the ray-tracing stack, which NVIDIA's driver bounds: with the C++'s layout (a vec3
+// bits each, the absorption read from the material. A pending ray carries its stack (PendingRay,
+// common/shading/whitted_tree_types.h), and the walk's stack of pending rays lives in the
+// ray-tracing stack, which NVIDIA's driver bounds: with the C++'s layout (a vec3
 // an entry) 48 pending rays took 14.6 KB an invocation and lost the device (H200, driver 580; 32
-// took 10 KB and ran); the shader holds 66 (RayStackBudget tests the bound).
+// took 10 KB and ran); the walk holds 66 (RayStackBudget tests the bound).
 // Include after device_rays.glsl (the materials).
 #ifndef DEVICE_MEDIUM_STACK_GLSL
 #define DEVICE_MEDIUM_STACK_GLSL

@@ -1,19 +1,13 @@
-// The Whitted ray tree on the device, as WhittedTracer (common/raytrace/whitted_tracer.cpp)
-// with the one shading model (common/shading, written once for both backends: the local colour's
-// terms, the composition, which rays a hit traces, absorption): what every ray-generation shader
-// that shades hits shares. device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at
-// G-buffer texels (the hybrids' secondary rays). Each function below computes what the C++
-// function it names computes; the DeviceRays tests (tests/device_rays/test_device_rays.cpp) hold the images
-// and ray counts of both backends equal.
-//
-// The ray tree is iterated with an explicit stack rather than recursed through closest-hit
-// shaders. Recursion would need maxRayRecursionDepth >= max_depth + 2 (shadow rays from the
-// deepest hit), and devices promise as little as 1; each level would also hold its payload live.
-// The iteration needs a recursion depth of 1 only. Composition (composition.h compose()) is linear
-// in the reflected, refracted and local terms, so each stack entry carries its throughput (its
-// weight in the pixel's radiance) and adds its local term when popped; the importance cut-off
-// (Walewski 2019 §3.3) looks at the product of weights along the path, which no traversal order
-// changes, so the stack traces exactly the rays the recursion traces.
+// The Whitted ray tree on the device: the device's backend of the one walk
+// (common/shading/whitted_tree.h, written once for both backends with the one shading model of
+// common/shading), what every ray-generation shader that shades hits shares.
+// device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at G-buffer
+// texels (the hybrids' secondary rays). Below: what the walk asks of a backend (trace a ray,
+// resolve its hit, sample a texture over a ray cone, test a shadow ray, count a ray), each as the
+// C++ backend (EmbreeTreeBackend, common/raytrace/whitted_tracer.cpp) computes it on RayScene; the
+// DeviceRays tests (tests/device_rays/test_device_rays.cpp) hold the images and ray counts of both
+// backends equal. The walk iterates the tree with an explicit stack (whitted_tree.h says why), so
+// the pipeline needs a recursion depth of 1 only.
 #ifndef DEVICE_WHITTED_TREE_GLSL
 #define DEVICE_WHITTED_TREE_GLSL
 
@@ -22,23 +16,10 @@
 #include "shading.glsl"
 #include "sky.glsl"
 #include "device_medium_stack.glsl"
+#include "whitted_tree_types.h"
 
 layout(location = 0) rayPayloadEXT HitPayload hit;
 layout(location = 1) rayPayloadEXT ShadowPayload shadow;
-
-// A ray waiting to be traced.
-struct PendingRay {
-    vec3 origin;
-    float importance;  // its weight in the pixel, for the cut-off
-    vec3 direction;
-    int depth;         // of its hit: 0 for camera rays
-    vec3 throughput;   // its radiance's weight in the pixel
-    float coneWidth;   // ray cone at its origin (ray_cone.h)
-    MediumStack media; // the media it travels in
-};
-// A pop pushes at most two rays one level deeper: max_depth (at most 64) + 2 entries.
-const int kMaxStack = 66;
-PendingRay stack[kMaxStack];
 
 // A resolved hit: as SurfaceHit and RayScene::resolveHit.
 struct Surface {
@@ -53,6 +34,7 @@ struct Surface {
 
 uint countShadow = 0u, countReflection = 0u, countRefraction = 0u, countMediumErrors = 0u;
 
+// The sky along d (skyRadiance(), common/raytrace/shading.h).
 vec3 skyRadiance(vec3 d) {
     if (frame.skyColor.a == 0.0) return frame.skyColor.rgb;
     return skyCubeRadiance(skyFaces, d);
@@ -121,172 +103,75 @@ vec3 transmittance(vec3 origin, vec3 direction, float tmax, vec3 startAbsorption
     return shadowRayTransmittance(shadow.transmittance, shadow.opticalDepth, startAbsorption, shadow.lightDistance);
 }
 
-// As WhittedTracer::localColor().
-vec3 localColor(Surface s, DeviceMaterial m, vec3 n, vec3 ng, vec3 toViewer, bool shadowRays, float uvLod, vec3 mediumAbsorption) {
-    vec3 tex = diffuseTextureValue(m, s.uv, uvLod);
-    vec3 c = unlitTerm(m.emission.rgb, m.ambient.rgb, frame.ambient.rgb, tex);
-    vec3 shadowOrigin = offsetRayOrigin(s.position, ng);
-    for (int i = 0; i < frame.size.z; ++i) {
-        LightData light = lights[i];
-        LightSample ls = sampleLightRecord(light, s.position);
-        vec3 direct = blinnPhong(n, m.diffuse.rgb * tex, m.specular.rgb, m.specular.a, toViewer, ls);
-        if (direct == vec3(0.0)) continue;  // facing away, or outside a spot cone: no ray needed
-        if (light.shadow.x >= 0 && frame.settings.z != 0.0 && shadowRays) {
-            ++countShadow;
-            direct *= transmittance(shadowOrigin, ls.toLight, ls.distance, mediumAbsorption);
-        }
-        c += direct;
-    }
-    return c;
+int lightCount() { return frame.size.z; }
+LightSample lightSample(int i, vec3 p) { return sampleLightRecord(lights[i], p); }
+bool lightCastsShadows(int i) { return lights[i].shadow.x >= 0; }
+
+// As RayScene::intersect(): the closest hit's distance (< 0: a miss), the hit in the payload.
+float traceRay(vec3 origin, vec3 direction) {
+    traceRayEXT(topLevel, gl_RayFlagsOpaqueEXT, 0xFF, kRadianceRay, 0, kRadianceRay, origin, 0.0, direction, 3.0e38, 0);
+    return hit.t;
 }
 
+SurfaceMaterial surfaceMaterial(DeviceMaterial m) {
+    SurfaceMaterial s;
+    s.emission = m.emission.rgb;
+    s.ambient = m.ambient.rgb;
+    s.diffuse = m.diffuse.rgb;
+    s.specular = m.specular.rgb;
+    s.specularExponent = m.specular.a;
+    s.reflectivity = m.optical.x;
+    s.ior = m.optical.y;
+    s.opacity = m.optical.z;
+    s.fresnel = m.optical.w != 0.0;
+    return s;
+}
+SurfaceMaterial surfaceMaterial(Surface s) { return surfaceMaterial(materials[s.material]); }
 
-// What a hit's reflected (M) or refracted (R) term is: traced (a ray to follow), or a value in
-// its place (the sky where the effect is not traced at this hit, C under the importance cut-off,
-// 0 past the depth limit).
-struct HitTerm {
-    bool traced;
-    vec3 value;
-    PendingRay ray;  // when traced: its origin, direction, importance, depth, cone and media (throughput 1)
-};
-
-// One hit shaded up to its secondary rays: as WhittedTracer::shadeParts() before it
-// traces them.
-struct HitShading {
-    vec3 local;          // C
-    float reflectivity;  // o_m (the Fresnel reflectance for dielectrics)
-    float transparency;  // o_r
-    bool composes;       // false: C alone
-    bool tir;            // total internal reflection: R is M
-    HitTerm reflected, refracted;
-    vec3 skyReflected, skyRefracted;  // the rasterizer's environment terms (EnvironmentTerms)
-};
-
-// `effects` (shadows, reflection, refraction) are traced at this hit (TracedEffects); with
-// `localGiven`, `givenLocal` stands in for C (the rasterizer's, shadowed by its maps). With
-// `localIfWeighted`, C is shaded only where the composition weights it (WhittedTracer::shade()):
-// not for clear glass, a perfect mirror or under total internal reflection with their rays traced,
-// where h.local is 0.
-HitShading shadeHit(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, MediumStack media,
-                    bvec3 effects, bool localGiven, vec3 givenLocal, bool localIfWeighted) {
-    HitShading h;
-    // Work on the side the ray arrives from.
-    ArrivalSide side = arrivalSide(incoming, s.geometricNormal, s.shadingNormal, m.optical.y, frame.ambient.a);
-    vec3 ng = side.geometricNormal, n = side.shadingNormal;
-    // The composition's weights, the depth limit, the importance cut-off and whether C weighs
-    // (composition.h).
-    HitScattering scattering = scatterAtHit(incoming, n, side.n1, side.n2, m.optical.x, m.optical.w != 0.0, m.optical.z, depth, frame.size.w,
-                                            frame.rules.x == 0u, importance, frame.settings.x, effects.y, effects.z);
-    h.reflectivity = scattering.reflectivity;
-    h.transparency = scattering.transparency;
-    h.composes = scattering.composes;
-    h.tir = scattering.tir;
-    bool tracesRays = scattering.tracesRays;
-    float weightM = scattering.weightM, weightR = scattering.weightR;
-    bool traceM = scattering.traceM, traceR = scattering.traceR;
-    bool localWeighs = scattering.localWeighs;
-    if (localGiven) {
-        h.local = givenLocal;
-    } else if (!localIfWeighted || localWeighs) {
-        h.local = localColor(s, m, n, ng, -incoming, effects.x, uvFootprintLod(s.uvDensityLod, coneWidth, incoming, s.geometricNormal),
-                             media.absorption);
-    } else {
-        h.local = vec3(0.0);
-    }
-    h.reflected.traced = false;
-    h.refracted.traced = false;
-    h.reflected.value = vec3(0.0);
-    h.refracted.value = vec3(0.0);
-    h.skyReflected = h.skyRefracted = h.local;
-    if (!tracesRays) return h;
-    vec3 reflected = scattering.reflectedDirection, refracted = scattering.refractedDirection;
-    if (weightM > 0.0) h.skyReflected = skyRadiance(reflected);
-    if (weightR > 0.0) h.skyRefracted = skyRadiance(refracted);
-    if (h.tir) h.skyRefracted = h.skyReflected;
-
-    h.reflected.value = h.local;
-    if (!effects.y) {
-        h.reflected.value = h.skyReflected;
-    } else if (traceM) {
-        h.reflected.traced = true;
-        h.reflected.ray = PendingRay(offsetRayOrigin(s.position, ng), importance * weightM, reflected, depth + 1, vec3(1.0), coneWidth, media);
-    }
-    h.refracted.value = h.local;
-    if (h.tir) {
-        h.refracted.value = h.reflected.value;
-    } else if (!effects.z) {
-        h.refracted.value = h.skyRefracted;
-    } else if (traceR) {
-        h.refracted.traced = true;
-        MediumStack inside = media;
-        if (!(side.entering ? mediumEnter(inside, s.object, s.material) : mediumLeave(inside, s.object))) ++countMediumErrors;
-        h.refracted.ray = PendingRay(offsetRayOrigin(s.position, -ng), importance * weightR, refracted, depth + 1, vec3(1.0), coneWidth, inside);
-    }
-    return h;
+// The diffuse texture over the ray cone's footprint (none on a G-buffer surface: its colours are
+// textured already).
+vec3 diffuseTexture(Surface s, float coneWidth, vec3 incoming) {
+    if (s.material == kNoAbsorption) return vec3(1.0);
+    return diffuseTextureValue(materials[s.material], s.uv, uvFootprintLod(s.uvDensityLod, coneWidth, incoming, s.geometricNormal));
 }
 
-// The radiance along `root` and the rays it spawns, iterated with the stack; `root` is traced.
-// Camera rays (depth 0) trace the effects frame.effects selects at their first hit.
-vec3 traceTree(PendingRay root) {
-    const bool rayCones = frame.settings.w != 0.0;
-    const bool walewski = frame.settings.y != 0.0;
-    stack[0] = root;
-    int top = 1;
-    vec3 L = vec3(0.0);
-    while (top > 0) {
-        PendingRay ray = stack[--top];
-        traceRayEXT(topLevel, gl_RayFlagsOpaqueEXT, 0xFF, kRadianceRay, 0, kRadianceRay, ray.origin, 0.0, ray.direction, 3.0e38, 0);
-        if (hit.t < 0.0) {
-            if (ray.media.size > 0) ++countMediumErrors;  // left the scene inside a closed object: an open mesh
-            L += ray.throughput * skyRadiance(ray.direction);
-            continue;
-        }
-        Surface s = resolveHit();
-        // Beer-Lambert absorption of the media the segment ran through (WhittedTracer::radianceAtHit).
-        vec3 throughput = mediumAbsorbs(ray.media) ? ray.throughput * segmentTransmittance(ray.media.absorption, hit.t) : ray.throughput;
-        // Per-effect tracing applies at the first hit; deeper hits trace everything (TracedEffects).
-        bvec3 effects = ray.depth == 0 ? bvec3(frame.effects.xyz != uvec3(0u)) : bvec3(true);
-        // The cone at the hit (RayCone::at); none without ray cones (texture_filter = "none").
-        float coneWidth = rayCones ? ray.coneWidth + frame.cone.y * hit.t : 0.0;
-        HitShading h = shadeHit(s, materials[s.material], ray.direction, ray.depth, ray.importance, coneWidth, ray.media, effects, false,
-                                vec3(0.0), true);
-        if (!h.composes) {
-            L += throughput * h.local;
-            continue;
-        }
-        // The composition's weights of M, R and C (compose() is linear in each).
-        float om = h.reflectivity, orr = h.transparency;
-        float cM = compose(om, orr, vec3(1.0), vec3(0.0), vec3(0.0), walewski).x;
-        float cR = compose(om, orr, vec3(0.0), vec3(1.0), vec3(0.0), walewski).x;
-        float cC = compose(om, orr, vec3(0.0), vec3(0.0), vec3(1.0), walewski).x;
-        if (h.tir) {
-            cM += cR;
-            cR = 0.0;
-        }
-        L += throughput * cC * h.local;
-        if (cM > 0.0) {
-            if (h.reflected.traced) {
-                ++countReflection;
-                PendingRay next = h.reflected.ray;
-                next.throughput = throughput * cM;
-                stack[top++] = next;
-            } else {
-                L += throughput * cM * h.reflected.value;
-            }
-        }
-        if (cR > 0.0) {
-            if (h.refracted.traced) {
-                ++countRefraction;
-                PendingRay next = h.refracted.ray;
-                next.throughput = throughput * cR;
-                stack[top++] = next;
-            } else {
-                L += throughput * cR * h.refracted.value;
-            }
-        }
-    }
-    return L;
+vec3 shadowTransmittance(vec3 origin, vec3 direction, float distance, vec3 startAbsorption) {
+    return transmittance(origin, direction, distance, startAbsorption);
 }
+
+// As RayCone::at; none without ray cones (texture_filter = "none").
+float coneWidthAt(float width, float t) { return frame.settings.w != 0.0 ? width + frame.cone.y * t : 0.0; }
+
+TreeSettings treeSettings() {
+    TreeSettings t;
+    t.maxDepth = frame.size.w;
+    t.depthLimitLocal = frame.rules.x == 0u;
+    t.importanceCutoff = frame.settings.x;
+    t.walewski = frame.settings.y != 0.0;
+    t.shadows = frame.settings.z != 0.0;
+    t.sceneAmbient = frame.ambient.rgb;
+    t.ambientIor = frame.ambient.a;
+    return t;
+}
+
+vec3 mediaAbsorption(MediumStack m) { return m.absorption; }
+int mediaDepth(MediumStack m) { return m.size; }
+bool refractMedia(inout MediumStack m, Surface s, bool entering) {
+    return entering ? mediumEnter(m, s.object, s.material) : mediumLeave(m, s.object);
+}
+
+void countRay(int kind) {
+    if (kind == kRayShadow) ++countShadow;
+    else if (kind == kRayReflection) ++countReflection;
+    else if (kind == kRayRefraction) ++countRefraction;
+    else ++countMediumErrors;
+}
+
+#include "whitted_tree.h"
+
+// The radiance along a camera ray (depth 0) and the rays it spawns: the effects frame.effects
+// selects at its first hit.
+vec3 traceCameraTree(PendingRay root) { return traceTree(root, bvec3(frame.effects.xyz != uvec3(0u))); }
 
 // The per-pixel counts of the invocation, added to the launch's counters (rayCounts).
 void addRayCounts() {
