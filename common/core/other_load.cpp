@@ -3,20 +3,16 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "common/core/process_cpu_clock.h"
+#include "common/core/wall_clock.h"
 
 namespace hybridlab {
 
 namespace {
-
-double monotonicMs() {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 std::optional<double> readBusySeconds() {
     std::ifstream in("/proc/stat");
@@ -36,11 +32,11 @@ std::optional<double> busyCpuSeconds(const char* procStatText, long ticksPerSeco
     return static_cast<double>(user + nice + system + irq + softirq + steal) / static_cast<double>(ticksPerSecond);
 }
 
-OtherLoadMeter::OtherLoadMeter() : busyStartS_(readBusySeconds()), ownStartMs_(processCpuMilliseconds()), wallStartMs_(monotonicMs()) {}
+OtherLoadMeter::OtherLoadMeter() : busyStartS_(readBusySeconds()), ownStartMs_(processCpuMilliseconds()), wallStart_(WallClock::now()) {}
 
 std::optional<double> OtherLoadMeter::fraction() const {
     const std::optional<double> busyNow = readBusySeconds();
-    const double wallS = (monotonicMs() - wallStartMs_) / 1000.0;
+    const double wallS = millisecondsSince(wallStart_) / 1000.0;
     const long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (!busyStartS_ || !busyNow || wallS <= 0.0 || cores <= 0) return std::nullopt;
     const double others = (*busyNow - *busyStartS_) - (processCpuMilliseconds() - ownStartMs_) / 1000.0;

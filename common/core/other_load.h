@@ -8,6 +8,8 @@
 // the report says where it was high.
 #include <optional>
 
+#include "common/core/wall_clock.h"
+
 namespace hybridlab {
 
 class OtherLoadMeter {
@@ -21,7 +23,7 @@ public:
 private:
     std::optional<double> busyStartS_;  // every core's busy CPU time, seconds
     double ownStartMs_ = 0.0;
-    double wallStartMs_ = 0.0;
+    WallClock::time_point wallStart_;
 };
 
 // Every core's busy CPU time so far in seconds (user, nice, system, irq, softirq, steal), from

@@ -61,6 +61,14 @@ std::string text(const json& record, const char* key) {
 
 }  // namespace
 
+bool rendersOnCpu() {
+    try {
+        return VulkanDevice::shared()->type() == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    } catch (const VulkanUnavailable&) {
+        return true;
+    }
+}
+
 json deviceRecord() {
     json r;
     r["cpu_model"] = fileField("/proc/cpuinfo", "model name", ':');

@@ -14,6 +14,10 @@ namespace hybridlab {
 // program_version. Without a usable Vulkan device the Vulkan fields say "none" and why.
 nlohmann::json deviceRecord();
 
+// Whether this process renders on the CPU: its Vulkan device is a CPU (lavapipe) or there is none
+// (Embree alone). The timing budget's clock depends on it (interleaved_timing.h).
+bool rendersOnCpu();
+
 // Whether two records describe the same measuring machine: equal in every field but the program
 // version (a rebuilt program times the same machine). A record absent from an older result set is null.
 bool sameDevice(const nlohmann::json& a, const nlohmann::json& b);

@@ -377,7 +377,7 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
 // over the reference and rt_only, paired over the group's rounds.
 void addTiming(RunRecord& record, const ExperimentConfig& config, const std::string& group, const GroupTiming& timing, const SettingTiming& st,
                const std::vector<double>& referenceRounds, const std::optional<std::vector<double>>& rtOnlyRounds,
-               const std::optional<nlohmann::json>& gpuClocks) {
+               const std::optional<nlohmann::json>& gpuClocks, std::optional<double> otherLoad) {
     const std::vector<double> wall = wallTimes(st);
     record.frameMilliseconds = intervalSpreadOf(wall);
     record.warmupFrames = st.warmupFrames;
@@ -398,6 +398,7 @@ void addTiming(RunRecord& record, const ExperimentConfig& config, const std::str
     t.warmupMs = st.warmupMs;
     t.steady = st.steady;
     t.gpuClocks = gpuClocks;
+    t.otherLoad = otherLoad;
     record.timing = std::move(t);
     const auto speedupOver = [&](const std::vector<double>& other) {
         const MedianInterval m = pairedRatio(other, wall);
@@ -501,8 +502,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
                    : std::nullopt;
         std::optional<nlohmann::json> gpuClocks;
         if (clocksBefore && clocksAfter) gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
-        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, gpuClocks);
-        record.timing->otherLoad = otherLoadFraction;
+        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, gpuClocks, otherLoadFraction);
         // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
         // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = timingSeconds / static_cast<double>(pending.size()) + millisecondsSince(runStart) / 1000.0;
@@ -540,8 +540,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     // Each scene and size's budget, shared by its groups (interleaved_timing.h).
     std::map<std::tuple<std::size_t, int, int>, int> groupsOfScene;
     // The budget's clock (interleaved_timing.h): CPU time per core where the frames run on the CPU.
-    const std::string deviceType = deviceRecord().value("vulkan_device_type", std::string("none"));
-    const bool onCpu = deviceType == "cpu" || deviceType == "none";
+    const bool onCpu = rendersOnCpu();
     for (std::size_t k = 0; k < mine.size(); ++k)
         if (k == 0 || !sameGroup(*mine[k - 1], *mine[k])) ++groupsOfScene[{mine[k]->scene, mine[k]->width, mine[k]->height}];
     for (std::size_t first = 0; first < mine.size();) {

@@ -13,11 +13,11 @@
 //      the cores it may use, what its frames take on an idle machine: other processes' load
 //      stretches the frames' wall time (a parallel frame waits for its preempted thread) but not
 //      their CPU time, so a loaded machine times as many rounds as an idle one and its intervals
-//      are no wider for want of rounds. On a GPU the budget counts wall time. The budget is for one scene and size, shared equally by its groups (its views
-//      and frames): the report pools a setting's rounds over them, so a scene seen from one view
-//      gets as many rounds to rank its settings as one seen along a path. With
-//      `repeats` below 6, too few for a 95% interval of a median, exactly `repeats` rounds and no
-//      interval (quick checks and tests).
+//      are no wider for want of rounds. On a GPU the budget counts wall time. The budget is for
+//      one scene and size, shared equally by its groups (its views and frames): the report pools
+//      a setting's rounds over them, so a scene seen from one view gets as many rounds to rank its
+//      settings as one seen along a path. With `repeats` below 6, too few for a 95% interval of a
+//      median, exactly `repeats` rounds and no interval (quick checks and tests).
 //
 // Nothing else runs between a group's frames: scoring and files come after its rounds.
 #include <cstdint>
