@@ -24,10 +24,9 @@
 //   vec3 skyRadiance(vec3 direction)
 //   float coneWidthAt(float width, float t)        a ray cone's width after t; 0 without ray cones
 //   TreeSettings treeSettings()
-//   vec3 mediaAbsorption(MediumStack m); int mediaDepth(MediumStack m)
-//   bool refractMedia(inout MediumStack m, Surface s, bool entering)  enter or leave s's object
+//   MediumEntry mediumEntry(Surface s)              the medium stack's entry of s's object (medium_stack.h)
 //   void countRay(int kind)                         kRayShadow ... kMediumError
-// and the type Surface (position, geometricNormal, shadingNormal). GLSL reads whitted_tree_types.h
+// and the type Surface (position, geometricNormal, shadingNormal, object). GLSL reads whitted_tree_types.h
 // (the walk's records, which the backend's functions use), then those functions, then this.
 #ifndef WHITTED_TREE_H
 #define WHITTED_TREE_H
@@ -148,7 +147,7 @@ BACKEND_FUNCTION TREE_INLINE HitShading shadeHit(BACKEND_PARAM BACKEND_TYPE(Surf
         h.local = givenLocal;
     } else if (!localIfWeighted || scattering.localWeighs) {
         h.local = hitLocalColor(BACKEND_ARG s, m, n, ng, -incoming, settings.shadows && effects.x,
-                                BACKEND_CALL(diffuseTexture)(s, coneWidth, incoming), BACKEND_CALL(mediaAbsorption)(media));
+                                BACKEND_CALL(diffuseTexture)(s, coneWidth, incoming), media.absorption);
     } else {
         h.local = vec3(0.0f);
     }
@@ -192,7 +191,9 @@ BACKEND_FUNCTION TREE_INLINE HitShading shadeHit(BACKEND_PARAM BACKEND_TYPE(Surf
         h.refracted.ray.coneWidth = coneWidth;
         h.refracted.ray.media = media;
         // A refracted ray enters or leaves the hit's object (medium_stack.h).
-        if (!BACKEND_CALL(refractMedia)(h.refracted.ray.media, s, side.entering)) BACKEND_CALL(countRay)(kMediumError);
+        bool tracked = side.entering ? mediumEnter(h.refracted.ray.media, BACKEND_CALL(mediumEntry)(s))
+                                     : mediumLeave(h.refracted.ray.media, s.object);
+        if (!tracked) BACKEND_CALL(countRay)(kMediumError);
     }
     return h;
 }
@@ -211,15 +212,13 @@ BACKEND_FUNCTION TREE_INLINE vec3 traceTree(BACKEND_PARAM PendingRay root, bvec3
         float t = BACKEND_CALL(traceRay)(ray.origin, ray.direction);
         if (t < 0.0f) {
             // Left the scene inside a closed object: an open mesh.
-            if (BACKEND_CALL(mediaDepth)(ray.media) > 0) BACKEND_CALL(countRay)(kMediumError);
+            if (ray.media.size > 0) BACKEND_CALL(countRay)(kMediumError);
             L += ray.throughput * BACKEND_CALL(skyRadiance)(ray.direction);
             continue;
         }
         BACKEND_TYPE(Surface) s = BACKEND_CALL(resolveHit)();
         // Beer-Lambert absorption of the media the segment ran through (medium_stack.h).
-        vec3 absorption = BACKEND_CALL(mediaAbsorption)(ray.media);
-        bool absorbs = absorption.x > 0.0f || absorption.y > 0.0f || absorption.z > 0.0f;
-        vec3 throughput = absorbs ? ray.throughput * segmentTransmittance(absorption, t) : ray.throughput;
+        vec3 throughput = mediumAbsorbs(ray.media.absorption) ? ray.throughput * segmentTransmittance(ray.media.absorption, t) : ray.throughput;
         HitShading h = shadeHit(BACKEND_ARG s, BACKEND_CALL(surfaceMaterial)(s), ray.direction, ray.depth, ray.importance,
                                 BACKEND_CALL(coneWidthAt)(ray.coneWidth, t), ray.media, ray.depth == 0 ? rootEffects : bvec3(true), false,
                                 vec3(0.0f), true, false);
