@@ -6,10 +6,14 @@
 #                                          campaign's configs, their models and this script
 #                                          (default out/hybridlab-gpu-campaign.tar.xz)
 #   gpu_campaign.sh run OUT [--scale S] [--deadline-s N] [--max-mib M] [--only A,B] [--cache DIR]
-#                           [--skip-scenes A,B]
-#                                          every config of configs/gpu_campaign/ into OUT/NAME, then
-#                                          each one's table and report where the Python packages are;
-#                                          --skip-scenes runs copies without those scenes (OUT/configs/)
+#                           [--skip-scenes A,B] [--bench-s N] [--repeat NAME:K|none]
+#                                          the device traces per ray (`hybridlab bench`, OUT/bench.txt,
+#                                          at most --bench-s, default 60; 0: none), every config of
+#                                          configs/gpu_campaign/ into OUT/NAME, then NAME K more times
+#                                          (default gbuffer_rays_gpu:2) into OUT/repeats/run-2.. for the
+#                                          verdict's repeatability, then each one's table and report
+#                                          where the Python packages are; --skip-scenes runs copies
+#                                          without those scenes (OUT/configs/)
 #   gpu_campaign.sh finish OUT             the tables and reports of a campaign folder, on a machine
 #                                          set up by setup.sh (after a GPU machine that lacks them)
 #
@@ -63,6 +67,9 @@ python_missing() {
 }
 
 mib() { du -sm "$1" | cut -f1; }
+config_names() { for entry in "${CAMPAIGN[@]}"; do set -- $entry; printf '%s ' "$1"; done | sed 's/ $//'; }
+# A size times the scale as the runner scales it: rounded, even, at least 16.
+scaled_size() { awk -v x="$1" -v s="$2" 'BEGIN { v = int(x * s + 0.5); if (v % 2) v++; if (v < 16) v = 16; print v }'; }
 records() { find "$1/runs" -maxdepth 1 -name '[!.]*.json' 2>/dev/null | wc -l; }
 
 # A config without the [[scenes]] entries (with their views) of the scenes in the list "a,b".
@@ -129,7 +136,7 @@ cmd_run() {
   local out=${1:-}
   [ -n "$out" ] && [ "${out#-}" = "$out" ] || die "run: expected an output folder first (gpu_campaign.sh run OUT ...)"
   shift
-  local scale=1 deadline=450 maxmib=60 only="" cache="" skip=""
+  local scale=1 deadline=450 maxmib=60 only="" cache="" skip="" bench_s=60 repeat=gbuffer_rays_gpu:2
   while [ $# -gt 0 ]; do
     case $1 in
       --scale) scale=${2:-}; shift 2 || die "--scale needs a value" ;;
@@ -138,19 +145,28 @@ cmd_run() {
       --only) only=${2:-}; shift 2 || die "--only needs a value" ;;
       --cache) cache=${2:-}; shift 2 || die "--cache needs a value" ;;
       --skip-scenes) skip=${2:-}; shift 2 || die "--skip-scenes needs a value" ;;
-      *) die "run: unknown argument '$1' (expected --scale, --deadline-s, --max-mib, --only, --cache, --skip-scenes)" ;;
+      --bench-s) bench_s=${2:-}; shift 2 || die "--bench-s needs a value" ;;
+      --repeat) repeat=${2:-}; shift 2 || die "--repeat needs a value" ;;
+      *) die "run: unknown argument '$1' (expected --scale, --deadline-s, --max-mib, --only, --cache, --skip-scenes, --bench-s, --repeat)" ;;
     esac
   done
   [[ $deadline =~ ^[0-9]+$ ]] && [ "$deadline" -gt 0 ] || die "--deadline-s $deadline: expected a whole number of seconds above 0"
   [[ $maxmib =~ ^[0-9]+$ ]] && [ "$maxmib" -gt 0 ] || die "--max-mib $maxmib: expected a whole number of MiB above 0"
   [[ $scale =~ ^(0?\.[0-9]+|1(\.0*)?)$ ]] && [ "$scale" != "0" ] || die "--scale $scale: expected a number in (0, 1]"
+  [[ $bench_s =~ ^[0-9]+$ ]] || die "--bench-s $bench_s: expected a whole number of seconds (0: no bench)"
+  local repeat_name="" repeat_runs=0
+  if [ "$repeat" != none ]; then
+    [[ $repeat =~ ^([a-z0-9_]+):([1-9])$ ]] || die "--repeat $repeat: expected NAME:K (K from 1 to 9 more runs of config NAME) or none"
+    repeat_name=${BASH_REMATCH[1]} repeat_runs=${BASH_REMATCH[2]}
+    [[ " $(config_names) " == *" $repeat_name "* ]] || die "--repeat $repeat: $repeat_name is none of the campaign's configs ($(config_names))"
+  fi
   [ -x "$HYBRIDLAB" ] || die "no program at $HYBRIDLAB: build it (./setup.sh), or run the bundle's gpu_campaign.sh"
   local selected=()
   for entry in "${CAMPAIGN[@]}"; do
     set -- $entry
     if [ -z "$only" ] || [[ ,$only, == *,$1,* ]]; then selected+=("$entry"); fi
   done
-  [ ${#selected[@]} -gt 0 ] || die "--only $only: names none of the campaign's configs (sabino2012, gbuffer_rays_gpu, hakura2001, walewski2019, macedo2019)"
+  [ ${#selected[@]} -gt 0 ] || die "--only $only: names none of the campaign's configs ($(config_names))"
   if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then die "$out: exists and is not empty; choose another folder"; fi
   mkdir -p "$out/logs" || exit 3
   out=$(cd "$out" && pwd -P)
@@ -182,7 +198,26 @@ cmd_run() {
   fi
   echo "estimate: about $estimate s on an H100/H200 at full size (updated as configs finish)" | tee -a "$out/campaign.log"
 
-  local k=0 status summary=()
+  local status summary=()
+  # The device traces per ray by kind, each hybrid beside rt_only (`hybridlab bench`), first: it is
+  # short, and what the campaign's tables cannot show.
+  if [ "$bench_s" -gt 0 ]; then
+    local bw bh t0=$SECONDS
+    bw=$(scaled_size 1280 "$scale") bh=$(scaled_size 720 "$scale")
+    echo "bench: the device traces per ray, sponza-spheres at ${bw}x${bh}, at most ${bench_s} s" | tee -a "$out/campaign.log"
+    timeout --signal=TERM --kill-after=10 "$bench_s" "$HYBRIDLAB" bench --scene sponza-spheres --width "$bw" --height "$bh" \
+      --repeats 5 --device-traces-only >"$out/bench.txt" 2>"$out/logs/bench.log"
+    status=$?
+    if [ "$status" -eq 0 ]; then
+      summary+=("bench: $((SECONDS - t0)) s, $out/bench.txt")
+    else
+      summary+=("bench: stopped or failed (exit status $status) after $((SECONDS - t0)) s: $out/logs/bench.log")
+    fi
+    echo "  ${summary[-1]}" | tee -a "$out/campaign.log"
+  fi
+
+  local k=0
+  declare -A ran_config ran_seconds
   for entry in "${selected[@]}"; do
     set -- $entry
     local name=$1 config=$CONFIGS/$2 est=$4
@@ -231,10 +266,40 @@ cmd_run() {
       summary+=("$name: failed (exit status $status) after ${took} s, $runs runs kept: $out/logs/$name.log")
     else
       summary+=("$name: ${took} s, $runs runs")
+      ran_config[$name]=$config ran_seconds[$name]=$took
     fi
     echo "  ${summary[-1]}" | tee -a "$out/campaign.log" >/dev/null
     echo "  done in ${took} s ($((SECONDS - start)) s in all)"
   done
+
+  # The repeatability of one config's verdict: the same config again (references from the cache),
+  # where it finished and the deadline leaves the time it took. Only the records are kept.
+  if [ -n "$repeat_name" ]; then
+    if [ -z "${ran_config[$repeat_name]:-}" ]; then
+      summary+=("repeats: none, $repeat_name did not run to its end")
+    else
+      mkdir -p "$out/repeats" && ln -sfn "../$repeat_name" "$out/repeats/run-1"
+      local i
+      for ((i = 2; i <= repeat_runs + 1; ++i)); do
+        local left=$((deadline - (SECONDS - start))) t0=$SECONDS
+        if [ "$left" -lt $((ran_seconds[$repeat_name] + 15)) ]; then
+          summary+=("repeats: $repeat_name run $i skipped, ${left} s to the deadline")
+          break
+        fi
+        echo "repeat: $repeat_name run $i; ${left} s to the deadline" | tee -a "$out/campaign.log"
+        timeout --signal=TERM --kill-after=10 "$left" "$HYBRIDLAB" run "${ran_config[$repeat_name]}" --out "$out/repeats/run-$i" \
+          --scale "$scale" --quiet >"$out/logs/$repeat_name-run-$i.log" 2>&1
+        status=$?
+        rm -rf "$out/repeats/run-$i/images" "$out/repeats/run-$i/references"
+        if [ "$status" -ne 0 ]; then
+          rm -rf "$out/repeats/run-$i"
+          summary+=("repeats: $repeat_name run $i stopped or failed (exit status $status): $out/logs/$repeat_name-run-$i.log")
+          break
+        fi
+        summary+=("repeats: $repeat_name run $i, $((SECONDS - t0)) s")
+      done
+    fi
+  fi
   [ "$own_cache" -eq 0 ] || rm -rf "$cache"
 
   # The tables and reports, before any image is dropped.
@@ -276,6 +341,23 @@ finish_sets() {
       tables_and_report "$out/$1" "$3"
     fi
   done 2>&1 | tee -a "$out/campaign.log"
+  repeatability "$out" 2>&1 | tee -a "$out/campaign.log"
+}
+
+# The verdict rows of a config's repeated runs side by side (verdict_repeatability.py), with its
+# speed-ups over rt_only against the first run's intervals.
+repeatability() {
+  local dir=$1/repeats runs=0 d
+  [ -d "$dir" ] || return 0
+  for d in "$dir"/run-*; do [ -f "$d/results.json" ] && runs=$((runs + 1)); done
+  if [ "$runs" -lt 2 ]; then
+    echo "repeats: $runs run(s) of $(readlink "$dir/run-1"): nothing to compare"
+    return 0
+  fi
+  "$PYTHON" "$CHECKOUT/experiments/verdict_repeatability.py" --reuse --out "$dir" --runs "$runs" --speedups rt_only \
+    >"$dir/verdicts.txt" 2>&1 &&
+    echo "repeats: $(grep -E 'verdict rows identical' "$dir/verdicts.txt") ($dir/verdicts.txt)" ||
+    echo "repeats: verdict_repeatability.py failed: $dir/verdicts.txt"
 }
 
 cmd_finish() {

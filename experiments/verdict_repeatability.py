@@ -10,7 +10,8 @@ tied for fastest) reaching it.
 Prints each run's wall time, the load other processes put on the machine while it was timed
 (`timing.other_load`), and its rows, then how many rows name the same settings in every run.
 `--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
-reports result sets already in DIR/run-K instead of running them; `--against DIR` also counts the
+reports result sets already in DIR/run-K instead of running them (where some lack their images,
+as the GPU campaign's repeats do, no run's images are compared); `--against DIR` also counts the
 rows identical to the first run in DIR (say, quiet runs against runs under load); `--speedups
 rt_only` also checks every later run's speed-up over rt_only against the first run's interval
 (`--config experiments/configs/gbuffer_rays.toml --runs 2 --speedups rt_only`). Run quiet runs on
@@ -31,6 +32,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "report"))
 import results as rs  # noqa: E402
+import timing  # noqa: E402
 import verdict  # noqa: E402
 
 
@@ -44,24 +46,35 @@ def verdict_rows(result_dir):
     return rows
 
 
+def setting_speedups(result_dir, over):
+    """{(scene, size, setting): speed-up} of a result set's settings over `over` ("rt_only",
+    "reference") as its report computes them (verdict.py: the runner's paired interval where it
+    recorded one, else the rounds paired or pooled, else the ratio of the medians)."""
+    out = {}
+    for v in verdict.verdicts(rs.load(result_dir), result_dir):
+        for name, s in v.settings.items():
+            ref, rt = v.speedups(s)
+            value = rt if over == "rt_only" else ref
+            if value is not None and s is not v.rt_only:
+                out[(v.scene, v.size, name)] = value
+    return out
+
+
 def speedups_held(first_dir, later_dir, over):
     """Whether each run's speed-up over `over` ("rt_only", "reference") measured in `later_dir`
     lies in the first run's 95% interval, or within 5% of its median: (lines, held, compared)."""
-    def by_setting(d):
-        return {(r["scene"], r["view"], r["frame"], r["label"], r["parameters_text"]): r for r in rs.load(d)}
-    first, later = by_setting(first_dir), by_setting(later_dir)
+    first, later = setting_speedups(first_dir, over), setting_speedups(later_dir, over)
     lines, held, compared = [], 0, 0
     for key in sorted(set(first) & set(later)):
-        a, b = (first[key].get("speedup") or {}).get(over), (later[key].get("speedup") or {}).get(over)
-        if not a or not b:
-            continue
-        inside = a.get("low") is not None and a["low"] <= b["ratio"] <= a["high"]
-        close = abs(b["ratio"] / a["ratio"] - 1.0) <= 0.05
+        a, b = first[key], later[key]
+        a_ratio = a.median if isinstance(a, timing.Interval) else a
+        b_ratio = b.median if isinstance(b, timing.Interval) else b
+        inside = isinstance(a, timing.Interval) and a.low <= b_ratio <= a.high
+        close = abs(b_ratio / a_ratio - 1.0) <= 0.05
         compared += 1
         held += inside or close
-        lines.append("%s %s: %.3fx (%s) then %.3fx%s" % (
-            key[0], " ".join(x for x in (key[3], key[4]) if x), a["ratio"],
-            "%.3f-%.3f" % (a["low"], a["high"]) if a.get("low") is not None else "no interval", b["ratio"],
+        lines.append("%s %s %s: %s then %.3fx%s" % (
+            key[0], key[1], key[2], a.text("%.3f", "x") if isinstance(a, timing.Interval) else "%.3fx (no interval)" % a, b_ratio,
             "" if inside or close else "   <- outside the interval and over 5% off"))
     return lines, held, compared
 
@@ -85,6 +98,12 @@ def main():
 
     loops = busy_loops(args.busy)
     tables = []
+    if args.reuse and any(not os.path.isdir(os.path.join(args.out, "run-%d" % (k + 1), "images")) for k in range(args.runs)):
+        # Runs kept without their images (the GPU campaign's repeats): no run's images are compared
+        # (verdict.py marks settings whose images are byte-identical to another's), so that every
+        # run's rows are read alike.
+        verdict.image_digest = lambda result_dir, r: None
+        print("some runs have no images: settings with byte-identical images are not looked for in any run")
     try:
         for k in range(args.runs):
             out = os.path.join(args.out, "run-%d" % (k + 1))

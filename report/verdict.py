@@ -77,15 +77,20 @@ def settings_of(records, table):
 
 
 def image_digest(result_dir, r):
-    """The digest of a run's linear pixels (not of its EXR file, whose header carries a date)."""
-    return hashlib.sha256(images.rgb(os.path.join(result_dir, r["images"]["exr"])).tobytes()).hexdigest()
+    """The digest of a run's linear pixels (not of its EXR file, whose header carries a date); None
+    where the image is not there (a set whose images were dropped to fit a transfer, as the GPU
+    campaign's larger ones are)."""
+    path = os.path.join(result_dir, r["images"]["exr"])
+    if not os.path.exists(path):
+        return None
+    return hashlib.sha256(images.rgb(path).tobytes()).hexdigest()
 
 
 def mark_not_applicable(settings, result_dir):
     """Sets `not_applicable` on the settings that change nothing on this scene: the layered EMs
     without a lens object in view (no lens pixel), SSR without reflective pixels, and any setting
     whose every image is byte-identical to another technique's at the same view and frame (the
-    first technique in name order keeps its place)."""
+    first technique in name order keeps its place; where images are missing, none is compared)."""
     for s in settings.values():
         counters = [r["counters"] for r in s.records]
         if all(c.get("lens_pixels", 1) == 0 for c in counters):
@@ -94,7 +99,7 @@ def mark_not_applicable(settings, result_dir):
             s.not_applicable = "no reflective surface: nothing for screen-space reflections to do"
     digests = {name: {(r["view"], r["frame"]): image_digest(result_dir, r) for r in s.records} for name, s in settings.items()}
     for name, s in settings.items():
-        if s.not_applicable:
+        if s.not_applicable or None in digests[name].values():
             continue
         for other, o in settings.items():
             if other == name or o.technique == s.technique or o.not_applicable or digests[other] != digests[name]:

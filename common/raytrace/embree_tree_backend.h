@@ -76,11 +76,7 @@ public:
     glm::vec3 skyRadiance(glm::vec3 direction) const { return hybridlab::skyRadiance(scene_, direction); }
     float coneWidthAt(float width, float t) const { return rayCones_ ? width + spread_ * t : 0.0f; }
     const shading_language::TreeSettings& treeSettings() const { return settings_; }
-    static const glm::vec3& mediaAbsorption(const MediumStack& m) { return m.absorption(); }
-    static int mediaDepth(const MediumStack& m) { return m.depth(); }
-    static bool refractMedia(MediumStack& m, const SurfaceHit& s, bool entering) {
-        return entering ? m.enter(s.object, s.material->absorption) : m.leave(s.object);
-    }
+    static MediumEntry mediumEntry(const SurfaceHit& s) { return {s.object, s.material->absorption}; }
     void countRay(int kind) {
         switch (kind) {
         case shading_language::kRayShadow: ++stats_.shadow; break;

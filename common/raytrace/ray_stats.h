@@ -10,7 +10,7 @@ struct RayStats {
     std::uint64_t reflection = 0;
     std::uint64_t refraction = 0;
     // Not rays: paths whose media could not be tracked (medium_stack.h): a ray that left a medium
-    // it never entered, entered more than MediumStack::kCapacity, or left the scene inside one.
+    // it never entered, entered more than kMediumCapacity, or left the scene inside one.
     std::uint64_t mediumErrors = 0;
 
     std::uint64_t total() const { return primary + shadow + reflection + refraction; }

@@ -85,13 +85,13 @@ public:
     // rays), which filters textures (none: level 0's bilinear lookup); `media` the media it travels
     // in (medium_stack.h; camera rays: none), which absorb along it up to its hit.
     glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {},
-                       const MediumStack& media = MediumStack::kAmbient) const;
+                       const MediumStack& media = kAmbientMedium) const;
     // radiance() for a ray whose first hit the caller has already found: `hit`, or none (null).
     glm::vec3 radianceFrom(const Ray& ray, const SurfaceHit* hit, int depth, float importance, RayStats& stats, RayCone cone = {},
-                           const MediumStack& media = MediumStack::kAmbient) const;
+                           const MediumStack& media = kAmbientMedium) const;
     // radiance() for a ray whose first hit the caller has already found.
     glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {},
-                            const MediumStack& media = MediumStack::kAmbient) const;
+                            const MediumStack& media = kAmbientMedium) const;
 
     // Full Whitted shading of a surface hit seen along unit direction `incoming` (towards the
     // surface): local colour with ray-traced shadows, composed with recursive reflection and
@@ -100,7 +100,7 @@ public:
     // `footprint` is the ray's cone at the hit; `media` those the incoming ray travelled in (the
     // refracted ray enters or leaves the hit object's).
     glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {},
-                    const MediumStack& media = MediumStack::kAmbient) const;
+                    const MediumStack& media = kAmbientMedium) const;
 
     // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
     // everything), so that a hybrid technique can substitute or blend its own. `local`: the surface's
@@ -110,12 +110,12 @@ public:
     // given, receives both (where parts.composes).
     ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                             TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt,
-                            EnvironmentTerms* environment = nullptr, const MediumStack& media = MediumStack::kAmbient) const;
+                            EnvironmentTerms* environment = nullptr, const MediumStack& media = kAmbientMedium) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a
     // footprint of 2^uvLod uv units (ray_cone.h). `mediumAbsorption`: that of the media on the
-    // viewer's side of the surface, where the shadow rays start (MediumStack::absorption()).
+    // viewer's side of the surface, where the shadow rays start (MediumStack::absorption).
     glm::vec3 localColor(const SurfaceHit& hit, glm::vec3 normal, glm::vec3 geometricNormal, glm::vec3 toViewer,
                          RayStats& stats, bool shadowRays = true,
                          float uvLod = -std::numeric_limits<float>::infinity(), glm::vec3 mediumAbsorption = glm::vec3(0.0f)) const;

@@ -46,8 +46,8 @@
 #define BACKEND_CALL(name) backend.name
 #define BACKEND_TYPE(T) typename Backend::T
 // Lights shaded before their shadow rays are traced (whitted_tree.h hitLocalColor): 8 on the CPU,
-// where their arithmetic then overlaps; 1 on the device, where every array lives in the ray-tracing
-// stack that NVIDIA's driver bounds (DESIGN.md, RayStackBudget).
+// where their arithmetic then overlaps; 1 on the device (no batch), where every array lives in the
+// ray-tracing stack that NVIDIA's driver bounds (DESIGN.md, RayStackBudget).
 #define SHARED_LIGHT_BATCH 8
 
 namespace hybridlab::shading_language {

@@ -24,10 +24,9 @@
 //   vec3 skyRadiance(vec3 direction)
 //   float coneWidthAt(float width, float t)        a ray cone's width after t; 0 without ray cones
 //   TreeSettings treeSettings()
-//   vec3 mediaAbsorption(MediumStack m); int mediaDepth(MediumStack m)
-//   bool refractMedia(inout MediumStack m, Surface s, bool entering)  enter or leave s's object
+//   MediumEntry mediumEntry(Surface s)              the medium stack's entry of s's object (medium_stack.h)
 //   void countRay(int kind)                         kRayShadow ... kMediumError
-// and the type Surface (position, geometricNormal, shadingNormal). GLSL reads whitted_tree_types.h
+// and the type Surface (position, geometricNormal, shadingNormal, object). GLSL reads whitted_tree_types.h
 // (the walk's records, which the backend's functions use), then those functions, then this.
 #ifndef WHITTED_TREE_H
 #define WHITTED_TREE_H
@@ -76,18 +75,30 @@ SHARED_FUNCTION vec3 compositionWeights(float om, float orr, bool walewski) {
     return 0.5f * (design + other);
 }
 
+// A light's unshadowed term `direct` at a hit, times the transmittance of its shadow ray where
+// `shadowRays` and the light casts shadows (hard shadows, from `shadowOrigin` just off the surface
+// on the viewer's side, in media of absorption `mediumAbsorption`).
+BACKEND_FUNCTION TREE_INLINE vec3 shadowedLightTerm(BACKEND_PARAM vec3 direct, LightSample light, int index, bool shadowRays,
+                                                    vec3 shadowOrigin, vec3 mediumAbsorption) {
+    if (!shadowRays || !BACKEND_CALL(lightCastsShadows)(index)) return direct;
+    BACKEND_CALL(countRay)(kRayShadow);
+    return direct * BACKEND_CALL(shadowTransmittance)(shadowOrigin, light.toLight, light.distance, mediumAbsorption);
+}
+
 // The local colour C at a surface (direct_lighting.h): the unlit term, then every light's
-// Blinn-Phong term, shadowed where `shadowRays` (hard shadows, from just off the surface on the
-// viewer's side; `mediumAbsorption` of the media there, where the shadow rays start). Lights go in
-// batches of SHARED_LIGHT_BATCH: their unshadowed terms first, then their shadow rays, so that on
-// the CPU the lights' chains of square roots and divisions overlap instead of each waiting behind
-// the previous light's ray; the same terms summed in the same order.
+// Blinn-Phong term, shadowed where `shadowRays` (shadowedLightTerm; `mediumAbsorption` of the
+// media where the shadow rays start), summed in the lights' order. Lights facing away, or with
+// the surface outside their spot cone, add nothing and trace no ray.
 BACKEND_FUNCTION TREE_INLINE vec3 hitLocalColor(BACKEND_PARAM BACKEND_TYPE(Surface) s, SurfaceMaterial m, vec3 n, vec3 ng, vec3 toViewer,
                                     bool shadowRays, vec3 tex, vec3 mediumAbsorption) {
     vec3 c = unlitTerm(m.emission, m.ambient, BACKEND_CALL(treeSettings)().sceneAmbient, tex);
     vec3 shadowOrigin = offsetRayOrigin(s.position, ng);
     vec3 diffuse = m.diffuse * tex;
     int lights = BACKEND_CALL(lightCount)();
+#if SHARED_LIGHT_BATCH > 1
+    // In batches: the batch's unshadowed terms first, then their shadow rays, so that on the CPU
+    // the lights' chains of square roots and divisions overlap instead of each waiting behind the
+    // previous light's ray.
     for (int first = 0; first < lights; first += SHARED_LIGHT_BATCH) {
         int count = min(SHARED_LIGHT_BATCH, lights - first);
         LightSample samples[SHARED_LIGHT_BATCH];
@@ -96,15 +107,19 @@ BACKEND_FUNCTION TREE_INLINE vec3 hitLocalColor(BACKEND_PARAM BACKEND_TYPE(Surfa
             samples[k] = BACKEND_CALL(lightSample)(first + k, s.position);
             direct[k] = blinnPhong(n, diffuse, m.specular, m.specularExponent, toViewer, samples[k]);
         }
-        for (int k = 0; k < count; ++k) {
-            if (direct[k] == vec3(0.0f)) continue;  // facing away, or outside a spot cone: no ray needed
-            if (shadowRays && BACKEND_CALL(lightCastsShadows)(first + k)) {
-                BACKEND_CALL(countRay)(kRayShadow);
-                direct[k] *= BACKEND_CALL(shadowTransmittance)(shadowOrigin, samples[k].toLight, samples[k].distance, mediumAbsorption);
-            }
-            c += direct[k];
-        }
+        for (int k = 0; k < count; ++k)
+            if (direct[k] != vec3(0.0f))
+                c += shadowedLightTerm(BACKEND_ARG direct[k], samples[k], first + k, shadowRays, shadowOrigin, mediumAbsorption);
     }
+#else
+    // One light at a time: lavapipe keeps even a one-light batch's arrays in memory (whitted-classic's
+    // device trace took 2-5% longer).
+    for (int i = 0; i < lights; ++i) {
+        LightSample light = BACKEND_CALL(lightSample)(i, s.position);
+        vec3 direct = blinnPhong(n, diffuse, m.specular, m.specularExponent, toViewer, light);
+        if (direct != vec3(0.0f)) c += shadowedLightTerm(BACKEND_ARG direct, light, i, shadowRays, shadowOrigin, mediumAbsorption);
+    }
+#endif
     return c;
 }
 
@@ -132,7 +147,7 @@ BACKEND_FUNCTION TREE_INLINE HitShading shadeHit(BACKEND_PARAM BACKEND_TYPE(Surf
         h.local = givenLocal;
     } else if (!localIfWeighted || scattering.localWeighs) {
         h.local = hitLocalColor(BACKEND_ARG s, m, n, ng, -incoming, settings.shadows && effects.x,
-                                BACKEND_CALL(diffuseTexture)(s, coneWidth, incoming), BACKEND_CALL(mediaAbsorption)(media));
+                                BACKEND_CALL(diffuseTexture)(s, coneWidth, incoming), media.absorption);
     } else {
         h.local = vec3(0.0f);
     }
@@ -176,7 +191,9 @@ BACKEND_FUNCTION TREE_INLINE HitShading shadeHit(BACKEND_PARAM BACKEND_TYPE(Surf
         h.refracted.ray.coneWidth = coneWidth;
         h.refracted.ray.media = media;
         // A refracted ray enters or leaves the hit's object (medium_stack.h).
-        if (!BACKEND_CALL(refractMedia)(h.refracted.ray.media, s, side.entering)) BACKEND_CALL(countRay)(kMediumError);
+        bool tracked = side.entering ? mediumEnter(h.refracted.ray.media, BACKEND_CALL(mediumEntry)(s))
+                                     : mediumLeave(h.refracted.ray.media, s.object);
+        if (!tracked) BACKEND_CALL(countRay)(kMediumError);
     }
     return h;
 }
@@ -195,15 +212,13 @@ BACKEND_FUNCTION TREE_INLINE vec3 traceTree(BACKEND_PARAM PendingRay root, bvec3
         float t = BACKEND_CALL(traceRay)(ray.origin, ray.direction);
         if (t < 0.0f) {
             // Left the scene inside a closed object: an open mesh.
-            if (BACKEND_CALL(mediaDepth)(ray.media) > 0) BACKEND_CALL(countRay)(kMediumError);
+            if (ray.media.size > 0) BACKEND_CALL(countRay)(kMediumError);
             L += ray.throughput * BACKEND_CALL(skyRadiance)(ray.direction);
             continue;
         }
         BACKEND_TYPE(Surface) s = BACKEND_CALL(resolveHit)();
         // Beer-Lambert absorption of the media the segment ran through (medium_stack.h).
-        vec3 absorption = BACKEND_CALL(mediaAbsorption)(ray.media);
-        bool absorbs = absorption.x > 0.0f || absorption.y > 0.0f || absorption.z > 0.0f;
-        vec3 throughput = absorbs ? ray.throughput * segmentTransmittance(absorption, t) : ray.throughput;
+        vec3 throughput = mediumAbsorbs(ray.media.absorption) ? ray.throughput * segmentTransmittance(ray.media.absorption, t) : ray.throughput;
         HitShading h = shadeHit(BACKEND_ARG s, BACKEND_CALL(surfaceMaterial)(s), ray.direction, ray.depth, ray.importance,
                                 BACKEND_CALL(coneWidthAt)(ray.coneWidth, t), ray.media, ray.depth == 0 ? rootEffects : bvec3(true), false,
                                 vec3(0.0f), true, false);

@@ -1,21 +1,14 @@
 // The records of the Whitted ray tree's walk (whitted_tree.h), written once for both ray backends
 // (shading_language.h); apart from the walk so that a shader can define its backend's functions,
-// which use them, before it includes the walk. GLSL: include after the backend's MediumStack
+// which use them, before it includes the walk. GLSL: include after the backend's medium entries
 // (device_medium_stack.glsl).
 #ifndef WHITTED_TREE_TYPES_H
 #define WHITTED_TREE_TYPES_H
 
+#include "medium_stack.h"
 #include "shading_language.h"
 
-#ifdef __cplusplus
-#include "common/raytrace/medium_stack.h"
-#endif
-
 SHARED_BEGIN
-
-#ifdef __cplusplus
-using hybridlab::MediumStack;
-#endif
 
 // The kinds of ray countRay() counts (RayStats' fields, the device's counters).
 const int kRayShadow = 1;

@@ -237,7 +237,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         EmbreeTreeBackend backend(tracer, st, surface.footprint().spread);
         parts_[i] = shading_language::heuristicTexelParts(backend, surface.hit(), EmbreeTreeBackend::surfaceMaterial(surface.hit()),
                                                           surface.incoming(), backend.coneWidthAt(surface.footprint().width, 0.0f),
-                                                          MediumStack::kAmbient, pixelEffects_[i], !cpuLighting_, unselectedShadowRays_,
+                                                          kAmbientMedium, pixelEffects_[i], !cpuLighting_, unselectedShadowRays_,
                                                           glm::vec3(lighting.at(x, y)));
     });
     clock.lap("trace");

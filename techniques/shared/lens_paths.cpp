@@ -19,7 +19,7 @@ Ray childRay(const SurfaceHit& hit, const InterfaceSplit& s, bool reflect) {
 // The media of the child ray: a refraction enters or leaves the hit object (medium_stack.h).
 void crossInterface(const SurfaceHit& hit, const InterfaceSplit& s, bool reflect, MediumStack& media, LensRayCounter& counter) {
     if (reflect) return;
-    if (!(s.entering ? media.enter(hit.object, hit.material->absorption) : media.leave(hit.object))) ++counter.mediumErrors;
+    if (!(s.entering ? mediumEnter(media, {hit.object, hit.material->absorption}) : mediumLeave(media, hit.object))) ++counter.mediumErrors;
 }
 
 // Follows `path` from the child ray `ray` of interface number path.interfaces - 1, in `media`, greedily.
@@ -30,13 +30,13 @@ void propagate(const RayScene& lens, Ray ray, MediumStack media, const LensPathS
         SurfaceHit hit;
         ++counter.queries;
         if (!lens.intersect(ray, 0.0f, kInfinity, hit)) {
-            if (media.depth() > 0) ++counter.mediumErrors;
+            if (media.size > 0) ++counter.mediumErrors;
             path.exitOrigin = ray.origin;
             path.exitDirection = ray.direction;
             return;
         }
         // Beer-Lambert along the segment, the reference tracer's rule.
-        if (media.absorbs()) path.absorption *= segmentTransmittance(media.absorption(), hit.t);
+        if (mediumAbsorbs(media.absorption)) path.absorption *= segmentTransmittance(media.absorption, hit.t);
         if (path.interfaces >= settings.maxInterfaces) {
             path.truncated = true;
             path.exitOrigin = ray.origin;

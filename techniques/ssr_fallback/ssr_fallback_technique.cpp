@@ -250,7 +250,7 @@ TracedTexels traceTexels(const GBuffer& g, const Image& lit, const SsrResult* ss
         SsrTexelBackend backend(tracer, st, surface.footprint().spread, g, i, ssr ? &ssr->pixels[i] : nullptr, camera, counts);
         const sl::SsrTexelShading t =
             sl::shadeSsrTexel(backend, surface.hit(), EmbreeTreeBackend::surfaceMaterial(surface.hit()), g.optical[i], surface.incoming(),
-                              backend.coneWidthAt(surface.footprint().width, 0.0f), MediumStack::kAmbient, glm::vec3(lit.at(x, y)), policy);
+                              backend.coneWidthAt(surface.footprint().width, 0.0f), kAmbientMedium, glm::vec3(lit.at(x, y)), policy);
         if (counts[sl::kSsrCountTraced]) ++pixelsTraced;
         if (counts[sl::kSsrCountFallback]) ++fallbackRays;
         if (counts[sl::kSsrCountRecursion]) ++recursionRays;

@@ -25,18 +25,23 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 
 TEST(MediumStack, EntersLeavesInAnyOrderAndRefusesWhatItCannotTrack) {
-    MediumStack s;
-    EXPECT_FALSE(s.absorbs());
-    EXPECT_TRUE(s.enter(3, {0.1f, 0.2f, 0.3f}));
-    EXPECT_TRUE(s.enter(5, {1.0f, 0.0f, 0.0f}));
-    EXPECT_EQ(s.absorption(), glm::vec3(1.1f, 0.2f, 0.3f));  // overlapping media add
-    EXPECT_TRUE(s.leave(3));                                   // not the top: overlapping objects
-    EXPECT_EQ(s.absorption(), glm::vec3(1.0f, 0.0f, 0.0f));
-    EXPECT_FALSE(s.leave(3));  // never entered (again)
-    EXPECT_EQ(s.depth(), 1);
-    for (int i = 1; i < MediumStack::kCapacity; ++i) EXPECT_TRUE(s.enter(10 + i, glm::vec3(0.0f)));
-    EXPECT_FALSE(s.enter(99, glm::vec3(1.0f)));  // full
-    EXPECT_EQ(s.depth(), MediumStack::kCapacity);
+    MediumStack s = kAmbientMedium;
+    EXPECT_FALSE(mediumAbsorbs(s.absorption));
+    EXPECT_TRUE(mediumEnter(s, {3, {0.1f, 0.2f, 0.3f}}));
+    EXPECT_TRUE(mediumEnter(s, {5, {1.0f, 0.0f, 0.0f}}));
+    EXPECT_EQ(s.absorption, glm::vec3(1.1f, 0.2f, 0.3f));  // overlapping media add
+    EXPECT_TRUE(mediumLeave(s, 3));                          // not the top: overlapping objects
+    EXPECT_EQ(s.absorption, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(mediumLeave(s, 3));  // never entered (again)
+    EXPECT_EQ(s.size, 1);
+    for (int i = 1; i < kMediumCapacity; ++i) EXPECT_TRUE(mediumEnter(s, {static_cast<std::uint32_t>(10 + i), glm::vec3(0.0f)}));
+    EXPECT_FALSE(mediumEnter(s, {99, glm::vec3(1.0f)}));  // full
+    EXPECT_EQ(s.size, kMediumCapacity);
+    const MediumStack copy = s;  // a copy holds the entries in use
+    EXPECT_TRUE(mediumLeave(s, 5));
+    EXPECT_EQ(s.absorption, glm::vec3(0.0f));
+    EXPECT_EQ(copy.size, kMediumCapacity);
+    EXPECT_EQ(copy.absorption, glm::vec3(1.0f, 0.0f, 0.0f));
     EXPECT_EQ(segmentTransmittance(glm::vec3(0.0f), kInf), glm::vec3(1.0f));  // not NaN
 }
 

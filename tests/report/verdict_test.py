@@ -20,6 +20,7 @@ import timing  # noqa: E402
 import verdict  # noqa: E402
 
 # The records have no images: each run's own id stands for its pixels' digest (no two identical).
+pixels_digest = verdict.image_digest
 verdict.image_digest = lambda result_dir, r: r["id"]
 
 DEPTH = "whitted-depth [max_depth=2]"
@@ -159,6 +160,26 @@ class OldResultSets(unittest.TestCase):
     def test_the_report_says_the_set_has_no_intervals(self):
         _, md = verdict.write([verdict_of(self.records())], lambda i: "viewer.html#run=" + i)
         self.assertIn("This result set has no intervals", md[3])
+
+
+class ImagesDropped(unittest.TestCase):
+    """A result set whose images were dropped (the GPU campaign drops its larger sets' to fit a
+    transfer) still gets its verdict, the same as with images none of which is byte-identical to
+    another's: missing images are not compared (two missing ones are not "identical")."""
+
+    def test_the_verdict_without_images_is_the_verdict_with_distinct_ones(self):
+        records = timed_set()
+        with_images = verdict_of(records)
+        verdict.image_digest = pixels_digest
+        try:
+            self.assertIsNone(verdict.image_digest("/nonexistent", records[0]))
+            without = verdict_of(records)
+        finally:
+            verdict.image_digest = lambda result_dir, r: r["id"]
+        self.assertEqual([s.name for s in without.settings.values() if s.not_applicable], [])
+        def rows(v):
+            return [[plain(cell) for cell in cells] for cells in verdict.threshold_table(v)[1]]
+        self.assertEqual(rows(without), rows(with_images))
 
 
 class NothingBeatsTheReference(unittest.TestCase):

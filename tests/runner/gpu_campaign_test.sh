@@ -28,7 +28,8 @@ expect_in() {  # FILE TEXT
 
 # Bad arguments: exit 2 and the reason, nothing written.
 script=$source_dir/experiments/gpu_campaign.sh
-for args in "run" "run $work/bad --scale 2" "run $work/bad --only nothing" "run $work/bad --deadline-s 0" "run $work/bad --frobnicate"; do
+for args in "run" "run $work/bad --scale 2" "run $work/bad --only nothing" "run $work/bad --deadline-s 0" "run $work/bad --frobnicate" \
+            "run $work/bad --bench-s soon" "run $work/bad --repeat nothing:1" "run $work/bad --repeat macedo2019"; do
   HYBRIDLAB=$hybridlab "$script" $args >"$work/bad.txt" 2>&1
   status=$?
   [ "$status" -eq 2 ] || fail "gpu_campaign.sh $args: exit status $status, expected 2: $(cat "$work/bad.txt")"
@@ -44,13 +45,14 @@ for f in hybridlab gpu_campaign.sh configs/walewski2019.toml configs/sabino2012.
   [ -e "$work/bundle/$f" ] || fail "the bundle lacks $f"
 done
 
-# From the bundle, in another folder, with the checkout named for the tables and the report: one
-# scene of macedo2019 (three frames of its orbit) at 80x45.
+# From the bundle, in another folder, with the checkout named for the tables and the report: the
+# device traces per ray (bench), one scene of macedo2019 (three frames of its orbit) at 80x45, and
+# that config once more for the verdict's repeatability.
 skip=bunnies-falling-10,bunnies-falling-15,bunnies-falling-20,bunnies-falling-25,bunnies-falling-30
 skip=$skip,teapots-deforming-5,teapots-deforming-10,teapots-deforming-15,teapots-deforming-20,teapots-deforming-25,teapots-deforming-30
 mkdir -p "$work/elsewhere"
 (cd "$work/elsewhere" && HYBRIDLAB_CHECKOUT=$source_dir "$work/bundle/gpu_campaign.sh" run "$work/out" --only macedo2019 \
-   --skip-scenes "$skip" --scale 0.0625 --max-mib 1) >"$work/run.txt" 2>&1 || fail "run: $(tail -n 30 "$work/run.txt")"
+   --skip-scenes "$skip" --scale 0.0625 --max-mib 1 --repeat macedo2019:1) >"$work/run.txt" 2>&1 || fail "run: $(tail -n 30 "$work/run.txt")"
 set_dir=$work/out/macedo2019
 [ "$(ls "$set_dir/runs" | grep -c '\.json$')" -eq 3 ] || fail "expected 3 runs in $set_dir/runs"
 [ -f "$set_dir/results.json" ] || fail "no results.json"
@@ -64,6 +66,13 @@ expect_in "$work/out/campaign.log" " s, 3 runs"
 expect_in "$work/out/device.json" '"vulkan_device"'
 [ ! -e "$work/out/cache" ] || fail "the campaign's cache was left in its folder"
 grep -q "bunnies-falling-10" "$work/out/configs/macedo2019.toml" && fail "--skip-scenes left bunnies-falling-10 in"
+expect_in "$work/out/bench.txt" "device traces per ray"
+expect_in "$work/out/bench.txt" "heuristic_rt, gbuffer raster, compact"
+expect_in "$work/out/campaign.log" "repeats: macedo2019 run 2, "
+[ "$(ls "$work/out/repeats/run-2/runs" | grep -c '\.json$')" -eq 3 ] || fail "expected 3 runs in the repeated set"
+[ ! -e "$work/out/repeats/run-2/images" ] || fail "the repeated set kept its images"
+expect_in "$work/out/repeats/verdicts.txt" "verdict rows identical in all 2 runs"
+expect_in "$work/out/campaign.log" "verdict rows identical in all 2 runs"
 
 # `finish` on that folder: the table again, and no report without the images.
 "$script" finish "$work/out" >"$work/finish.txt" 2>&1 || fail "finish: $(cat "$work/finish.txt")"
@@ -72,7 +81,7 @@ expect_in "$work/finish.txt" "report: none, the images were dropped"
 # A deadline that falls while the config runs: the whole config (twelve scenes, 36 runs; on the
 # fastest CPU seen, 2 s a run) against 25 s, so that no machine finishes it first; stopped, what
 # finished kept as a result set.
-HYBRIDLAB=$hybridlab "$script" run "$work/out2" --only macedo2019 --scale 0.0625 --deadline-s 25 \
+HYBRIDLAB=$hybridlab "$script" run "$work/out2" --only macedo2019 --scale 0.0625 --deadline-s 25 --bench-s 0 --repeat none \
   >"$work/run2.txt" 2>&1 || fail "run with a deadline: $(tail -n 30 "$work/run2.txt")"
 expect_in "$work/out2/campaign.log" "macedo2019: stopped at the deadline after "
 [ -f "$work/out2/macedo2019/results.json" ] || fail "no results.json after the deadline"

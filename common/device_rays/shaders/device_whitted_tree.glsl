@@ -154,11 +154,7 @@ TreeSettings treeSettings() {
     return t;
 }
 
-vec3 mediaAbsorption(MediumStack m) { return m.absorption; }
-int mediaDepth(MediumStack m) { return m.size; }
-bool refractMedia(inout MediumStack m, Surface s, bool entering) {
-    return entering ? mediumEnter(m, s.object, s.material) : mediumLeave(m, s.object);
-}
+MediumEntry mediumEntry(Surface s) { return s.object | (s.material << 16); }
 
 void countRay(int kind) {
     if (kind == kRayShadow) ++countShadow;
