@@ -3,7 +3,7 @@
 // DESIGN.md) on Embree: hard shadows from every light, reflection and refraction to a depth limit,
 // the local colour at the limit, the sky on a miss. The tree's walk, what a hit shades and which
 // rays it spawns are common/shading/whitted_tree.h, written once for this backend and the
-// device's (device_whitted_tree.glsl); whitted_tracer.cpp gives it RayScene's rays. The reference
+// device's (device_whitted_tree.glsl); embree_tree_backend.h gives it RayScene's rays. The reference
 // technique calls it from camera rays; hybrid techniques call shadeParts() from a G-buffer texel.
 #include <optional>
 #include <vector>
@@ -72,6 +72,8 @@ struct EnvironmentTerms {
     glm::vec3 refracted{0.0f};
 };
 
+class EmbreeTreeBackend;
+
 class WhittedTracer {
 public:
     WhittedTracer(const RayScene& rays, WhittedSettings settings);
@@ -119,6 +121,8 @@ public:
                          float uvLod = -std::numeric_limits<float>::infinity(), glm::vec3 mediumAbsorption = glm::vec3(0.0f)) const;
 
 private:
+    friend class EmbreeTreeBackend;  // the walk's backend (embree_tree_backend.h) reads the scene and settings
+
     const RayScene& rays_;
     WhittedSettings settings_;
     std::vector<SpotCone> cones_;  // per light

@@ -4,9 +4,11 @@
 #include <limits>
 
 #include "common/core/input_error.h"
+#include "common/raytrace/embree_tree_backend.h"
 #include "techniques/heuristic_rt/heuristic.h"
 #include "techniques/heuristic_rt/object_observations.h"
 #include "techniques/heuristic_rt/selection_graph.h"
+#include "techniques/heuristic_rt/shaders/heuristic_texel.h"
 #include "techniques/make_technique_info.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
@@ -25,10 +27,10 @@ namespace {
 constexpr std::uint8_t effectBit(Effect e) { return static_cast<std::uint8_t>(1u << static_cast<int>(e)); }
 constexpr std::uint8_t kAllEffects = effectBit(Effect::Shadows) | effectBit(Effect::Reflection) | effectBit(Effect::Refraction);
 
-TracedEffects tracedEffects(std::uint8_t bits) {
-    return {(bits & effectBit(Effect::Shadows)) != 0, (bits & effectBit(Effect::Reflection)) != 0,
-            (bits & effectBit(Effect::Refraction)) != 0};
-}
+// The bits the shared per-texel shading reads (shaders/heuristic_texel.h).
+static_assert(effectBit(Effect::Shadows) == shading_language::kSelectedShadows &&
+              effectBit(Effect::Reflection) == shading_language::kSelectedReflection &&
+              effectBit(Effect::Refraction) == shading_language::kSelectedRefraction);
 
 }  // namespace
 
@@ -224,6 +226,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
     }
 
     // trace: Listings 8a-8d from the G-buffer, for masked pixels only.
+    // The texel's terms by the one source the device's raygen shader runs (shaders/heuristic_texel.h).
     const WhittedTracer tracer(rays, tracer_);
     parts_.resize(pixels);
     const Image& lighting = raster_.lighting;
@@ -231,29 +234,20 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         const std::size_t i = g.index(x, y);
         if (pixelEffects_[i] == 0) return;
         const GBufferSurface surface(g, i, frame.camera);
-        TracedEffects effects = tracedEffects(pixelEffects_[i]);
-        // With the P-buffer lit on the CPU, shadows not selected are shaded here as it shades them.
-        const bool localFromPBuffer = !effects.shadows && !cpuLighting_;
-        if (cpuLighting_) effects.shadows = effects.shadows || unselectedShadowRays_;
-        EnvironmentTerms sky;
-        ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, effects, surface.footprint(), std::nullopt,
-                                           localFromPBuffer ? &sky : nullptr);
-        if (localFromPBuffer) {
-            // Shadows not selected: the P-buffer's (shadow-mapped) local colour, recovered from its
-            // composition with the sky terms the rasterizer used.
-            p.local = p.composes ? uncomposeLocal(p.reflectivity, p.transparency, sky.reflected, sky.refracted,
-                                                  glm::vec3(lighting.at(x, y)), p.local, tracer_.blend)
-                                 : glm::vec3(lighting.at(x, y));
-        }
-        parts_[i] = p;
+        EmbreeTreeBackend backend(tracer, st, surface.footprint().spread);
+        parts_[i] = shading_language::heuristicTexelParts(backend, surface.hit(), EmbreeTreeBackend::surfaceMaterial(surface.hit()),
+                                                          surface.incoming(), backend.coneWidthAt(surface.footprint().width, 0.0f),
+                                                          kAmbientMedium, pixelEffects_[i], !cpuLighting_, unselectedShadowRays_,
+                                                          glm::vec3(lighting.at(x, y)));
     });
     clock.lap("trace");
 
     // blend: Listing 10 (eqs. 4-6), or the shading model's composition, over the P-buffer (moved: the next frame's
     // read-back reallocates it).
     result.image = std::move(raster_.lighting);
+    const bool walewski = tracer_.blend == BlendRule::Walewski2019;
     for (std::size_t i = 0; i < pixels; ++i) {
-        if (pixelEffects_[i] != 0) result.image.data()[i] = glm::vec4(parts_[i].composed(tracer_.blend), 1.0f);
+        if (pixelEffects_[i] != 0) result.image.data()[i] = glm::vec4(shading_language::composedParts(parts_[i], walewski), 1.0f);
     }
     clock.lap("blend");
 
@@ -264,8 +258,7 @@ FrameResult HeuristicRtTechnique::render(SceneContext& context, const FrameReque
         Image mask(frame.width, frame.height), shadows(frame.width, frame.height), reflections(frame.width, frame.height),
             refractions(frame.width, frame.height);
         for (std::size_t i = 0; i < pixels; ++i) {
-            const TracedEffects e = tracedEffects(pixelEffects_[i]);
-            mask.data()[i] = glm::vec4(e.shadows, e.reflection, e.refraction, 1.0f);
+            mask.data()[i] = glm::vec4(glm::vec3(shading_language::selectedTracedEffects(pixelEffects_[i])), 1.0f);
             if (pixelEffects_[i] == 0) continue;
             shadows.data()[i] = glm::vec4(parts_[i].local, 1.0f);
             reflections.data()[i] = glm::vec4(parts_[i].reflected, 1.0f);

@@ -32,6 +32,7 @@
 #include "common/raster/rasterizer.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "common/device_rays/device_gbuffer_tracer.h"
+#include "common/shading/whitted_tree_types.h"
 #include "techniques/heuristic_rt/frame_time_budget.h"
 #include "techniques/heuristic_rt/object_pixel_count_pass.h"
 #include "techniques/shared/device_launch_parameters.h"
@@ -101,7 +102,7 @@ private:
     std::vector<Aabb> localBounds_;          // per object, object space (for P and D)
     RasterFrame raster_;
     GBufferSource gbuffer_;
-    std::vector<ShadingParts> parts_;        // per pixel, for masked pixels
+    std::vector<shading_language::HitParts> parts_;  // per pixel, for masked pixels
     std::vector<std::uint8_t> pixelEffects_; // per pixel: the heuristic mask (effect bits)
     std::vector<bool> selectedLastFrame_;    // S, per object
     std::unique_ptr<DeviceGBufferTracer> deviceTracer_;  // rays = "vulkan"

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <optional>
 
+#include "common/raytrace/embree_tree_backend.h"
 #include "techniques/make_technique_info.h"
 #include "techniques/shared/device_rays.h"
 #include "techniques/shared/gbuffer_surface.h"
@@ -12,15 +13,18 @@
 #include "techniques/shared/raster_work_counters.h"
 #include "techniques/shared/ray_counters.h"
 #include "techniques/shared/ray_scene_update.h"
+#include "techniques/ssr_fallback/shaders/ssr_texel.h"
 #include "techniques/stage_clock.h"
 
 namespace hybridlab {
 
 namespace {
 
+namespace sl = shading_language;
+
 // Per texel, what the reflection composer needs after the ray-traced stage.
 struct ReflectiveTexel {
-    ShadingParts parts;
+    sl::HitParts parts;
     bool composed = false;  // the texel takes part in the reflection composer
 };
 
@@ -50,8 +54,6 @@ glm::vec4 failureColor(std::uint32_t flags) {
     if (flags & kSsrMaxDistance) c += glm::vec3(1, 0, 1);
     return glm::vec4(glm::min(c, glm::vec3(1.0f)), 1.0f);
 }
-
-bool reflectsOrRefracts(const glm::vec4& optical) { return optical.x > 0.0f || optical.w > 0.5f || optical.z < 1.0f; }
 
 // The march's defaults, from the speed-accuracy sweep (README.md "Defaults"): on every scene swept,
 // at 320x180 and at 1280x720, the hits a Hi-Z march finds past 64 cells and in a slab deeper than
@@ -179,14 +181,6 @@ void SsrFallbackTechnique::prepare(SceneContext& context) {
 
 namespace {
 
-// What the ray-traced stage does at texels the G-buffer and SSR leave to it.
-struct TexelPolicy {
-    bool rayTracedShadows = false;
-    bool ssrRefracts = false;  // glass = "ssr": SSR reflects off refractive texels, their refraction is traced
-    SsrFallbackTechnique::Fallback fallback = SsrFallbackTechnique::Fallback::RayTraced;
-    SsrFallbackTechnique::Recursion recursion = SsrFallbackTechnique::Recursion::RayTraced;
-};
-
 // The ray-traced stage's output per texel, for the reflection composer and SSR's statistics.
 struct TracedTexels {
     std::vector<ReflectiveTexel> texels;
@@ -197,81 +191,77 @@ struct TracedTexels {
     std::uint64_t fallbackRays = 0, recursionRays = 0, pixelsTraced = 0;
 };
 
-ReflectionSource reflectionSource(float confidence, SsrFallbackTechnique::Fallback fallback) {
-    using Fallback = SsrFallbackTechnique::Fallback;
-    return confidence >= 0.5f                ? ReflectionSource::Ssr
-           : fallback == Fallback::RayTraced ? ReflectionSource::RayTraced
-           : fallback == Fallback::Sky       ? ReflectionSource::Sky
-                                             : ReflectionSource::Missing;
-}
+static_assert(static_cast<int>(ReflectionSource::None) == sl::kReflectionNone && static_cast<int>(ReflectionSource::Ssr) == sl::kReflectionSsr &&
+              static_cast<int>(ReflectionSource::RayTraced) == sl::kReflectionRayTraced &&
+              static_cast<int>(ReflectionSource::Sky) == sl::kReflectionSky && static_cast<int>(ReflectionSource::Missing) == sl::kReflectionMissing);
+static_assert(static_cast<int>(SsrFallbackTechnique::Fallback::RayTraced) == sl::kSsrFallbackRayTraced &&
+              static_cast<int>(SsrFallbackTechnique::Fallback::Sky) == sl::kSsrFallbackSky &&
+              static_cast<int>(SsrFallbackTechnique::Fallback::None) == sl::kSsrFallbackNone);
+
+// What the stage's shared function (shaders/ssr_texel.h) asks of its backend besides the ray tree:
+// SSR's outputs at texel i and the G-buffer at SSR's hit.
+class SsrTexelBackend : public EmbreeTreeBackend {
+public:
+    SsrTexelBackend(const WhittedTracer& tracer, RayStats& stats, float coneSpread, const GBuffer& g, std::size_t i, const SsrPixel* ssr,
+                    const Camera& camera, std::uint32_t* counts)
+        : EmbreeTreeBackend(tracer, stats, coneSpread), g_(g), i_(i), ssr_(ssr), camera_(camera), counts_(counts) {}
+
+    float ssrConfidence() const { return ssr_ && ssr_->resolved() ? ssr_->confidence : 0.0f; }
+    glm::vec3 ssrHitColor() const { return ssr_->color; }
+    glm::vec4 ssrHitOptical() const { return g_.optical[hitIndex()]; }
+    glm::vec3 loadSsrHit() {
+        hit_.emplace(g_, hitIndex(), camera_);
+        return hit_->hit().position;
+    }
+    const SurfaceHit& ssrHitSurface() const { return hit_->hit(); }
+    sl::SurfaceMaterial ssrHitMaterial() const { return surfaceMaterial(hit_->hit()); }
+    glm::vec3 texelFacingNormal() const { return g_.facingNormal(i_); }
+    void countSsrTexel(int kind) { ++counts_[kind]; }
+
+private:
+    std::size_t hitIndex() const { return g_.index(ssr_->hit.x, ssr_->hit.y); }
+
+    const GBuffer& g_;
+    std::size_t i_;
+    const SsrPixel* ssr_;
+    const Camera& camera_;
+    std::uint32_t* counts_;
+    std::optional<GBufferSurface> hit_;
+};
 
 // The ray-traced stage (de Macedo & Rodrigues §III): fallback rays where SSR failed, refractive
 // texels, ray-traced shadows, and recursion past SSR hits that reflect or refract. Writes the
 // texels it finishes (the sky, matte and refractive ones) into `image`.
 TracedTexels traceTexels(const GBuffer& g, const Image& lit, const SsrResult* ssr, const WhittedTracer& tracer, const WhittedSettings& settings,
-                         const TexelPolicy& policy, const Camera& camera, Image& image) {
-    using Fallback = SsrFallbackTechnique::Fallback;
+                         const sl::SsrTexelPolicy& policy, const Camera& camera, Image& image) {
     const std::size_t n = g.pixelCount();
     TracedTexels out{std::vector<ReflectiveTexel>(n), std::vector<glm::vec3>(n, glm::vec3(0.0f)),
                      std::vector<ReflectionSource>(n, ReflectionSource::None), std::vector<std::uint8_t>(n, 0), {}, 0, 0, 0};
     std::atomic<std::uint64_t> fallbackRays{0}, recursionRays{0}, pixelsTraced{0};
+    const bool walewski = settings.blend == BlendRule::Walewski2019;
     out.stats = forEachPixelInParallel(image.width(), image.height(), [&](int x, int y, RayStats& st) {
         const std::size_t i = g.index(x, y);
-        if (g.object(i) < 0) {
-            image.at(x, y) = lit.at(x, y);  // the sky
-            return;
-        }
-        const glm::vec4& optical = g.optical[i];
-        const bool opaqueMatte = !reflectsOrRefracts(optical);
-        if (opaqueMatte && !policy.rayTracedShadows) {
-            image.at(x, y) = lit.at(x, y);
+        if (g.object(i) < 0 || !sl::ssrStageShades(g.optical[i], policy.rayTracedShadows)) {
+            image.at(x, y) = lit.at(x, y);  // the sky, and opaque matte texels shaded by the maps
             return;
         }
         const GBufferSurface surface(g, i, camera);
-        // The lit image's colour is C with shadows from the maps; with ray-traced shadows C is shaded again.
-        const std::optional<glm::vec3> rasterLocal =
-            policy.rayTracedShadows ? std::nullopt : std::optional<glm::vec3>(glm::vec3(lit.at(x, y)));
-        out.refractive[i] = optical.z < 1.0f;
-        if (out.refractive[i] && !policy.ssrRefracts) {
-            // Refractive: ray traced whole, as SSR does not refract.
-            ++pixelsTraced;
-            const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
-                                                         {policy.rayTracedShadows, true, true}, surface.footprint(), rasterLocal);
-            image.at(x, y) = glm::vec4(parts.composed(settings.blend), 1.0f);
+        std::uint32_t counts[3] = {0, 0, 0};  // sl::kSsrCount*
+        SsrTexelBackend backend(tracer, st, surface.footprint().spread, g, i, ssr ? &ssr->pixels[i] : nullptr, camera, counts);
+        const sl::SsrTexelShading t =
+            sl::shadeSsrTexel(backend, surface.hit(), EmbreeTreeBackend::surfaceMaterial(surface.hit()), g.optical[i], surface.incoming(),
+                              backend.coneWidthAt(surface.footprint().width, 0.0f), kAmbientMedium, glm::vec3(lit.at(x, y)), policy);
+        if (counts[sl::kSsrCountTraced]) ++pixelsTraced;
+        if (counts[sl::kSsrCountFallback]) ++fallbackRays;
+        if (counts[sl::kSsrCountRecursion]) ++recursionRays;
+        out.refractive[i] = t.refractive;
+        if (!t.composer) {
+            image.at(x, y) = glm::vec4(sl::composedParts(t.parts, walewski), 1.0f);
             return;
         }
-        const SsrPixel* sp = ssr ? &ssr->pixels[i] : nullptr;
-        const float confidence = sp && sp->resolved() ? sp->confidence : 0.0f;
-        const bool traceFallback = !opaqueMatte && confidence < 1.0f && policy.fallback == Fallback::RayTraced;
-        if (traceFallback || policy.rayTracedShadows || out.refractive[i]) ++pixelsTraced;
-        if (traceFallback) ++fallbackRays;
-        // A refractive texel here (glass = "ssr") traces its refraction; its reflection is SSR's where SSR resolved.
-        const ShadingParts parts = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
-                                                     {policy.rayTracedShadows, traceFallback, out.refractive[i] != 0},
-                                                     surface.footprint(), rasterLocal);
-        if (!parts.composes) {
-            image.at(x, y) = glm::vec4(parts.local, 1.0f);
-            return;
-        }
-        // The fallback's M: the traced ray, or (not traced) the sky in the reflected direction.
-        const glm::vec3 fallbackM = policy.fallback == Fallback::None ? glm::vec3(0.0f) : parts.reflected;
-        glm::vec3 ssrM(0.0f);
-        if (confidence > 0.0f) {
-            ssrM = sp->color;
-            const std::size_t j = g.index(sp->hit.x, sp->hit.y);
-            if (policy.recursion == SsrFallbackTechnique::Recursion::RayTraced && reflectsOrRefracts(g.optical[j])) {
-                // The SSR hit reflects or refracts: its next bounce is ray traced, seen along the mirror ray.
-                ++recursionRays;
-                const GBufferSurface hitSurface(g, j, camera);
-                const glm::vec3 mirror = reflectDirection(surface.incoming(), g.facingNormal(i));
-                // The camera ray's cone continued along the mirror ray to the hit.
-                const RayCone cone = surface.footprint().at(glm::distance(surface.hit().position, hitSurface.hit().position));
-                ssrM = tracer.shade(hitSurface.hit(), mirror, 1, parts.reflectivity, st, cone);
-            }
-        }
-        out.reflection[i] = confidence * ssrM + (1.0f - confidence) * fallbackM;
-        out.source[i] = reflectionSource(confidence, policy.fallback);
-        out.texels[i] = {parts, true};
+        out.reflection[i] = t.reflection;
+        out.source[i] = static_cast<ReflectionSource>(t.source);
+        out.texels[i] = {t.parts, true};
     });
     out.fallbackRays = fallbackRays.load();
     out.recursionRays = recursionRays.load();
@@ -287,9 +277,9 @@ std::pair<std::size_t, std::size_t> composeReflections(TracedTexels& traced, Ble
         if (!traced.texels[i].composed) continue;
         ++reflective;
         ssrHits += traced.source[i] == ReflectionSource::Ssr;
-        ShadingParts& parts = traced.texels[i].parts;
+        sl::HitParts& parts = traced.texels[i].parts;
         parts.reflected = traced.reflection[i];
-        image.data()[i] = glm::vec4(parts.composed(blend), 1.0f);
+        image.data()[i] = glm::vec4(sl::composedParts(parts, blend == BlendRule::Walewski2019), 1.0f);
     }
     return {reflective, ssrHits};
 }
@@ -315,7 +305,7 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
 
     const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
     result.image = Image(frame.width, frame.height);
-    const TexelPolicy policy{rayTracedShadows_, ssrSettings_.refractive, fallback_, recursion_};
+    const sl::SsrTexelPolicy policy{rayTracedShadows_, ssrSettings_.refractive, static_cast<int>(fallback_), recursion_ == Recursion::RayTraced};
     TracedTexels traced = traceTexels(g, raster_.lighting, ssrOn_ ? &ssr_->result() : nullptr, WhittedTracer(rays, tracerSettings_),
                                       tracerSettings_, policy, frame.camera, result.image);
     clock.lap("trace");

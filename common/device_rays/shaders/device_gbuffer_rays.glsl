@@ -1,7 +1,8 @@
 // Secondary rays from the G-buffer where it lies (the hybrids' ray stage on the raster's device):
 // the rasterizer's targets read as images of set 1, a texel taken as the surface a camera ray
-// would have hit there (as GBufferSurface, techniques/shared/gbuffer_surface.h), and its
-// ray tree (device_whitted_tree.glsl) split into the terms the hybrids blend (HitParts, ShadingParts).
+// would have hit there (as GBufferSurface, techniques/shared/gbuffer_surface.h), whose ray tree
+// (device_whitted_tree.glsl) the hybrids' per-texel shading (heuristic_texel.h, ssr_texel.h,
+// written once for both backends) splits into the terms they blend (HitParts).
 #ifndef DEVICE_GBUFFER_RAYS_GLSL
 #define DEVICE_GBUFFER_RAYS_GLSL
 
@@ -52,15 +53,5 @@ void addTexelRayCounts() {
 
 // A hit's terms composed (ShadingParts::composed).
 vec3 composed(HitParts p) { return composedParts(p, frame.settings.y != 0.0); }
-
-// As WhittedTracer::shadeParts() in the ambient medium: the hit's terms (shadeParts(),
-// whitted_tree.h), its secondary rays traced with the ray tree, the environment terms computed.
-// With `composedOnly` (a caller that reads composed() alone, as WhittedTracer::shade()), C is
-// shaded only where it weighs.
-HitParts shadeTexelParts(Surface s, DeviceMaterial m, vec3 incoming, int depth, float importance, float coneWidth, bvec3 effects,
-                         bool localGiven, vec3 givenLocal, bool composedOnly) {
-    return shadeParts(s, surfaceMaterial(m), incoming, depth, importance, coneWidth, ambientMedium(), effects, localGiven, givenLocal,
-                      composedOnly, true);
-}
 
 #endif

@@ -4,7 +4,7 @@
 // device_whitted.rgen traces it from camera rays; device_gbuffer_rays.glsl starts it at G-buffer
 // texels (the hybrids' secondary rays). Below: what the walk asks of a backend (trace a ray,
 // resolve its hit, sample a texture over a ray cone, test a shadow ray, count a ray), each as the
-// C++ backend (EmbreeTreeBackend, common/raytrace/whitted_tracer.cpp) computes it on RayScene; the
+// C++ backend (EmbreeTreeBackend, common/raytrace/embree_tree_backend.h) computes it on RayScene; the
 // DeviceRays tests (tests/device_rays/test_device_rays.cpp) hold the images and ray counts of both
 // backends equal. The walk iterates the tree with an explicit stack (whitted_tree.h says why), so
 // the pipeline needs a recursion depth of 1 only.

@@ -6,10 +6,8 @@
 
 #include "device_gbuffer_inputs.glsl"
 
-// Bits of objectData[object]: the selected effects (1 << Effect in heuristic.h).
-const uint kShadows = 1u, kReflection = 2u, kRefraction = 4u;
-
-// The effects selected for the texel's object (0: the sky, or an object the selection left out).
+// The effects selected for the texel's object, as bits (heuristic_texel.h: 1 << Effect, heuristic.h;
+// 0: the sky, or an object the selection left out).
 uint selectedEffects(ivec2 texel) {
     const int object = gbufferObject(texel);
     return object < 0 ? 0u : objectData[object];
