@@ -24,6 +24,7 @@ loops starve the thread Mesa runs at batch priority (lavapipe's shader compiler)
 for minutes. Each run prints the load other processes put on the machine: near 0 is a quiet run.
 Exit status 0 whatever agrees: this is a measurement, not a test."""
 import argparse
+import functools
 import os
 import subprocess
 import sys
@@ -36,10 +37,17 @@ import timing  # noqa: E402
 import verdict  # noqa: E402
 
 
+@functools.lru_cache(maxsize=None)
+def verdicts_of(result_dir):
+    """A result set's verdicts, read once (the speed-ups and the rows read the same ones; each
+    reading hashes every image of the set)."""
+    return verdict.verdicts(rs.load(result_dir), result_dir)
+
+
 def verdict_rows(result_dir):
     """{(scene, size, region, threshold): "name" or "a and b (tied)"} of one result set."""
     rows = {}
-    for v in verdict.verdicts(rs.load(result_dir), result_dir):
+    for v in verdicts_of(result_dir):
         for region, label, threshold, tied in v.thresholds:
             names = " and ".join(s.name for s in tied) if tied else "none"
             rows[(v.scene, v.size, label, threshold)] = names
@@ -51,7 +59,7 @@ def setting_speedups(result_dir, over):
     "reference") as its report computes them (verdict.py: the runner's paired interval where it
     recorded one, else the rounds paired or pooled, else the ratio of the medians)."""
     out = {}
-    for v in verdict.verdicts(rs.load(result_dir), result_dir):
+    for v in verdicts_of(result_dir):
         for name, s in v.settings.items():
             ref, rt = v.speedups(s)
             value = rt if over == "rt_only" else ref
