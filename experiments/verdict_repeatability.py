@@ -5,7 +5,7 @@ report's verdict rows: per scene, size and SSIM threshold, the fastest setting (
 tied for fastest) reaching it.
 
     /usr/bin/python3 experiments/verdict_repeatability.py [--config experiments/configs/quick.toml]
-        [--runs 3] [--busy N] [--out DIR] [--program build/hybridlab] [--reuse]
+        [--runs 3] [--busy N] [--realtime] [--out DIR] [--program build/hybridlab] [--reuse]
 
 Prints each run's wall time, the load other processes put on the machine while it was timed
 (`timing.other_load`), and its rows, then how many rows name the same settings in every run.
@@ -14,15 +14,16 @@ reports result sets already in DIR/run-K instead of running them (where some lac
 as the GPU campaign's repeats do, no run's images are compared); `--against DIR` also counts the
 rows identical to the first run in DIR (say, quiet runs against runs under load); `--speedups
 rt_only` also checks every later run's speed-up over rt_only against the first run's interval
-(`--config experiments/configs/gbuffer_rays.toml --runs 2 --speedups rt_only`). Run quiet runs on
-a quiet machine at normal priority, and runs with `--busy` under `nice -n -20` (the runner and its
-busy loops then share the cores fairly, ahead of other work). Not under `chrt -r`: the runner's own
-threads (TBB's, lavapipe's) then take turns in 100 ms round-robin slices; gbuffer_rays.toml's
-speed-up intervals widened from +-2-4% to +-5-15% and two settings moved 10% between two runs
-(10 of 12 held, against 12 of 12 at normal priority). Nor `--busy` under `chrt`: real-time busy
-loops starve the thread Mesa runs at batch priority (lavapipe's shader compiler), and a run stalls
-for minutes. Each run prints the load other processes put on the machine: near 0 is a quiet run.
-Exit status 0 whatever agrees: this is a measurement, not a test."""
+(`--config experiments/configs/gbuffer_rays.toml --runs 2 --speedups rt_only`). `--realtime`
+passes `run --realtime`: the runner times its rounds at real-time priority while the busy loops
+stay at normal priority (run as root or with CAP_SYS_NICE). Run quiet runs on a quiet machine at
+normal priority. Under load, wall time ranks settings as the load has them (a parallel frame
+waits for its preempted thread, a serial one barely notices): `--busy 2` at normal priority gave
+the quiet verdict in 8 to 12 of 18 rows, `--busy 2 --realtime` in 18 of 18. Do not start the
+script itself under `chrt`: its busy loops would then be real-time too and starve the thread Mesa
+runs at batch priority (lavapipe's shader compiler), stalling a run for minutes. Each run prints
+the load other processes put on the machine: near 0 is a quiet run. Exit status 0 whatever
+agrees: this is a measurement, not a test."""
 import argparse
 import functools
 import os
@@ -98,6 +99,8 @@ def main():
     ap.add_argument("--busy", type=int, default=0, help="busy loops running throughout")
     ap.add_argument("--out", default="results/verdict-repeatability")
     ap.add_argument("--program", default=os.path.join(HERE, "..", "build", "hybridlab"))
+    ap.add_argument("--realtime", action="store_true", help="pass --realtime to `hybridlab run`: its timed frames run "
+                    "at real-time priority, ahead of the busy loops (which stay at normal priority)")
     ap.add_argument("--reuse", action="store_true", help="report the result sets already in --out")
     ap.add_argument("--against", help="a folder of earlier runs (run-1, ...): count the rows identical to its first")
     ap.add_argument("--speedups", metavar="OVER", help="also compare each run's speed-ups over OVER (rt_only or "
@@ -119,7 +122,8 @@ def main():
                 if os.path.exists(out):
                     sys.exit("%s: exists; remove it or pass --reuse" % out)
                 start = time.monotonic()
-                subprocess.run([args.program, "run", args.config, "--out", out, "--quiet"], check=True)
+                subprocess.run([args.program, "run", args.config, "--out", out, "--quiet"] + (["--realtime"] if args.realtime else []),
+                               check=True)
                 print("run %d: %.1f s%s" % (k + 1, time.monotonic() - start, " (%d busy loops)" % args.busy if args.busy else ""), flush=True)
             tables.append(verdict_rows(out))
             loads = sorted(r["timing"]["other_load"] for r in rs.load(out) if (r.get("timing") or {}).get("other_load") is not None)

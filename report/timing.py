@@ -259,7 +259,8 @@ def describe_rule(records):
 def caveats(records):
     """Sentences on runs whose times the runner itself doubts: the precision not reached in the
     rounds allowed, no steady state after the warm-up, other processes' load while timed
-    (`timing.other_load`), the GPU's clocks changed while timed."""
+    (`timing.other_load`) unless the rounds ran ahead of it (`timing.priority`), the GPU's clocks
+    changed while timed."""
     timed = [r.get("timing") or {} for r in records]
     out = []
     missed = sum(t.get("precision_reached") is False for t in timed)
@@ -269,13 +270,21 @@ def caveats(records):
     unsteady = sum(t.get("steady") is False for t in timed)
     if unsteady:
         out.append("%d of %d runs had not reached a steady frame time after their warm-up." % (unsteady, len(records)))
-    loads = [t["other_load"] for t in timed if t.get("other_load") is not None]
+    # Rounds at real-time priority (`run --realtime`) ran ahead of the load: it took only what the
+    # kernel's real-time throttling leaves other processes, so their ranks are not the loaded
+    # machine's.
+    ahead = [t for t in timed if t.get("priority") == "realtime"]
+    if ahead:
+        loads = [t["other_load"] for t in ahead if t.get("other_load") is not None]
+        out.append("%d of %d runs were timed at real-time priority (run --realtime), ahead of other processes%s." % (
+            len(ahead), len(records), " (which used up to %.0f%% of the cores meanwhile)" % (100.0 * max(loads)) if loads else ""))
+    loads = [t["other_load"] for t in timed if t.get("other_load") is not None and t.get("priority") != "realtime"]
     loaded = [x for x in loads if x > BUSY_MACHINE]
     if loaded:
         out.append("%d of %d runs were timed while other processes used more than %.0f%% of the machine's cores (up to "
                    "%.0f%%): load slows settings unequally (a parallel frame waits for its preempted thread, a serial one "
-                   "barely notices), so their ranks answer for a loaded machine; time them on a quiet one to rank for an "
-                   "idle machine." % (len(loaded), len(records), 100.0 * BUSY_MACHINE, 100.0 * max(loaded)))
+                   "barely notices), so their ranks answer for a loaded machine; time them on a quiet one, or with run "
+                   "--realtime ahead of the load, to rank for an idle machine." % (len(loaded), len(records), 100.0 * BUSY_MACHINE, 100.0 * max(loaded)))
     clocks = sum(bool((t.get("gpu_clocks") or {}).get("changed")) for t in timed)
     if clocks:
         out.append("The GPU's clocks changed while %d of %d runs were timed." % (clocks, len(records)))

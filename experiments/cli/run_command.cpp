@@ -26,6 +26,7 @@ struct RunOptions {
     long maxRuns = -1;
     bool quiet = false;
     bool dryRun = false;
+    bool realTime = false;
 };
 
 // "i/n": two decimal numbers and one slash, nothing else (sscanf would take "1/2/3" and " 1/2").
@@ -126,6 +127,7 @@ void run(const RunOptions& o) {
     r.allowMixedDevices = o.allowMixedDevices;
     r.maxRuns = o.maxRuns;
     r.quiet = o.quiet;
+    r.realTime = o.realTime;
     if (o.dryRun) return listRuns(config, r);
     const RunnerSummary s = runExperiment(config, r);
     if (s.staleTemporariesRemoved > 0)
@@ -172,6 +174,10 @@ void addRunCommand(CLI::App& app) {
     cmd->add_option("--cache", o->cache, "Reference cache folder (default: $HYBRIDLAB_CACHE or ~/.cache/hybridlab)");
     cmd->add_option("--max-runs", o->maxRuns, "Stop after rendering this many runs (--resume continues)")->check(CLI::Range(0L, 100000000L));
     cmd->add_flag("--quiet", o->quiet, "No progress output, and no verdict at the end");
+    cmd->add_flag("--realtime", o->realTime,
+                  "Time each group's frames at real-time priority (SCHED_FIFO), ahead of other processes' load, so that a busy "
+                  "machine ranks settings as an idle one does (needs root, CAP_SYS_NICE or an RLIMIT_RTPRIO; the kernel leaves "
+                  "other processes 5% of each second); recorded as timing.priority");
     cmd->add_flag("--dry-run", o->dryRun,
                   "Check the config and list the runs (index, scene, view, frame, size, technique, reference cached or not, "
                   "parameters); render and write nothing");

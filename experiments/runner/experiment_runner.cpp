@@ -23,6 +23,7 @@
 #include "common/scene/view.h"
 #include "common/core/content_hash.h"
 #include "common/core/other_load.h"
+#include "common/core/realtime_priority.h"
 #include "common/core/process_cpu_clock.h"
 #include "common/core/progress.h"
 #include "common/core/wall_clock.h"
@@ -411,6 +412,28 @@ void addTiming(RunRecord& record, const ExperimentConfig& config, const std::str
     if (rtOnlyRounds) record.speedup["rt_only"] = speedupOver(*rtOnlyRounds);
 }
 
+// A group's rounds (interleaved_timing.h) and what was measured around them.
+struct TimedGroup {
+    GroupTiming timing;
+    std::optional<double> otherLoad;           // other processes' share of the cores meanwhile
+    std::optional<nlohmann::json> gpuClocks;   // at the start and end, on an NVIDIA GPU
+};
+
+TimedGroup timeGroup(const std::vector<TimedRender>& renders, const TimingProtocol& protocol, bool realTime) {
+    const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
+    const OtherLoadMeter otherLoad;
+    TimedGroup g;
+    {
+        std::optional<RealTimePriority> aheadOfOtherProcesses;
+        if (realTime) aheadOfOtherProcesses.emplace();
+        g.timing = timeInterleaved(renders, protocol);
+    }  // scoring and files at the normal priority
+    g.otherLoad = otherLoad.fraction();
+    const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
+    if (clocksBefore && clocksAfter) g.gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
+    return g;
+}
+
 // Times a group's pending runs and the reference in interleaved rounds (with the group's default
 // rt_only, recorded or not, for the speed-ups over it), then scores and records each run. Returns
 // the runs recorded.
@@ -447,11 +470,8 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
             return c;
         });
     }
-    const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
-    const OtherLoadMeter otherLoad;
-    GroupTiming timing = timeInterleaved(renders, protocol);
-    const std::optional<double> otherLoadFraction = otherLoad.fraction();
-    const std::optional<GpuClockSample> clocksAfter = sampleGpuClocks();
+    const TimedGroup timed = timeGroup(renders, protocol, o.realTime);
+    const GroupTiming& timing = timed.timing;
     // Only the rounds' stage times: the warm-up's are not the setting's steady state.
     for (TimedSetting& s : settings) {
         for (auto& [stage, times] : s.stageTimes)
@@ -500,9 +520,8 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
             rtOnly ? std::optional(wallTimes(timing.settings[static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) -
                                                                                       timedRuns.begin())]))
                    : std::nullopt;
-        std::optional<nlohmann::json> gpuClocks;
-        if (clocksBefore && clocksAfter) gpuClocks = gpuClocksJson(*clocksBefore, *clocksAfter);
-        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, gpuClocks, otherLoadFraction);
+        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, timed.gpuClocks, timed.otherLoad);
+        record.timing->priority = o.realTime ? "realtime" : "normal";
         // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
         // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
         record.runSeconds = timingSeconds / static_cast<double>(pending.size()) + millisecondsSince(runStart) / 1000.0;
@@ -520,10 +539,18 @@ void checkShard(const RunnerOptions& o) {
     }
 }
 
+// The options this process can carry out, checked before anything is written.
+void checkOptions(const RunnerOptions& o) {
+    checkShard(o);
+    if (o.realTime) {
+        if (const auto reason = realTimePriorityUnavailable()) throw InputError("--realtime: " + *reason);
+    }
+}
+
 }  // namespace
 
 RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
-    checkShard(o);
+    checkOptions(o);
     const std::vector<RunSpec> all = planRuns(config);
     const ShardPartition partition = partitionRuns(config, all, o.shardCount);
     const std::vector<const RunSpec*> mine = partition.runsOf(all, o.shardIndex);
@@ -575,7 +602,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
 }
 
 ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
-    checkShard(o);
+    checkOptions(o);
     ExperimentPlan plan;
     plan.runs = planRuns(config);
     const ShardPartition partition = partitionRuns(config, plan.runs, o.shardCount);

@@ -21,6 +21,9 @@ struct RunnerOptions {
     int shardCount = 1;
     long maxRuns = -1;   // stop after this many renders (as if killed; for tests), -1: all
     bool quiet = false;
+    // Each group's warm-up and rounds run at real-time priority (realtime_priority.h), ahead of
+    // other processes' load; refused before anything is written where the process may not.
+    bool realTime = false;
 };
 
 struct RunnerSummary {

@@ -44,6 +44,7 @@ json timingJson(const RunTiming& t) {
     }
     if (t.budgetClock) j["budget_clock"] = *t.budgetClock;
     if (t.otherLoad) j["other_load"] = *t.otherLoad;
+    if (t.priority) j["priority"] = *t.priority;
     if (t.gpuClocks) j["gpu_clocks"] = *t.gpuClocks;
     return j;
 }
@@ -201,6 +202,7 @@ RunTiming timingFrom(const json& j, const std::string& where) {
     t.precisionReached = f.get<bool>("precision_reached");
     t.budgetClock = f.getOptional<std::string>("budget_clock");
     t.otherLoad = f.getOptional<double>("other_load");
+    t.priority = f.getOptional<std::string>("priority");
     t.warmupMs = f.get<double>("warmup_ms");
     t.steady = f.get<bool>("steady");
     if (const json* g = f.optional("gpu_clocks")) t.gpuClocks = *g;

@@ -49,6 +49,9 @@ struct RunTiming {
     bool precisionReached = false;
     std::optional<std::string> budgetClock;  // "cpu_per_core" or "wall" (interleaved_timing.h); absent before it was recorded
     std::optional<double> otherLoad;         // other processes' share of the cores while timed (other_load.h)
+    // "realtime" where the rounds ran ahead of other processes (`run --realtime`,
+    // realtime_priority.h), "normal" otherwise; absent before it was recorded.
+    std::optional<std::string> priority;
     double warmupMs = 0.0;
     bool steady = false;                  // the warm-up ended on agreeing frames, not on its cap
     std::optional<nlohmann::json> gpuClocks;  // gpu_clocks.h, on an NVIDIA GPU

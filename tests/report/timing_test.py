@@ -133,6 +133,20 @@ class Caveats(unittest.TestCase):
         del quiet["timing"]["other_load"], busy["timing"]["other_load"]  # a result set measured before the meter
         self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
 
+    def test_runs_timed_ahead_of_the_load_are_not_called_loaded(self):
+        g = sr.Group("s", [1.0] * 8)
+        quiet, busy = sr.timed_record(g, "hyb", "", [1.0] * 8), sr.timed_record(g, "hyb", "x", [1.0] * 8)
+        quiet["timing"]["other_load"], busy["timing"]["other_load"] = 0.05, 0.62
+        quiet["timing"]["priority"] = busy["timing"]["priority"] = "realtime"
+        said = " ".join(timing.caveats([quiet, busy]))
+        self.assertIn("2 of 2 runs were timed at real-time priority (run --realtime), ahead of other processes (which used up "
+                      "to 62% of the cores meanwhile).", said)
+        self.assertNotIn("answer for a loaded machine", said)
+        quiet["timing"]["priority"] = busy["timing"]["priority"] = "normal"
+        said = " ".join(timing.caveats([quiet, busy]))
+        self.assertNotIn("real-time", said)
+        self.assertIn("answer for a loaded machine", said)
+
 
 class SpeedUps(unittest.TestCase):
     def test_one_run_reads_the_records_speedup(self):

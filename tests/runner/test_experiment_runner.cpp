@@ -1,5 +1,6 @@
 // The experiment runner end to end on built-in scenes at a small size: the run list, the
 // reference cache, resume after an interruption, shards and merge, and bad configs.
+#include <sched.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,11 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "common/core/input_error.h"
+#include "common/core/realtime_priority.h"
 #include "experiments/runner/experiment_runner.h"
 #include "experiments/runner/results_store.h"
 #include "experiments/runner/shard_partition.h"
 #include "techniques/technique.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/realtime_privilege.h"
 #include "tests/support/report_checks.h"
 #include "tests/support/runner_checks.h"
 #include "tests/support/shell_command.h"
@@ -394,10 +397,8 @@ TEST(ExperimentRunner, ScenePathsResolveAgainstTheConfigAndResumeExplainsAChange
     }
 }
 
-TEST(ExperimentRunner, WarmupGoesOnForWarmupMilliseconds) {
-    TempDir dir;
-    // whitted at 24x14 takes about a millisecond a frame: 250 ms of warm-up is many frames.
-    const std::string body = R"(
+// One run of about a millisecond a frame (whitted at 24x14), after the [experiment] table's keys.
+const char* kOneTinyRun = R"(
 repeats = 2
 keep = []
 metrics = ["rmse"]
@@ -408,6 +409,11 @@ resolutions = [[24, 14]]
 name = "whitted"
 params = { max_depth = 1 }
 )";
+
+TEST(ExperimentRunner, WarmupGoesOnForWarmupMilliseconds) {
+    TempDir dir;
+    // 250 ms of warm-up is many frames.
+    const std::string body = kOneTinyRun;
     auto run = [&](const std::string& name, const std::string& warmup) {
         const fs::path out = dir.path() / name;
         RunnerOptions o = test::quietRunnerOptions(out, dir.path() / "cache");
@@ -546,6 +552,47 @@ TEST(ExperimentConfigs, EveryShippedConfigIsValid) {
         SCOPED_TRACE(entry.path().filename().string());
         EXPECT_FALSE(planRuns(loadExperimentConfig(entry.path())).empty());
     }
+}
+
+// `run --realtime`: the rounds timed at real-time priority and the records saying so; refused
+// before anything is written where the process may not take it.
+TEST(ExperimentRunner, RealTimeTimingIsRecordedOrRefusedBeforeAnythingIsWritten) {
+    TempDir dir;
+    const ExperimentConfig config = loadExperimentConfig(writeConfig(dir, std::string("[experiment]\n") + kOneTinyRun));
+    RunnerOptions normal = test::quietRunnerOptions(dir.path() / "normal", dir.path() / "cache");
+    ASSERT_TRUE(runExperiment(config, normal).complete);
+    for (const json& r : test::readResults(normal.outDir)) EXPECT_EQ(r.at("timing").at("priority"), "normal");
+
+    RunnerOptions ahead = test::quietRunnerOptions(dir.path() / "realtime", dir.path() / "cache");
+    ahead.realTime = true;
+    if (realTimePriorityUnavailable()) {
+        EXPECT_THROW(runExperiment(config, ahead), InputError);
+    } else {
+        ASSERT_TRUE(runExperiment(config, ahead).complete);
+        const auto records = test::readResults(ahead.outDir);
+        ASSERT_EQ(records.size(), 1u);
+        for (const json& r : records) EXPECT_EQ(r.at("timing").at("priority"), "realtime");
+        EXPECT_EQ(sched_getscheduler(0), SCHED_OTHER);  // back to normal once the rounds are done
+    }
+    // Without the privilege: "--realtime: ..." naming what would allow it, and no folder written.
+    const fs::path refusedOut = dir.path() / "refused";
+    const int status = test::inChildWithoutRealTimePrivilege(0, [&] {
+        RunnerOptions o = test::quietRunnerOptions(refusedOut, dir.path() / "cache");
+        o.realTime = true;
+        try {
+            runExperiment(config, o);
+            return 1;
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            return m.rfind("--realtime: this process may not run at real-time priority", 0) == 0 && m.find("CAP_SYS_NICE") != std::string::npos
+                       ? 0
+                       : 2;
+        }
+    });
+    if (status != test::kChildCannotDrop) {
+        EXPECT_EQ(status, 0);
+    }
+    EXPECT_FALSE(fs::exists(refusedOut));
 }
 
 TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithoutDryRun) {
