@@ -126,8 +126,8 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     DeviceGBufferTrace result;
     result.rays = counts.rays;
     result.invocations = counts.invocations;
-    if (compact) result.invocations.listed = static_cast<const TexelListHeader*>(listHeaderOnHost_.mapped())->launch.x;
-    std::memcpy(result.techniqueCounts.data(), countsOnHost_.mapped(), sizeof(result.techniqueCounts));
+    if (compact) result.invocations.listed = listHeaderOnHost_.readBack<TexelListHeader>(1)->launch.x;
+    std::memcpy(result.techniqueCounts.data(), countsOnHost_.readBack(sizeof(result.techniqueCounts)), sizeof(result.techniqueCounts));
     result.gpuStages = pipeline_.gpuStages();
     return result;
 }
@@ -142,7 +142,7 @@ const glm::vec4* DeviceGBufferTracer::readTexels() {
         VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
     });
-    return static_cast<const glm::vec4*>(texelsOnHost_.mapped());
+    return static_cast<const glm::vec4*>(texelsOnHost_.readBack(texelsOnHost_.size()));
 }
 
 }  // namespace hybridlab

@@ -269,7 +269,7 @@ DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
         vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
     });
     std::array<std::uint32_t, kRayCounterCount> c;
-    std::memcpy(c.data(), countersOnHost_.mapped(), sizeof(c));
+    std::memcpy(c.data(), countersOnHost_.readBack(sizeof(c)), sizeof(c));
     DeviceLaunchCounts counts;
     counts.rays.primary = c[0];
     counts.rays.shadow = c[1];

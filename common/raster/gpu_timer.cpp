@@ -55,6 +55,7 @@ std::vector<GpuStageTime> GpuTimer::read() const {
     checkVk(vkGetQueryPoolResults(device_.device(), pool_, 0, static_cast<std::uint32_t>(ticks.size()), ticks.size() * sizeof(std::uint64_t),
                                   ticks.data(), sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "reading GPU timestamps");
+    VulkanDevice::countReadBack(ticks.size() * sizeof(std::uint64_t));
     std::vector<std::uint64_t> counts;
     if (statistics_) {
         counts.resize(4 * names_.size());
@@ -62,6 +63,7 @@ std::vector<GpuStageTime> GpuTimer::read() const {
                                       counts.size() * sizeof(std::uint64_t), counts.data(), 4 * sizeof(std::uint64_t),
                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
                 "reading pipeline statistics");
+        VulkanDevice::countReadBack(counts.size() * sizeof(std::uint64_t));
     }
     for (std::size_t i = 0; i < names_.size(); ++i) {
         const double ns = static_cast<double>(ticks[2 * i + 1] - ticks[2 * i]) * device_.timestampPeriod();

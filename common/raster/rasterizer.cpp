@@ -61,6 +61,7 @@ struct Rasterizer::Impl {
         ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         ai.commandBufferCount = 1;
         checkVk(vkAllocateCommandBuffers(device->device(), &ai, &commands), "allocating the rasterizer's command buffer");
+        VulkanDevice::countAllocations(1);
         VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         qci.queryType = VK_QUERY_TYPE_OCCLUSION;
         qci.queryCount = static_cast<std::uint32_t>(std::max<std::size_t>(1, s.objects.size()));
@@ -192,6 +193,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
                                           frame.visiblePixelsByQuery.data(), sizeof(std::uint64_t),
                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
                     "reading the occlusion queries");
+            VulkanDevice::countReadBack(n * sizeof(std::uint64_t));
         }
     }
     for (RasterFramePass* pass : request.passes) pass->finish();
