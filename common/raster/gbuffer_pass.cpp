@@ -288,7 +288,8 @@ GBufferStorage GBufferPass::storage() const {
 }
 
 void GBufferPass::recordWrittenOnDevice(VkCommandBuffer cb) {
-    // Written by an earlier submission on this queue, already in VK_IMAGE_LAYOUT_GENERAL.
+    // Written earlier on this queue (in the frame's command buffer or an earlier one), already in
+    // VK_IMAGE_LAYOUT_GENERAL.
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
     const VkPipelineStageFlags readers =

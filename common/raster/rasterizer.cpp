@@ -126,7 +126,11 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(cb, &bi), "beginning the frame's command buffer");
-    r.timer.reset(cb);
+    // Lavapipe (Mesa 25.0.7) crashes on a pipeline-statistics query after vkCmdTraceRaysKHR in one
+    // command buffer: there, a frame that starts with a ray launch (a G-buffer cast) is timed
+    // without its passes' work counts.
+    r.timer.reset(cb, !(request.first && r.device->isLavapipe()));
+    if (request.first) request.first(cb);
     frame.shadowMapsDrawn = false;
     if (request.lighting && request.lightingOptions.shadows) {
         r.timer.begin(cb, "shadow_maps");
@@ -172,6 +176,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     if (readback) r.gbuffer.recordReadback(cb, readback);
     if (request.lighting && request.lightingReadback) r.lighting.recordReadback(cb);
     r.timer.end(cb);
+    if (request.last) request.last(cb);
     checkVk(vkEndCommandBuffer(cb), "recording the frame");
     frame.recordMilliseconds = millisecondsSince(start);
 

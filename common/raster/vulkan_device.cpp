@@ -396,19 +396,23 @@ void VulkanDevice::requireFormat(VkFormat format, VkFormatFeatureFlags features,
 void VulkanDevice::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
     // The pool is externally synchronised, recording included: hold the lock throughout.
     std::lock_guard lock(submitMutex_);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool_;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cb;
-    checkVk(vkAllocateCommandBuffers(device_, &ai, &cb), "allocating a command buffer");
-    countAllocations(1);
-    struct Free {
-        VkDevice device;
-        VkCommandPool pool;
-        VkCommandBuffer cb;
-        ~Free() { vkFreeCommandBuffers(device, pool, 1, &cb); }
-    } freeLater{device_, pool_, cb};
+    if (commandBuffers_.size() == recordingDepth_) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = pool_;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        VkCommandBuffer allocated;
+        checkVk(vkAllocateCommandBuffers(device_, &ai, &allocated), "allocating a command buffer");
+        countAllocations(1);
+        commandBuffers_.push_back(allocated);
+    }
+    VkCommandBuffer cb = commandBuffers_[recordingDepth_];
+    struct Depth {
+        std::size_t& depth;
+        explicit Depth(std::size_t& d) : depth(d) { ++depth; }
+        ~Depth() { --depth; }
+    } nested(recordingDepth_);
+    checkVk(vkResetCommandBuffer(cb, 0), "resetting a command buffer");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(cb, &bi), "beginning a command buffer");

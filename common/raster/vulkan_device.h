@@ -107,7 +107,9 @@ public:
     // `features` with optimal tiling.
     void requireFormat(VkFormat format, VkFormatFeatureFlags features, const char* purpose) const;
 
-    // Records commands into a fresh one-time command buffer, submits it and waits for it.
+    // Records commands into a one-time command buffer, submits it and waits for it. The command
+    // buffers are the device's, reused from call to call (one for each level of calls made while
+    // recording another's): none is allocated in a steady state.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
     // Submits an already recorded command buffer and waits for it.
     void submitAndWait(VkCommandBuffer commands) const;
@@ -147,6 +149,8 @@ private:
     UniqueCommandPool pool_;
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time
+    mutable std::vector<VkCommandBuffer> commandBuffers_;  // submitAndWait(record)'s, by depth; freed with the pool
+    mutable std::size_t recordingDepth_ = 0;
 };
 
 // Runs `release` (a lambda without captures) once at exit, from a handler registered at the first

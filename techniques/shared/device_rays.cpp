@@ -38,14 +38,16 @@ void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& imag
     std::copy(p, p + static_cast<std::size_t>(width) * height, image.data());
 }
 
-void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages) {
+std::vector<StageTime> deviceLaunchStages(const std::vector<GpuStageTime>& stages) {
     std::vector<StageTime> parts;
     for (const GpuStageTime& g : stages) {
         const std::string name = g.name == "classify" ? "trace.classify" : g.name == "composite" ? "blend" : g.name;
         parts.push_back({name, g.milliseconds});
     }
-    clock.lap(parts, "overhead");
+    return parts;
 }
+
+void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages) { clock.lap(deviceLaunchStages(stages), "overhead"); }
 
 void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result) {
     for (const GpuStageTime& g : stages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;

@@ -168,13 +168,8 @@ void SsrPass::recordReadback(VkCommandBuffer cb) {
     recordHostReadBarrier(cb);
 }
 
-void SsrPass::readBack() {
-    device_->submitAndWait([&](VkCommandBuffer cb) { recordReadback(cb); });
-    unpack();
-}
-
 void SsrPass::finish() {
-    if (readback_) unpack();  // else readBack() does, when asked
+    if (readback_) unpack();  // else the caller does, where it recorded the copies
 }
 
 void SsrPass::unpack() {
