@@ -82,7 +82,8 @@ const std::vector<TechniqueInfo>& registeredTechniques();
 // Throws InputError listing the known names.
 const TechniqueInfo& findTechnique(const std::string& name);
 
-// Resolves parameters against the technique's declarations and creates it.
+// Resolves parameters against the technique's declarations and creates it, its frames counting
+// their device work (device_frame_work.h).
 std::unique_ptr<Technique> createTechnique(const std::string& name,
                                            const std::vector<std::pair<std::string, ParamValue>>& parameters);
 

@@ -1,6 +1,7 @@
 // Techniques by name, from the registry (registry.cpp). In the library beside the registry, not in
 // the technique base that every technique links: the base must not need the list of techniques.
 #include "common/core/input_error.h"
+#include "techniques/device_frame_work.h"
 #include "techniques/technique.h"
 
 namespace hybridlab {
@@ -17,7 +18,7 @@ const TechniqueInfo& findTechnique(const std::string& name) {
 std::unique_ptr<Technique> createTechnique(const std::string& name,
                                            const std::vector<std::pair<std::string, ParamValue>>& parameters) {
     const TechniqueInfo& info = findTechnique(name);
-    return info.create(resolveParameters(info.parameters, parameters, "technique " + name));
+    return countingDeviceWork(info.create(resolveParameters(info.parameters, parameters, "technique " + name)));
 }
 
 }  // namespace hybridlab

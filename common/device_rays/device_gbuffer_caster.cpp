@@ -20,7 +20,7 @@ std::vector<VkDescriptorSetLayoutBinding> targetBindings() {
 DeviceGBufferCaster::DeviceGBufferCaster(const DeviceRayScene& scene)
     : scene_(scene), pipeline_(scene, "device_gbuffer_cast.rgen", targetBindings()) {}
 
-DeviceGBufferCast DeviceGBufferCaster::cast(const GBufferStorage& targets, const Camera& camera) {
+void DeviceGBufferCaster::record(VkCommandBuffer cb, const GBufferStorage& targets, const Camera& camera) {
     // The default settings' ray cones: the pixel's cone filters the textures, whatever the
     // technique's texture_filter, as the G-buffer pass mip-maps them (rayCastGBuffer does the same).
     pipeline_.setFrame(deviceFrame(scene_, camera, static_cast<int>(targets.width), static_cast<int>(targets.height), WhittedSettings{}));
@@ -37,7 +37,16 @@ DeviceGBufferCast DeviceGBufferCaster::cast(const GBufferStorage& targets, const
                             VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT);
         }
     };
-    const DeviceLaunchCounts counts = pipeline_.launch(launch);
+    pipeline_.record(cb, launch);
+}
+
+DeviceGBufferCast DeviceGBufferCaster::cast(const GBufferStorage& targets, const Camera& camera) {
+    scene_.device().submitAndWait([&](VkCommandBuffer cb) { record(cb, targets, camera); });
+    return lastCast();
+}
+
+DeviceGBufferCast DeviceGBufferCaster::lastCast() const {
+    const DeviceLaunchCounts counts = pipeline_.counts();
     DeviceGBufferCast result;
     result.primaryRays = counts.rays.primary;
     result.invocations = counts.invocations;

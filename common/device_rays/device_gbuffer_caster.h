@@ -26,9 +26,13 @@ public:
     // time when cast() runs (DeviceRayScene::setTime).
     explicit DeviceGBufferCaster(const DeviceRayScene& scene);
 
-    // Casts `camera`'s primary rays at targets.width x targets.height into `targets` (the
-    // rasterizer's, Rasterizer::gbufferStorage(), on this device), leaving them in
-    // VK_IMAGE_LAYOUT_GENERAL; the sky's texels all zero. Waits.
+    // Records the cast of `camera`'s primary rays at targets.width x targets.height into `targets`
+    // (the rasterizer's, Rasterizer::gbufferStorage(), on this device) into `cb`, the frame's
+    // command buffer, leaving them in VK_IMAGE_LAYOUT_GENERAL; the sky's texels all zero.
+    void record(VkCommandBuffer cb, const GBufferStorage& targets, const Camera& camera);
+    // After the command buffer record() went into completed: its counts and GPU time.
+    DeviceGBufferCast lastCast() const;
+    // record() in a submission of its own, waited for; lastCast().
     DeviceGBufferCast cast(const GBufferStorage& targets, const Camera& camera);
 
 private:

@@ -67,8 +67,8 @@ void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) 
     if (!data.empty()) objectData_.write(data.data(), data.size() * sizeof(std::uint32_t));
 }
 
-DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
-                                              const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
+void DeviceGBufferTracer::record(VkCommandBuffer cb, const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
+                                 const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
     if (targets.lighting == VK_NULL_HANDLE) throw VulkanError("the G-buffer tracer needs the lit image: ask the rasterizer for lighting");
     const VulkanDevice& dev = pipeline_.device();
     const int width = static_cast<int>(targets.width), height = static_cast<int>(targets.height);
@@ -76,6 +76,7 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     DeviceFrame f = deviceFrame(scene_, targets.camera, width, height, settings);
     f.rules.y = flags;
     const bool compact = compactsLaunches();
+    lastCompact_ = compact;
     f.rules.z = compact ? 1u : 0u;
     pipeline_.setFrame(f);
     image_ = &pipeline_.output(texelCount * sizeof(glm::vec4));
@@ -84,6 +85,8 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
         texels_ = GpuBuffer(dev, texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuBuffer::Memory::DeviceLocal);
         pipeline_.inputs().writeBuffer(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texels_.buffer());
     }
+    if (texelsToHost_ && (!texelsOnHost_.valid() || texelsOnHost_.size() != texels_.size()))
+        texelsOnHost_ = GpuBuffer(dev, texels_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
     // Rewritten every frame: the rasterizer recreates its targets when the frame size changes.
     DescriptorSet& in = pipeline_.inputs();
     const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -100,6 +103,10 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
         if (compact) {
             const VkBufferCopy header{0, 0, sizeof(TexelListHeader)};
             vkCmdCopyBuffer(cb, list_.buffer(), listHeaderOnHost_.buffer(), 1, &header);
+        }
+        if (texelsToHost_) {
+            const VkBufferCopy all{0, 0, texels_.size()};
+            vkCmdCopyBuffer(cb, texels_.buffer(), texelsOnHost_.buffer(), 1, &all);
         }
     };
     if (compact) {
@@ -122,27 +129,28 @@ DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const
     }
     launch.after = after;
     launch.afterStage = afterStage;
-    const DeviceLaunchCounts counts = pipeline_.launch(launch);
+    pipeline_.record(cb, launch);
+}
+
+DeviceGBufferTrace DeviceGBufferTracer::trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags,
+                                              const std::function<void(VkCommandBuffer)>& after, const std::string& afterStage) {
+    pipeline_.device().submitAndWait([&](VkCommandBuffer cb) { record(cb, targets, settings, flags, after, afterStage); });
+    return lastTrace();
+}
+
+DeviceGBufferTrace DeviceGBufferTracer::lastTrace() const {
+    const DeviceLaunchCounts counts = pipeline_.counts();
     DeviceGBufferTrace result;
     result.rays = counts.rays;
     result.invocations = counts.invocations;
-    if (compact) result.invocations.listed = static_cast<const TexelListHeader*>(listHeaderOnHost_.mapped())->launch.x;
-    std::memcpy(result.techniqueCounts.data(), countsOnHost_.mapped(), sizeof(result.techniqueCounts));
+    if (lastCompact_) result.invocations.listed = listHeaderOnHost_.readBack<TexelListHeader>(1)->launch.x;
+    std::memcpy(result.techniqueCounts.data(), countsOnHost_.readBack(sizeof(result.techniqueCounts)), sizeof(result.techniqueCounts));
     result.gpuStages = pipeline_.gpuStages();
     return result;
 }
 
-const glm::vec4* DeviceGBufferTracer::readTexels() {
-    const VulkanDevice& dev = pipeline_.device();
-    if (!texelsOnHost_.valid() || texelsOnHost_.size() != texels_.size())
-        texelsOnHost_ = GpuBuffer(dev, texels_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
-    dev.submitAndWait([&](VkCommandBuffer cb) {
-        const VkBufferCopy all{0, 0, texels_.size()};
-        vkCmdCopyBuffer(cb, texels_.buffer(), texelsOnHost_.buffer(), 1, &all);
-        VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
-    });
-    return static_cast<const glm::vec4*>(texelsOnHost_.mapped());
+const glm::vec4* DeviceGBufferTracer::texelsOnHost() const {
+    return static_cast<const glm::vec4*>(texelsOnHost_.readBack(texelsOnHost_.size()));
 }
 
 }  // namespace hybridlab

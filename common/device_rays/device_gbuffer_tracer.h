@@ -53,21 +53,30 @@ public:
         ssrHit_ = hit;
     }
 
-    // One launch (compacted or full) over `targets` (the rasterizer's last frame, on this device; lighting included) with
-    // `settings`; `flags` reach the shader as frame.rules.y. `after` records the technique's pass
-    // that reads the output, in the same command buffer, GPU-timed as `afterStage`. Waits.
+    // Whether launches also copy the per-texel records to the host (texelsOnHost()): for debug
+    // images and statistics only, 16 x kTexelRecords bytes a texel. Off by default.
+    void setTexelsToHost(bool copy) { texelsToHost_ = copy; }
+
+    // Records one launch (compacted or full) over `targets` (the rasterizer's frame, on this
+    // device; lighting included) with `settings` into `cb`, a command buffer of the caller's that
+    // may hold the rest of the frame; `flags` reach the shader as frame.rules.y. `after` records
+    // the technique's pass that reads the output, GPU-timed as `afterStage`.
+    void record(VkCommandBuffer cb, const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
+                const std::function<void(VkCommandBuffer)>& after = {}, const std::string& afterStage = {});
+    // After the command buffer record() went into completed: the launch's counts and GPU stages.
+    DeviceGBufferTrace lastTrace() const;
+    // record() in a submission of its own, waited for; lastTrace().
     DeviceGBufferTrace trace(const FrameTargets& targets, const WhittedSettings& settings, std::uint32_t flags = 0,
                              const std::function<void(VkCommandBuffer)>& after = {}, const std::string& afterStage = {});
 
-    // After trace(): the frame's image, vec4 per texel, row-major, copied to the host.
+    // After the launch: the frame's image, vec4 per texel, row-major, copied to the host.
     const GpuBuffer& image() const { return pipeline_.outputOnHost(); }
     // The image and the per-texel records (kTexelRecords vec4 each) where the device writes them:
     // device-local, read by the technique's pass after the trace.
     const GpuBuffer& deviceImage() const { return *image_; }
     const GpuBuffer& texels() const { return texels_; }
-    // After trace(): the per-texel records copied to the host (a submission of its own, untimed:
-    // debug images and statistics only).
-    const glm::vec4* readTexels();
+    // After a launch with setTexelsToHost(true): the per-texel records, copied to the host by it.
+    const glm::vec4* texelsOnHost() const;
 
 private:
     const DeviceRayScene& scene_;
@@ -78,6 +87,8 @@ private:
     GpuBuffer list_;           // TexelListHeader, then the listed texels
     GpuBuffer listHeaderOnHost_;
     bool compact_ = true;
+    bool texelsToHost_ = false;
+    bool lastCompact_ = false;  // whether the last launch recorded was compacted
     const GpuBuffer* image_ = nullptr;
     VkImageView ssrColor_ = VK_NULL_HANDLE, ssrHit_ = VK_NULL_HANDLE;
 };

@@ -206,70 +206,76 @@ void DeviceRayPipeline::bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) 
     vkCmdBindDescriptorSets(cb, point, program_->layout, 0, sets[1] ? 2 : 1, sets, 0, nullptr);
 }
 
-DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
+void DeviceRayPipeline::record(VkCommandBuffer cb, const RayLaunch& launch) {
     const VulkanDevice& dev = device_;
-    dev.submitAndWait([&](VkCommandBuffer cb) {
-        timer_.reset(cb);
-        vkCmdFillBuffer(cb, counters_.buffer(), 0, VK_WHOLE_SIZE, 0);
-        if (launch.before) launch.before(cb);
-        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
-        bindSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR);
-        // The rasterizer's targets the shaders may read were written by an earlier submission on
-        // this queue; the counters were zeroed above.
-        VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
-                               VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                             VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &inputs, 0, nullptr, 0,
-                             nullptr);
-        if (launch.classify) {
-            timer_.begin(cb, launch.classifyStage);
-            launch.classify(cb);
-            timer_.end(cb);
-            // The list and the texels it left out, then the launch's size, read by the trace.
-            VkMemoryBarrier listed{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
-                                   VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                 VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1, &listed, 0, nullptr,
-                                 0, nullptr);
-        }
-        timer_.begin(cb, launch.stage);
-        if (launch.classify) {
-            dev.rayTracing().cmdTraceRaysIndirect(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.indirect);
-        } else {
-            dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.width,
-                                          launch.height, 1);
-        }
+    timer_.reset(cb);
+    vkCmdFillBuffer(cb, counters_.buffer(), 0, VK_WHOLE_SIZE, 0);
+    if (launch.before) launch.before(cb);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, program_->pipeline);
+    bindSets(cb, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR);
+    // The rasterizer's targets the shaders may read were written earlier on this queue (in this
+    // command buffer or an earlier one); the counters were zeroed above.
+    VkMemoryBarrier inputs{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &inputs, 0, nullptr, 0,
+                         nullptr);
+    if (launch.classify) {
+        timer_.begin(cb, launch.classifyStage);
+        launch.classify(cb);
         timer_.end(cb);
-        // The trace's writes, read by the pass after it and by the copies to the host.
-        VkPipelineStageFlags readers = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        if (launch.after) {
-            readers |= VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-            barrier.dstAccessMask |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-        }
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, readers, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-        if (launch.after) {
-            timer_.begin(cb, launch.afterStage);
-            launch.after(cb);
-            timer_.end(cb);
-            VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT};
-            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
-        }
-        // What the host reads: the counters, the image, and the caller's own.
-        const VkBufferCopy counters{0, 0, counters_.size()};
-        vkCmdCopyBuffer(cb, counters_.buffer(), countersOnHost_.buffer(), 1, &counters);
-        if (launch.readOutput) {
-            const VkBufferCopy image{0, 0, output_.size()};
-            vkCmdCopyBuffer(cb, output_.buffer(), outputOnHost_.buffer(), 1, &image);
-        }
-        if (launch.readBack) launch.readBack(cb);
-        VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
-    });
+        // The list and the texels it left out, then the launch's size, read by the trace.
+        VkMemoryBarrier listed{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                               VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, 0, 1, &listed, 0, nullptr,
+                             0, nullptr);
+    }
+    timer_.begin(cb, launch.stage);
+    if (launch.classify) {
+        dev.rayTracing().cmdTraceRaysIndirect(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.indirect);
+    } else {
+        dev.rayTracing().cmdTraceRays(cb, &program_->raygen, &program_->miss, &program_->hit, &program_->callable, launch.width,
+                                      launch.height, 1);
+    }
+    timer_.end(cb);
+    // The trace's writes, read by the pass after it and by the copies to the host.
+    VkPipelineStageFlags readers = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    if (launch.after) {
+        readers |= VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+        barrier.dstAccessMask |= VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    }
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, readers, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    if (launch.after) {
+        timer_.begin(cb, launch.afterStage);
+        launch.after(cb);
+        timer_.end(cb);
+        VkMemoryBarrier done{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &done, 0, nullptr, 0, nullptr);
+    }
+    // What the host reads: the counters, the image, and the caller's own.
+    const VkBufferCopy counters{0, 0, counters_.size()};
+    vkCmdCopyBuffer(cb, counters_.buffer(), countersOnHost_.buffer(), 1, &counters);
+    if (launch.readOutput) {
+        const VkBufferCopy image{0, 0, output_.size()};
+        vkCmdCopyBuffer(cb, output_.buffer(), outputOnHost_.buffer(), 1, &image);
+    }
+    if (launch.readBack) launch.readBack(cb);
+    VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
+}
+
+DeviceLaunchCounts DeviceRayPipeline::launch(const RayLaunch& launch) {
+    device_.submitAndWait([&](VkCommandBuffer cb) { record(cb, launch); });
+    return counts();
+}
+
+DeviceLaunchCounts DeviceRayPipeline::counts() const {
     std::array<std::uint32_t, kRayCounterCount> c;
-    std::memcpy(c.data(), countersOnHost_.mapped(), sizeof(c));
+    std::memcpy(c.data(), countersOnHost_.readBack(sizeof(c)), sizeof(c));
     DeviceLaunchCounts counts;
     counts.rays.primary = c[0];
     counts.rays.shadow = c[1];

@@ -88,10 +88,15 @@ public:
     VkPipelineLayout layout() const { return program_->layout; }
     void bindSets(VkCommandBuffer cb, VkPipelineBindPoint point) const;
 
-    // Records `launch` in one command buffer (the counters zeroed, before, the trace, after, the
-    // copies to the host), submits it and waits; returns the counters.
+    // Records `launch` into `cb` (the counters zeroed, before, the trace, after, the copies to the
+    // host), in a command buffer of the caller's, which may hold the rest of the frame; what was
+    // written before it on the queue is visible to it.
+    void record(VkCommandBuffer cb, const RayLaunch& launch);
+    // After the command buffer record() went into completed: the counters.
+    DeviceLaunchCounts counts() const;
+    // record() in a command buffer of its own, submitted and waited for; the counters.
     DeviceLaunchCounts launch(const RayLaunch& launch);
-    // After launch(): the trace's GPU stage, then the pass after it where there was one.
+    // After the launch completed: the trace's GPU stage, then the pass after it where there was one.
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
 private:

@@ -54,7 +54,7 @@ DeviceTraceResult DeviceWhittedTracer::launch(const Camera& camera, int width, i
 DeviceTraceResult DeviceWhittedTracer::trace(const Camera& camera, int width, int height, const WhittedSettings& settings,
                                              TracedEffects effects) {
     DeviceTraceResult result = launch(camera, width, height, settings, effects);
-    const auto* pixels = static_cast<const glm::vec4*>(output().mapped());
+    const auto* pixels = output().readBack<glm::vec4>(static_cast<std::size_t>(width) * height);
     result.image = Image(width, height);
     std::copy(pixels, pixels + static_cast<std::size_t>(width) * height, result.image.data());
     return result;

@@ -130,7 +130,7 @@ void DeferredLighting::recordReadback(VkCommandBuffer cb) {
 void DeferredLighting::unpack(Image& out) const {
     const int w = static_cast<int>(output_.desc().width), h = static_cast<int>(output_.desc().height);
     if (out.width() != w || out.height() != h) out = Image(w, h);
-    std::memcpy(out.data(), readback_.mapped(), out.pixelCount() * sizeof(glm::vec4));
+    std::memcpy(out.data(), readback_.readBack(out.pixelCount() * sizeof(glm::vec4)), out.pixelCount() * sizeof(glm::vec4));
 }
 
 }  // namespace hybridlab

@@ -288,7 +288,8 @@ GBufferStorage GBufferPass::storage() const {
 }
 
 void GBufferPass::recordWrittenOnDevice(VkCommandBuffer cb) {
-    // Written by an earlier submission on this queue, already in VK_IMAGE_LAYOUT_GENERAL.
+    // Written earlier on this queue (in the frame's command buffer or an earlier one), already in
+    // VK_IMAGE_LAYOUT_GENERAL.
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_MEMORY_WRITE_BIT,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
     const VkPipelineStageFlags readers =
@@ -321,17 +322,17 @@ void GBufferPass::unpack(GBufferTargets targets, GBuffer& out) const {
         const bool wanted = targets & (1u << i);
         if (i == kColorTargets) {
             out.depth.resize(wanted ? n : 0);
-            if (wanted) std::memcpy(out.depth.data(), readback_[i].mapped(), n * sizeof(float));
+            if (wanted) std::memcpy(out.depth.data(), readback_[i].readBack(n * sizeof(float)), n * sizeof(float));
         } else if (kFormats[i] == VK_FORMAT_R32_UINT) {
             out.objectId.resize(wanted ? n : 0);
-            if (wanted) std::memcpy(out.objectId.data(), readback_[i].mapped(), n * sizeof(std::uint32_t));
+            if (wanted) std::memcpy(out.objectId.data(), readback_[i].readBack(n * sizeof(std::uint32_t)), n * sizeof(std::uint32_t));
         } else if (!wanted) {
             vec4Targets[i]->clear();
         } else if (kFormats[i] == VK_FORMAT_R32G32B32A32_SFLOAT) {
             vec4Targets[i]->resize(n);
-            std::memcpy(vec4Targets[i]->data(), readback_[i].mapped(), n * sizeof(glm::vec4));
+            std::memcpy(vec4Targets[i]->data(), readback_[i].readBack(n * sizeof(glm::vec4)), n * sizeof(glm::vec4));
         } else {
-            unpackHalf4(readback_[i].mapped(), n, *vec4Targets[i]);
+            unpackHalf4(readback_[i].readBack(n * 4 * sizeof(std::uint16_t)), n, *vec4Targets[i]);
         }
     }
 }

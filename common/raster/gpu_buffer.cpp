@@ -40,6 +40,11 @@ VkDeviceAddress GpuBuffer::deviceAddress(const VulkanDevice& device) const {
     return vkGetBufferDeviceAddress(device.device(), &info);
 }
 
+const void* GpuBuffer::readBack(VkDeviceSize bytes) const {
+    VulkanDevice::countReadBack(bytes);
+    return mapped_;
+}
+
 void GpuBuffer::write(const void* data, VkDeviceSize size, VkDeviceSize offset) {
     if (size > 0) std::memcpy(static_cast<char*>(mapped_) + offset, data, size);
 }

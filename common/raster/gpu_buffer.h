@@ -21,8 +21,15 @@ public:
     VkBuffer buffer() const { return buffer_; }
     VkDeviceSize size() const { return size_; }
     bool valid() const { return static_cast<bool>(buffer_); }
-    // Host-visible buffers only (coherent: no flush needed).
+    // Host-visible buffers only (coherent: no flush needed): where the host writes.
     void* mapped() const { return mapped_; }
+    // Host-visible buffers the device wrote, after it finished: their first `bytes` (count
+    // elements of T), counted as read back to the host (VulkanDevice::workSoFar()).
+    const void* readBack(VkDeviceSize bytes) const;
+    template <class T>
+    const T* readBack(std::size_t count) const {
+        return static_cast<const T*>(readBack(count * sizeof(T)));
+    }
     // Buffers created with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT only.
     VkDeviceAddress deviceAddress(const VulkanDevice& device) const;
     void write(const void* data, VkDeviceSize size, VkDeviceSize offset = 0);

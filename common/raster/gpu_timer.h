@@ -33,8 +33,9 @@ public:
     // `statistics`: count each stage's work where the device can (false: timestamps only).
     GpuTimer(const VulkanDevice& device, std::uint32_t maxStages, bool statistics = true);
 
-    // At the start of a command buffer: forgets the previous frame's stages.
-    void reset(VkCommandBuffer cb);
+    // At the start of a command buffer: forgets the previous frame's stages. `countWork`: count
+    // this frame's stages' work where the timer can (false: timestamps only).
+    void reset(VkCommandBuffer cb, bool countWork = true);
     void begin(VkCommandBuffer cb, const std::string& stage);
     void end(VkCommandBuffer cb);
     // After the command buffer completed: one entry per begin/end pair, in order.
@@ -46,6 +47,7 @@ private:
     UniqueQueryPool statistics_;  // one query a stage; null without pipeline statistics
     std::uint32_t capacity_;
     std::vector<std::string> names_;
+    bool counting_ = false;  // this frame's stages count their work
 };
 
 }  // namespace hybridlab

@@ -75,6 +75,7 @@ DescriptorSet::DescriptorSet(const VulkanDevice& device, const std::vector<VkDes
     ai.descriptorSetCount = count;
     ai.pSetLayouts = layouts.data();
     checkVk(vkAllocateDescriptorSets(device_, &ai, sets_.data()), "allocating descriptor sets");
+    VulkanDevice::countAllocations(count);
 }
 
 void DescriptorSet::writeBuffer(std::uint32_t binding, VkDescriptorType type, VkBuffer buffer, std::size_t set, VkDeviceSize range) {

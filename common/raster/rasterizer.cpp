@@ -61,6 +61,7 @@ struct Rasterizer::Impl {
         ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         ai.commandBufferCount = 1;
         checkVk(vkAllocateCommandBuffers(device->device(), &ai, &commands), "allocating the rasterizer's command buffer");
+        VulkanDevice::countAllocations(1);
         VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         qci.queryType = VK_QUERY_TYPE_OCCLUSION;
         qci.queryCount = static_cast<std::uint32_t>(std::max<std::size_t>(1, s.objects.size()));
@@ -125,7 +126,11 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(cb, &bi), "beginning the frame's command buffer");
-    r.timer.reset(cb);
+    // Lavapipe (Mesa 25.0.7) crashes on a pipeline-statistics query after vkCmdTraceRaysKHR in one
+    // command buffer: there, a frame that starts with a ray launch (a G-buffer cast) is timed
+    // without its passes' work counts.
+    r.timer.reset(cb, !(request.first && r.device->isLavapipe()));
+    if (request.first) request.first(cb);
     frame.shadowMapsDrawn = false;
     if (request.lighting && request.lightingOptions.shadows) {
         r.timer.begin(cb, "shadow_maps");
@@ -171,6 +176,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
     if (readback) r.gbuffer.recordReadback(cb, readback);
     if (request.lighting && request.lightingReadback) r.lighting.recordReadback(cb);
     r.timer.end(cb);
+    if (request.last) request.last(cb);
     checkVk(vkEndCommandBuffer(cb), "recording the frame");
     frame.recordMilliseconds = millisecondsSince(start);
 
@@ -192,6 +198,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
                                           frame.visiblePixelsByQuery.data(), sizeof(std::uint64_t),
                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
                     "reading the occlusion queries");
+            VulkanDevice::countReadBack(n * sizeof(std::uint64_t));
         }
     }
     for (RasterFramePass* pass : request.passes) pass->finish();

@@ -3,6 +3,7 @@
 // and shadow maps on a headless Vulkan device, with read-back of what the technique asks for. The
 // scene is uploaded once (geometry, materials, mip-mapped textures); each frame is one command
 // buffer, timed per pass with GPU timestamps. Free of Vulkan headers: techniques include it.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "common/raster/raster_options.h"
 #include "common/scene/camera.h"
 #include "common/scene/scene.h"
+
+// Vulkan's command buffer handle, as vulkan_core.h defines it (VK_DEFINE_HANDLE), without its header.
+typedef struct VkCommandBuffer_T* VkCommandBuffer;
 
 namespace hybridlab {
 
@@ -47,6 +51,11 @@ struct RasterRequest {
     // A technique's own passes (SSR, ...), recorded in order after the lighting pass and before the
     // read-back, each timed under its name; finish() is called on each after the frame completed.
     std::vector<RasterFramePass*> passes;
+    // The rest of the frame's device work, recorded into the frame's command buffer so that the
+    // frame is one submission and one wait: `first` before the rasterizer's passes (the G-buffer
+    // cast on the device), `last` after its read-back (a ray launch over targets(), the copies of
+    // what the host reads after the frame). Each times its own work; results are read after render().
+    std::function<void(VkCommandBuffer)> first, last;
 };
 
 struct RasterStageTime {
@@ -94,7 +103,7 @@ public:
     RasterFrame render(const RasterRequest& request);
 
     // The last frame's targets on the device (every view in VK_IMAGE_LAYOUT_GENERAL after render()),
-    // for passes that run after the frame in submissions of their own.
+    // for passes that run after the frame: RasterRequest::last, or submissions of their own.
     FrameTargets targets() const;
 
     // The G-buffer's colour targets at width x height as storage images, for a G-buffer written on

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <algorithm>
+#include <atomic>
 #include <map>
 #include <optional>
 #include <type_traits>
@@ -16,6 +17,9 @@ namespace hybridlab {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+// DeviceWork's counts, over every device of the process.
+std::atomic<std::uint64_t> submissionCount{0}, readBackByteCount{0}, allocationCount{0};
 
 bool validationWanted() {
 #ifndef NDEBUG
@@ -376,6 +380,7 @@ UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, Memor
     }
     VkDeviceMemory m;
     checkVk(vkAllocateMemory(device_, &ai, nullptr, &m), (std::string("allocating ") + what + " memory").c_str());
+    countAllocations(1);
     return UniqueDeviceMemory(device_, m);
 }
 
@@ -391,18 +396,23 @@ void VulkanDevice::requireFormat(VkFormat format, VkFormatFeatureFlags features,
 void VulkanDevice::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
     // The pool is externally synchronised, recording included: hold the lock throughout.
     std::lock_guard lock(submitMutex_);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool_;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cb;
-    checkVk(vkAllocateCommandBuffers(device_, &ai, &cb), "allocating a command buffer");
-    struct Free {
-        VkDevice device;
-        VkCommandPool pool;
-        VkCommandBuffer cb;
-        ~Free() { vkFreeCommandBuffers(device, pool, 1, &cb); }
-    } freeLater{device_, pool_, cb};
+    if (commandBuffers_.size() == recordingDepth_) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = pool_;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        VkCommandBuffer allocated;
+        checkVk(vkAllocateCommandBuffers(device_, &ai, &allocated), "allocating a command buffer");
+        countAllocations(1);
+        commandBuffers_.push_back(allocated);
+    }
+    VkCommandBuffer cb = commandBuffers_[recordingDepth_];
+    struct Depth {
+        std::size_t& depth;
+        explicit Depth(std::size_t& d) : depth(d) { ++depth; }
+        ~Depth() { --depth; }
+    } nested(recordingDepth_);
+    checkVk(vkResetCommandBuffer(cb, 0), "resetting a command buffer");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     checkVk(vkBeginCommandBuffer(cb, &bi), "beginning a command buffer");
@@ -417,6 +427,7 @@ void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &commands;
     checkVk(vkQueueSubmit(queue_, 1, &si, fence_), "submitting commands");
+    ++submissionCount;
     // A GPU that has not finished a submission in two minutes has hung (a shader that never ends,
     // a fault the driver did not report): an error, not a wait without end. A CPU device
     // (lavapipe) may take that long for one frame of rays, so it is waited for.
@@ -426,5 +437,11 @@ void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
     checkVk(waited, "waiting for the GPU");
     checkVk(vkResetFences(device_, 1, fence_.ptr()), "resetting a fence");
 }
+
+DeviceWork VulkanDevice::workSoFar() { return {submissionCount.load(), readBackByteCount.load(), allocationCount.load()}; }
+
+void VulkanDevice::countReadBack(std::uint64_t bytes) { readBackByteCount += bytes; }
+
+void VulkanDevice::countAllocations(std::uint64_t objects) { allocationCount += objects; }
 
 }  // namespace hybridlab

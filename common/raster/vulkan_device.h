@@ -27,6 +27,22 @@ struct DeviceFeatures {
     bool operator<(const DeviceFeatures& o) const { return rayTracing < o.rayTracing; }
 };
 
+// What the process asked of its Vulkan devices besides the passes' own work, counted since it
+// started over every device (VulkanDevice::workSoFar()): a frame's share is the difference across
+// it (techniques/device_frame_work.h). Submissions are queue submissions, each waited for with a
+// fence (a CPU round trip); read-back bytes are what the host read of memory the device wrote
+// (GpuBuffer::readBack, and query results); allocations are the objects a pass creates for its
+// data: device memory (one a buffer or image), descriptor sets and command buffers.
+struct DeviceWork {
+    std::uint64_t submissions = 0;
+    std::uint64_t readBackBytes = 0;
+    std::uint64_t allocations = 0;
+
+    DeviceWork operator-(const DeviceWork& since) const {
+        return {submissions - since.submissions, readBackBytes - since.readBackBytes, allocations - since.allocations};
+    }
+};
+
 // The ray-tracing entry points, which the loader does not export: looked up on the device.
 struct RayTracingFunctions {
     PFN_vkCreateAccelerationStructureKHR createAccelerationStructure = nullptr;
@@ -91,10 +107,18 @@ public:
     // `features` with optimal tiling.
     void requireFormat(VkFormat format, VkFormatFeatureFlags features, const char* purpose) const;
 
-    // Records commands into a fresh one-time command buffer, submits it and waits for it.
+    // Records commands into a one-time command buffer, submits it and waits for it. The command
+    // buffers are the device's, reused from call to call (one for each level of calls made while
+    // recording another's): none is allocated in a steady state.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
     // Submits an already recorded command buffer and waits for it.
     void submitAndWait(VkCommandBuffer commands) const;
+
+    // The work every device of the process was asked for so far (DeviceWork), and the counts of
+    // what is not counted where it happens here: `bytes` the host read back, `objects` allocated.
+    static DeviceWork workSoFar();
+    static void countReadBack(std::uint64_t bytes);
+    static void countAllocations(std::uint64_t objects);
 
 private:
     explicit VulkanDevice(DeviceFeatures features) : features_(features) {}
@@ -125,6 +149,8 @@ private:
     UniqueCommandPool pool_;
     UniqueFence fence_;
     mutable std::recursive_mutex submitMutex_;  // the queue, fence and pool: one submission at a time
+    mutable std::vector<VkCommandBuffer> commandBuffers_;  // submitAndWait(record)'s, by depth; freed with the pool
+    mutable std::size_t recordingDepth_ = 0;
 };
 
 // Runs `release` (a lambda without captures) once at exit, from a handler registered at the first

@@ -368,6 +368,15 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
     }
     printByKind(settings, frames, firstHybrid);
 
+    // What the last frame cost the device outside the technique's work (device_frame_work.h).
+    std::printf("\ndevice frame outside the technique's work (the last frame)\n");
+    std::printf("%-38s %12s %14s %12s\n", "setting", "submissions", "read-back B", "allocations");
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        const FrameResult& last = frames[i].back();
+        std::printf("%-38s %12.0f %14.0f %12.0f\n", settings[i].label.c_str(), counter(last, "device_submissions"),
+                    counter(last, "device_readback_bytes"), counter(last, "device_allocations"));
+    }
+
     // The whole frame by stage (wall clock; the device's stages by their GPU timestamps, the rest
     // of each submission's wall clock as overhead): what lies outside the trace.
     std::printf("\nframe stages (medians, ms)\n");

@@ -320,14 +320,17 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     StageClock clock(result);
     // The G-buffer, the P-buffer and the visible pixels per object, on the ray-tracing device; only
     // the counts come back. With gbuffer = "rays" the G-buffer from primary rays there (stage
-    // gbuffer.rays, after the acceleration structures' update it needs).
+    // gbuffer.rays, after the acceleration structures' update it needs), in the same submission.
     Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
     if (gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
     RayStats rays;
-    gbuffer_.renderOnDevice(rasterizer, rasterRequest(frame), raster_, rays, &clock);
-    lapRasterFrame(clock, raster_);
+    gbuffer_.renderOnDevice(rasterizer, rasterRequest(frame), raster_, rays);
+    lapRasterFrame(clock, raster_, gbuffer_.deviceCastStages());
 
-    // heuristic: the selection, sent down as the effect bits of each object (the shader makes the mask).
+    // heuristic: the selection, sent down as the effect bits of each object (the shader makes the
+    // mask). It runs on the CPU between the rasterization and the ray tracing (Walewski 2019 §1 and
+    // §3.2: the visible pixels A come from the rasterization stage, the selection goes to the GPU),
+    // so the frame waits here for the counts: its one submission besides the trace's.
     const Selection selection = selectObjects(context.scene(), frame,
                                               visiblePixelsByQueries_ ? raster_.visiblePixelsByQuery : pixelCounts_->counts());
     deviceTracer_->setObjectData(std::vector<std::uint32_t>(selection.effectsByObject.begin(), selection.effectsByObject.end()));
@@ -336,7 +339,8 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
     // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
-    // then the image comes back.
+    // then the image comes back, and with debug images the per-texel records, copied by the launch.
+    deviceTracer_->setTexelsToHost(debugImages_);
     const DeviceGBufferTrace traced = deviceTracer_->trace(rasterizer.targets(), tracer_, debugImages_ ? 1u : 0u);
     lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
@@ -349,7 +353,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     gbuffer_.recordDeviceCast(result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
-        const glm::vec4* records = deviceTracer_->readTexels();
+        const glm::vec4* records = deviceTracer_->texelsOnHost();
         const char* names[DeviceGBufferTracer::kTexelRecords] = {"heuristic_mask", "shadows", "reflections", "refractions"};
         for (std::uint32_t k = 0; k < DeviceGBufferTracer::kTexelRecords; ++k) {
             Image image(frame.width, frame.height);

@@ -28,7 +28,7 @@ void ObjectPixelCountPass::record(VkCommandBuffer cb, const FrameTargets& t) {
 }
 
 void ObjectPixelCountPass::finish() {
-    const auto* c = static_cast<const std::uint32_t*>(buffer_.mapped());
+    const auto* c = buffer_.readBack<std::uint32_t>(objects_ + 1);
     counts_.assign(c + 1, c + 1 + objects_);
 }
 

@@ -180,7 +180,8 @@ void LayeredEmPass::record(VkCommandBuffer cb, const FrameTargets& t) {
 void LayeredEmPass::finish() {
     const int w = static_cast<int>(color_.desc().width), h = static_cast<int>(color_.desc().height);
     if (result_.width() != w || result_.height() != h) result_ = Image(w, h);
-    std::memcpy(result_.data(), readback_.mapped(), static_cast<std::size_t>(w) * h * sizeof(glm::vec4));
+    const std::size_t bytes = static_cast<std::size_t>(w) * h * sizeof(glm::vec4);
+    std::memcpy(result_.data(), readback_.readBack(bytes), bytes);
     draws_.clear();
 }
 

@@ -34,18 +34,20 @@ Rasterizer& rayTracingDeviceRasterizer(SceneContext& context) { return context.r
 
 void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& image) {
     image = Image(width, height);
-    const auto* p = static_cast<const glm::vec4*>(pixels.mapped());
+    const auto* p = pixels.readBack<glm::vec4>(static_cast<std::size_t>(width) * height);
     std::copy(p, p + static_cast<std::size_t>(width) * height, image.data());
 }
 
-void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages) {
+std::vector<StageTime> deviceLaunchStages(const std::vector<GpuStageTime>& stages) {
     std::vector<StageTime> parts;
     for (const GpuStageTime& g : stages) {
         const std::string name = g.name == "classify" ? "trace.classify" : g.name == "composite" ? "blend" : g.name;
         parts.push_back({name, g.milliseconds});
     }
-    clock.lap(parts, "overhead");
+    return parts;
 }
+
+void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages) { clock.lap(deviceLaunchStages(stages), "overhead"); }
 
 void recordGpuStages(const std::vector<GpuStageTime>& stages, FrameResult& result) {
     for (const GpuStageTime& g : stages) result.counters["gpu_" + g.name + "_ms"] = g.milliseconds;
@@ -84,10 +86,10 @@ void renderDeviceWhitted(DeviceWhittedTracer& tracer, const FrameRequest& frame,
     const DeviceTraceResult traced = tracer.launch(frame.camera, width, frame.height * n, settings);
     lapDeviceLaunch(clock, traced.gpuStages);
     // The image straight from the device's buffer, once: averaged where supersampled.
-    const auto* pixels = static_cast<const glm::vec4*>(tracer.output().mapped());
     if (n == 1) {
         readDeviceImage(tracer.output(), frame.width, frame.height, result.image);
     } else {
+        const auto* pixels = tracer.output().readBack<glm::vec4>(static_cast<std::size_t>(width) * frame.height * n);
         result.image = Image(frame.width, frame.height);
         for (int y = 0; y < frame.height; ++y) {
             for (int x = 0; x < frame.width; ++x) {

@@ -35,9 +35,11 @@ const DeviceRayScene& updateDeviceRayScene(SceneContext& context, double time, S
 // Copies the device's image (vec4 per texel, row-major) of a width x height frame into `image`.
 void readDeviceImage(const GpuBuffer& pixels, int width, int height, Image& image);
 
-// Ends a device launch's stage in `clock`: its GPU stages (the classification as trace.classify,
-// the trace, the pass after it as blend) and the rest of its wall clock, recording, submission
-// and the wait, as overhead.
+// A device launch's GPU stages as the frame's stages: the classification as trace.classify, the
+// trace, the pass after it as blend.
+std::vector<StageTime> deviceLaunchStages(const std::vector<GpuStageTime>& stages);
+// Ends a device launch's stage in `clock`: its GPU stages (deviceLaunchStages) and the rest of its
+// wall clock, recording, submission and the wait, as overhead.
 void lapDeviceLaunch(StageClock& clock, const std::vector<GpuStageTime>& stages);
 
 // The GPU stages of a device launch as counters gpu_<stage>_ms.

@@ -41,15 +41,24 @@ void GBufferSource::prepareOnDevice(const DeviceRayScene& rays) {
     if (rays_ && !deviceCaster_) deviceCaster_ = std::make_unique<DeviceGBufferCaster>(rays);
 }
 
-void GBufferSource::renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock) {
-    if (rays_) {
-        if (!deviceCaster_) throw std::logic_error("GBufferSource: prepareOnDevice() first");
-        deviceCast_ = deviceCaster_->cast(rasterizer.gbufferStorage(request.width, request.height), request.camera);
-        stats.primary += deviceCast_.primaryRays;
-        if (clock) clock->lap({{"gbuffer.rays", deviceCast_.gpuMilliseconds}}, "overhead");
-        request.deviceGBuffer = true;
+void GBufferSource::renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats) {
+    if (!rays_) {
+        rasterizer.render(request, frame);
+        return;
     }
+    if (!deviceCaster_) throw std::logic_error("GBufferSource: prepareOnDevice() first");
+    if (request.first) throw std::logic_error("GBufferSource: the cast is the frame's first work");
+    const GBufferStorage targets = rasterizer.gbufferStorage(request.width, request.height);
+    request.first = [&](VkCommandBuffer cb) { deviceCaster_->record(cb, targets, request.camera); };
+    request.deviceGBuffer = true;
     rasterizer.render(request, frame);
+    deviceCast_ = deviceCaster_->lastCast();
+    stats.primary += deviceCast_.primaryRays;
+}
+
+std::vector<StageTime> GBufferSource::deviceCastStages() const {
+    if (!rays_) return {};
+    return {{"gbuffer.rays", deviceCast_.gpuMilliseconds}};
 }
 
 void GBufferSource::recordDeviceCast(FrameResult& result) const {

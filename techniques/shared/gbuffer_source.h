@@ -44,9 +44,12 @@ public:
     void prepareOnDevice(const DeviceRayScene& rays);
     // As render(), with `rasterizer` on the ray-tracing device: with rays, the G-buffer is cast on
     // the device (from the scene prepareOnDevice() was given, which must be at the request's time)
-    // into the rasterizer's targets, timed as stage "gbuffer.rays" by its GPU timestamps (the
-    // submission's wall clock beside them as "overhead"), and the G-buffer pass is skipped.
-    void renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats, StageClock* clock = nullptr);
+    // into the rasterizer's targets at the start of the frame's command buffer (one submission with
+    // the rest of the frame), and the G-buffer pass is skipped.
+    void renderOnDevice(Rasterizer& rasterizer, RasterRequest request, RasterFrame& frame, RayStats& stats);
+    // After renderOnDevice(): the cast's GPU time as stage "gbuffer.rays" (none without rays), a
+    // part of the frame's submission (lapRasterFrame).
+    std::vector<StageTime> deviceCastStages() const;
     // After renderOnDevice() with rays: the cast's launch as counters (recordDeviceLaunch() of kind
     // "gbuffer.rays", device_rays.h); nothing without rays.
     void recordDeviceCast(FrameResult& result) const;

@@ -11,11 +11,14 @@
 namespace hybridlab {
 
 // Ends `clock`'s current stage, which rendered `frame` (and did nothing else worth a stage of its
-// own). The rasterizer's passes are named as the stages they are (RasterFrame::gpuStages).
-inline void lapRasterFrame(StageClock& clock, const RasterFrame& frame) {
+// own). The rasterizer's passes are named as the stages they are (RasterFrame::gpuStages);
+// `recordedWithIt` are the stages of the rest of the device work in the frame's submission
+// (RasterRequest::first and last: a G-buffer cast, a ray launch), by their GPU times.
+inline void lapRasterFrame(StageClock& clock, const RasterFrame& frame, const std::vector<StageTime>& recordedWithIt = {}) {
     std::vector<StageTime> passes;
     for (const RasterStageTime& s : frame.gpuStages)
         passes.push_back({s.name, s.milliseconds + (s.name == "readback" ? frame.unpackMilliseconds : 0.0)});
+    passes.insert(passes.end(), recordedWithIt.begin(), recordedWithIt.end());
     clock.lap(passes, "overhead");
 }
 

@@ -19,7 +19,7 @@ public:
     void record(VkCommandBuffer cb, const GpuBuffer& texels, const GpuBuffer& image, int width, int height, int radius, float rangeSigma,
                 bool walewskiBlend);
     // After the command buffer completed: the texels blurred.
-    std::uint32_t blurredTexels() const { return *static_cast<const std::uint32_t*>(counter_.mapped()); }
+    std::uint32_t blurredTexels() const { return *counter_.readBack<std::uint32_t>(1); }
 
 private:
     const VulkanDevice& device_;

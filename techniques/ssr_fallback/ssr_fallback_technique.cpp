@@ -374,31 +374,36 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     });
     FrameResult result;
     StageClock clock(result);
-    // With gbuffer = "rays" the G-buffer comes from primary rays on the device (stage gbuffer.rays,
-    // after the acceleration structures' update it needs). The SSR pass runs inside the
-    // rasterizer's command buffer: its GPU time is its stage.
-    if (gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
-    RayStats rays;
-    gbuffer_.renderOnDevice(rasterizer, rasterRequest(frame), raster_, rays, &clock);
-    lapRasterFrame(clock, raster_);
-
-    if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
-
-    // Ray-traced stage, seam blur and composite: one command buffer on the device (their GPU times
-    // the counters gpu_trace_ms and gpu_composite_ms); then the image comes back.
+    // The whole frame is one command buffer on the device, one submission and one wait, as the CPU
+    // needs nothing between its stages: with gbuffer = "rays" the G-buffer from primary rays, the
+    // rasterizer's passes with SSR, the ray-traced stage, seam blur and composite (their GPU times
+    // the counters gpu_trace_ms and gpu_composite_ms), then the copies of what the host reads: the
+    // image, the counters, and for SSR's statistics and the debug images SSR's outputs and the
+    // texels' records. The acceleration structures are updated first.
+    updateDeviceRayScene(context, frame.time, clock, result);
+    RasterRequest request = rasterRequest(frame);
     deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
+    deviceTracer_->setTexelsToHost(true);
     // device_ssr_fallback.rgen's options (frame.rules.y).
     const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
                                   (recursion_ == Recursion::Single ? 8u : 0u) | (ssrSettings_.refractive ? 16u : 0u) | (ssrOn_ ? 0u : 32u);
     const bool walewski = tracerSettings_.blend == BlendRule::Walewski2019;
-    const DeviceGBufferTrace traced = deviceTracer_->trace(
-        rasterizer.targets(), tracerSettings_, options,
-        [&](VkCommandBuffer cb) {
-            deviceComposite_->record(cb, deviceTracer_->texels(), deviceTracer_->deviceImage(), frame.width, frame.height, blurRadius_, blurRange_,
-                                     walewski);
-        },
-        "composite");
-    lapDeviceLaunch(clock, traced.gpuStages);
+    request.last = [&](VkCommandBuffer cb) {
+        deviceTracer_->record(
+            cb, rasterizer.targets(), tracerSettings_, options,
+            [&](VkCommandBuffer after) {
+                deviceComposite_->record(after, deviceTracer_->texels(), deviceTracer_->deviceImage(), frame.width, frame.height,
+                                         blurRadius_, blurRange_, walewski);
+            },
+            "composite");
+        if (ssrOn_) ssr_->recordReadback(cb);
+    };
+    RayStats rays;
+    gbuffer_.renderOnDevice(rasterizer, request, raster_, rays);
+    const DeviceGBufferTrace traced = deviceTracer_->lastTrace();
+    std::vector<StageTime> recordedWithIt = gbuffer_.deviceCastStages();
+    for (const StageTime& s : deviceLaunchStages(traced.gpuStages)) recordedWithIt.push_back(s);
+    lapRasterFrame(clock, raster_, recordedWithIt);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
     clock.lap("readback");
 
@@ -416,13 +421,13 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     result.counters["ssr_recursion_rays"] = counts[2];
     result.counters["seam_blurred_pixels"] = deviceComposite_->blurredTexels();
 
-    // After the timed stages: SSR's outputs and the texels' reflection sources, for SSR's
-    // statistics and the debug images.
-    if (ssrOn_) ssr_->readBack();
+    // After the timed stages: SSR's statistics and the debug images from SSR's outputs and the
+    // texels' reflection sources, which the frame copied.
+    if (ssrOn_) ssr_->unpack();
     const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
     std::vector<ReflectionSource> source(n);
     std::vector<std::uint8_t> refractive(n);
-    const glm::vec4* records = deviceTracer_->readTexels();
+    const glm::vec4* records = deviceTracer_->texelsOnHost();
     for (std::size_t i = 0; i < n; ++i) {
         source[i] = static_cast<ReflectionSource>(static_cast<int>(records[DeviceGBufferTracer::kTexelRecords * i].w));
         refractive[i] = records[DeviceGBufferTracer::kTexelRecords * i + 3].y != 0.0f;

@@ -168,13 +168,8 @@ void SsrPass::recordReadback(VkCommandBuffer cb) {
     recordHostReadBarrier(cb);
 }
 
-void SsrPass::readBack() {
-    device_->submitAndWait([&](VkCommandBuffer cb) { recordReadback(cb); });
-    unpack();
-}
-
 void SsrPass::finish() {
-    if (readback_) unpack();  // else readBack() does, when asked
+    if (readback_) unpack();  // else the caller does, where it recorded the copies
 }
 
 void SsrPass::unpack() {
@@ -182,8 +177,8 @@ void SsrPass::unpack() {
     result_.height = static_cast<int>(color_.desc().height);
     const std::size_t n = static_cast<std::size_t>(result_.width) * result_.height;
     result_.pixels.resize(n);
-    const auto* color = static_cast<const glm::vec4*>(colorReadback_.mapped());
-    const auto* hit = static_cast<const glm::vec4*>(hitReadback_.mapped());
+    const auto* color = colorReadback_.readBack<glm::vec4>(n);
+    const auto* hit = hitReadback_.readBack<glm::vec4>(n);
     for (std::size_t i = 0; i < n; ++i) {
         SsrPixel& p = result_.pixels[i];
         p.color = glm::vec3(color[i]);

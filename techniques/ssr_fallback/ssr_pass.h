@@ -60,15 +60,19 @@ public:
     // On `device`: the rasterizer's (the ray-tracing device's when the ray stage reads the outputs there).
     explicit SsrPass(std::shared_ptr<VulkanDevice> device = VulkanDevice::shared());
 
-    // false: the frame records no copy of the outputs; they stay on the device (colorView(),
-    // hitView()) until readBack() is asked for.
+    // false: the pass records no copy of the outputs; they stay on the device (colorView(),
+    // hitView()) unless the caller records recordReadback() later in the frame's command buffer
+    // (after its timed stages).
     void setReadback(bool readback) { readback_ = readback; }
     // The outputs on the device: rgb the lit image at the hit, a confidence; xy hit pixel, z flags, w steps.
     VkImageView colorView() const { return color_.view(); }
     VkImageView hitView() const { return hit_.view(); }
-    // After a frame recorded without read-back: copies the outputs to the host in a submission of
-    // its own and unpacks them into result().
-    void readBack();
+    // The copies of the outputs to the host, recorded after the pass in the frame's command
+    // buffer: by the pass itself with setReadback(true) (finish() unpacks them), else by the caller,
+    // who unpacks them with unpack() when the frame completed.
+    void recordReadback(VkCommandBuffer cb);
+    // The copied outputs into result().
+    void unpack();
 
     void setSettings(const SsrSettings& settings) { settings_ = settings; }
     const SsrSettings& settings() const { return settings_; }
@@ -83,8 +87,6 @@ public:
 private:
     void resize(std::uint32_t width, std::uint32_t height);
     void recordDepthPyramid(VkCommandBuffer cb, const FrameTargets& targets);
-    void recordReadback(VkCommandBuffer cb);
-    void unpack();
 
     std::shared_ptr<VulkanDevice> device_;
     SsrSettings settings_;
