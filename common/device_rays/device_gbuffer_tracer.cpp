@@ -85,8 +85,6 @@ void DeviceGBufferTracer::record(VkCommandBuffer cb, const FrameTargets& targets
         texels_ = GpuBuffer(dev, texelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, GpuBuffer::Memory::DeviceLocal);
         pipeline_.inputs().writeBuffer(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, texels_.buffer());
     }
-    if (texelsToHost_ && (!texelsOnHost_.valid() || texelsOnHost_.size() != texels_.size()))
-        texelsOnHost_ = GpuBuffer(dev, texels_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
     // Rewritten every frame: the rasterizer recreates its targets when the frame size changes.
     DescriptorSet& in = pipeline_.inputs();
     const VkDescriptorType sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -103,10 +101,6 @@ void DeviceGBufferTracer::record(VkCommandBuffer cb, const FrameTargets& targets
         if (compact) {
             const VkBufferCopy header{0, 0, sizeof(TexelListHeader)};
             vkCmdCopyBuffer(cb, list_.buffer(), listHeaderOnHost_.buffer(), 1, &header);
-        }
-        if (texelsToHost_) {
-            const VkBufferCopy all{0, 0, texels_.size()};
-            vkCmdCopyBuffer(cb, texels_.buffer(), texelsOnHost_.buffer(), 1, &all);
         }
     };
     if (compact) {
@@ -149,7 +143,18 @@ DeviceGBufferTrace DeviceGBufferTracer::lastTrace() const {
     return result;
 }
 
-const glm::vec4* DeviceGBufferTracer::texelsOnHost() const {
+const glm::vec4* DeviceGBufferTracer::readTexels(const std::function<void(VkCommandBuffer)>& alsoCopy) {
+    const VulkanDevice& dev = pipeline_.device();
+    if (!texelsOnHost_.valid() || texelsOnHost_.size() != texels_.size())
+        texelsOnHost_ = GpuBuffer(dev, texels_.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, GpuBuffer::Memory::HostVisible);
+    const VulkanDevice::Diagnostics diagnostics;
+    dev.submitAndWait([&](VkCommandBuffer cb) {
+        if (alsoCopy) alsoCopy(cb);
+        const VkBufferCopy all{0, 0, texels_.size()};
+        vkCmdCopyBuffer(cb, texels_.buffer(), texelsOnHost_.buffer(), 1, &all);
+        VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &copied, 0, nullptr, 0, nullptr);
+    });
     return static_cast<const glm::vec4*>(texelsOnHost_.readBack(texelsOnHost_.size()));
 }
 

@@ -53,10 +53,6 @@ public:
         ssrHit_ = hit;
     }
 
-    // Whether launches also copy the per-texel records to the host (texelsOnHost()): for debug
-    // images and statistics only, 16 x kTexelRecords bytes a texel. Off by default.
-    void setTexelsToHost(bool copy) { texelsToHost_ = copy; }
-
     // Records one launch (compacted or full) over `targets` (the rasterizer's frame, on this
     // device; lighting included) with `settings` into `cb`, a command buffer of the caller's that
     // may hold the rest of the frame; `flags` reach the shader as frame.rules.y. `after` records
@@ -75,8 +71,10 @@ public:
     // device-local, read by the technique's pass after the trace.
     const GpuBuffer& deviceImage() const { return *image_; }
     const GpuBuffer& texels() const { return texels_; }
-    // After a launch with setTexelsToHost(true): the per-texel records, copied to the host by it.
-    const glm::vec4* texelsOnHost() const;
+    // After the launch, for debug images and statistics only: the per-texel records (16 x
+    // kTexelRecords bytes a texel) copied to the host in a submission of their own after the
+    // frame's timed work, counted as its diagnostics (DeviceWork), with `alsoCopy`'s copies.
+    const glm::vec4* readTexels(const std::function<void(VkCommandBuffer)>& alsoCopy = {});
 
 private:
     const DeviceRayScene& scene_;
@@ -87,7 +85,6 @@ private:
     GpuBuffer list_;           // TexelListHeader, then the listed texels
     GpuBuffer listHeaderOnHost_;
     bool compact_ = true;
-    bool texelsToHost_ = false;
     bool lastCompact_ = false;  // whether the last launch recorded was compacted
     const GpuBuffer* image_ = nullptr;
     VkImageView ssrColor_ = VK_NULL_HANDLE, ssrHit_ = VK_NULL_HANDLE;

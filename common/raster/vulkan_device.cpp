@@ -19,7 +19,9 @@ namespace {
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 // DeviceWork's counts, over every device of the process.
-std::atomic<std::uint64_t> submissionCount{0}, readBackByteCount{0}, allocationCount{0};
+std::atomic<std::uint64_t> submissionCount{0}, readBackByteCount{0}, allocationCount{0}, diagnosticSubmissionCount{0},
+    diagnosticReadBackByteCount{0};
+thread_local int diagnosticsScopes = 0;  // VulkanDevice::Diagnostics alive on this thread
 
 bool validationWanted() {
 #ifndef NDEBUG
@@ -427,7 +429,7 @@ void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &commands;
     checkVk(vkQueueSubmit(queue_, 1, &si, fence_), "submitting commands");
-    ++submissionCount;
+    ++(diagnosticsScopes > 0 ? diagnosticSubmissionCount : submissionCount);
     // A GPU that has not finished a submission in two minutes has hung (a shader that never ends,
     // a fault the driver did not report): an error, not a wait without end. A CPU device
     // (lavapipe) may take that long for one frame of rays, so it is waited for.
@@ -438,9 +440,16 @@ void VulkanDevice::submitAndWait(VkCommandBuffer commands) const {
     checkVk(vkResetFences(device_, 1, fence_.ptr()), "resetting a fence");
 }
 
-DeviceWork VulkanDevice::workSoFar() { return {submissionCount.load(), readBackByteCount.load(), allocationCount.load()}; }
+DeviceWork VulkanDevice::workSoFar() {
+    return {submissionCount.load(), readBackByteCount.load(), allocationCount.load(), diagnosticSubmissionCount.load(),
+            diagnosticReadBackByteCount.load()};
+}
 
-void VulkanDevice::countReadBack(std::uint64_t bytes) { readBackByteCount += bytes; }
+void VulkanDevice::countReadBack(std::uint64_t bytes) { (diagnosticsScopes > 0 ? diagnosticReadBackByteCount : readBackByteCount) += bytes; }
+
+VulkanDevice::Diagnostics::Diagnostics() { ++diagnosticsScopes; }
+
+VulkanDevice::Diagnostics::~Diagnostics() { --diagnosticsScopes; }
 
 void VulkanDevice::countAllocations(std::uint64_t objects) { allocationCount += objects; }
 

@@ -32,14 +32,19 @@ struct DeviceFeatures {
 // it (techniques/device_frame_work.h). Submissions are queue submissions, each waited for with a
 // fence (a CPU round trip); read-back bytes are what the host read of memory the device wrote
 // (GpuBuffer::readBack, and query results); allocations are the objects a pass creates for its
-// data: device memory (one a buffer or image), descriptor sets and command buffers.
+// data: device memory (one a buffer or image), descriptor sets and command buffers. A frame's
+// diagnostics (debug images, statistics), read after its timed stages inside a
+// VulkanDevice::Diagnostics scope, count apart: they are not the technique's work.
 struct DeviceWork {
     std::uint64_t submissions = 0;
     std::uint64_t readBackBytes = 0;
     std::uint64_t allocations = 0;
+    std::uint64_t diagnosticSubmissions = 0;
+    std::uint64_t diagnosticReadBackBytes = 0;
 
     DeviceWork operator-(const DeviceWork& since) const {
-        return {submissions - since.submissions, readBackBytes - since.readBackBytes, allocations - since.allocations};
+        return {submissions - since.submissions, readBackBytes - since.readBackBytes, allocations - since.allocations,
+                diagnosticSubmissions - since.diagnosticSubmissions, diagnosticReadBackBytes - since.diagnosticReadBackBytes};
     }
 };
 
@@ -119,6 +124,14 @@ public:
     static DeviceWork workSoFar();
     static void countReadBack(std::uint64_t bytes);
     static void countAllocations(std::uint64_t objects);
+    // While one lives, this thread's submissions and read-back count as diagnostics (DeviceWork).
+    class Diagnostics {
+    public:
+        Diagnostics();
+        ~Diagnostics();
+        Diagnostics(const Diagnostics&) = delete;
+        Diagnostics& operator=(const Diagnostics&) = delete;
+    };
 
 private:
     explicit VulkanDevice(DeviceFeatures features) : features_(features) {}

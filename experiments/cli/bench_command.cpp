@@ -370,11 +370,12 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
 
     // What the last frame cost the device outside the technique's work (device_frame_work.h).
     std::printf("\ndevice frame outside the technique's work (the last frame)\n");
-    std::printf("%-38s %12s %14s %12s\n", "setting", "submissions", "read-back B", "allocations");
+    std::printf("%-38s %12s %14s %12s %25s\n", "setting", "submissions", "read-back B", "allocations", "diagnostics: subm. / B");
     for (std::size_t i = 0; i < settings.size(); ++i) {
         const FrameResult& last = frames[i].back();
-        std::printf("%-38s %12.0f %14.0f %12.0f\n", settings[i].label.c_str(), counter(last, "device_submissions"),
-                    counter(last, "device_readback_bytes"), counter(last, "device_allocations"));
+        std::printf("%-38s %12.0f %14.0f %12.0f %12.0f / %10.0f\n", settings[i].label.c_str(), counter(last, "device_submissions"),
+                    counter(last, "device_readback_bytes"), counter(last, "device_allocations"),
+                    counter(last, "device_diagnostic_submissions"), counter(last, "device_diagnostic_readback_bytes"));
     }
 
     // The whole frame by stage (wall clock; the device's stages by their GPU timestamps, the rest

@@ -339,8 +339,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     if (!gbuffer_.rays()) updateDeviceRayScene(context, frame.time, clock, result);
 
     // Trace and blend: one launch over the G-buffer where it lies (the blend is its last line);
-    // then the image comes back, and with debug images the per-texel records, copied by the launch.
-    deviceTracer_->setTexelsToHost(debugImages_);
+    // then the image comes back.
     const DeviceGBufferTrace traced = deviceTracer_->trace(rasterizer.targets(), tracer_, debugImages_ ? 1u : 0u);
     lapDeviceLaunch(clock, traced.gpuStages);
     readDeviceImage(deviceTracer_->image(), frame.width, frame.height, result.image);
@@ -353,7 +352,7 @@ FrameResult HeuristicRtTechnique::renderOnDevice(SceneContext& context, const Fr
     gbuffer_.recordDeviceCast(result);
     if (debugImages_) {
         // The shader's per-texel records: the mask, then C, M and R (zero where not traced).
-        const glm::vec4* records = deviceTracer_->texelsOnHost();
+        const glm::vec4* records = deviceTracer_->readTexels();
         const char* names[DeviceGBufferTracer::kTexelRecords] = {"heuristic_mask", "shadows", "reflections", "refractions"};
         for (std::uint32_t k = 0; k < DeviceGBufferTracer::kTexelRecords; ++k) {
             Image image(frame.width, frame.height);

@@ -378,12 +378,12 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     // needs nothing between its stages: with gbuffer = "rays" the G-buffer from primary rays, the
     // rasterizer's passes with SSR, the ray-traced stage, seam blur and composite (their GPU times
     // the counters gpu_trace_ms and gpu_composite_ms), then the copies of what the host reads: the
-    // image, the counters, and for SSR's statistics and the debug images SSR's outputs and the
-    // texels' records. The acceleration structures are updated first.
+    // image and the counters. The acceleration structures are updated first.
+    // (Noticed on lavapipe: the first frame at a size with gbuffer = "rays" reports the trace's
+    // time as overhead, its timestamps ~0 ms; the later frames, which the runner times, are right.)
     updateDeviceRayScene(context, frame.time, clock, result);
     RasterRequest request = rasterRequest(frame);
     deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
-    deviceTracer_->setTexelsToHost(true);
     // device_ssr_fallback.rgen's options (frame.rules.y).
     const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
                                   (recursion_ == Recursion::Single ? 8u : 0u) | (ssrSettings_.refractive ? 16u : 0u) | (ssrOn_ ? 0u : 32u);
@@ -396,7 +396,6 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
                                          blurRadius_, blurRange_, walewski);
             },
             "composite");
-        if (ssrOn_) ssr_->recordReadback(cb);
     };
     RayStats rays;
     gbuffer_.renderOnDevice(rasterizer, request, raster_, rays);
@@ -421,13 +420,16 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     result.counters["ssr_recursion_rays"] = counts[2];
     result.counters["seam_blurred_pixels"] = deviceComposite_->blurredTexels();
 
-    // After the timed stages: SSR's statistics and the debug images from SSR's outputs and the
-    // texels' reflection sources, which the frame copied.
+    // After the timed stages, in a submission of their own: SSR's outputs and the texels'
+    // reflection sources, for SSR's statistics and the debug images.
+    const VulkanDevice::Diagnostics diagnostics;
+    const glm::vec4* records = deviceTracer_->readTexels([&](VkCommandBuffer cb) {
+        if (ssrOn_) ssr_->recordReadback(cb);
+    });
     if (ssrOn_) ssr_->unpack();
     const std::size_t n = static_cast<std::size_t>(frame.width) * frame.height;
     std::vector<ReflectionSource> source(n);
     std::vector<std::uint8_t> refractive(n);
-    const glm::vec4* records = deviceTracer_->texelsOnHost();
     for (std::size_t i = 0; i < n; ++i) {
         source[i] = static_cast<ReflectionSource>(static_cast<int>(records[DeviceGBufferTracer::kTexelRecords * i].w));
         refractive[i] = records[DeviceGBufferTracer::kTexelRecords * i + 3].y != 0.0f;

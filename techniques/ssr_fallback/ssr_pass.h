@@ -61,15 +61,15 @@ public:
     explicit SsrPass(std::shared_ptr<VulkanDevice> device = VulkanDevice::shared());
 
     // false: the pass records no copy of the outputs; they stay on the device (colorView(),
-    // hitView()) unless the caller records recordReadback() later in the frame's command buffer
-    // (after its timed stages).
+    // hitView()) unless the caller records recordReadback() into a command buffer of its own
+    // after the frame's timed work.
     void setReadback(bool readback) { readback_ = readback; }
     // The outputs on the device: rgb the lit image at the hit, a confidence; xy hit pixel, z flags, w steps.
     VkImageView colorView() const { return color_.view(); }
     VkImageView hitView() const { return hit_.view(); }
-    // The copies of the outputs to the host, recorded after the pass in the frame's command
-    // buffer: by the pass itself with setReadback(true) (finish() unpacks them), else by the caller,
-    // who unpacks them with unpack() when the frame completed.
+    // The copies of the outputs to the host: recorded after the pass in the frame's command buffer
+    // by the pass itself with setReadback(true) (finish() unpacks them), else by the caller after
+    // the frame, who unpacks them with unpack() once that command buffer completed.
     void recordReadback(VkCommandBuffer cb);
     // The copied outputs into result().
     void unpack();

@@ -4,7 +4,8 @@
 // with SSR, the trace, the composite and the copies in one command buffer); heuristic_rt is two,
 // its CPU selection waiting for the visible-pixel counts between the rasterization and the trace
 // (Walewski 2019 §3.2). No frame allocates anything on the device, the host reads back the image
-// with little beside it, and the images equal the full launch's byte for byte.
+// with little beside it, and the images equal the full launch's byte for byte. Diagnostics (SSR's
+// statistics, debug images) come back after the timed work in one submission of their own.
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -29,26 +30,31 @@ bool sameBytes(const Image& a, const Image& b) {
 
 // The second frame of `technique` with rays = "vulkan" and `params`: its device work, and its image
 // equal to the full launch's (a launch over every texel, in the same frame).
-FrameResult expectSteadyFrame(const Scene& scene, const std::string& technique, test::TechniqueParams params, double submissions) {
+FrameResult expectSteadyFrame(const Scene& scene, const std::string& technique, test::TechniqueParams params, double submissions,
+                              double diagnosticSubmissions) {
     params.push_back({"rays", std::string("vulkan")});
     const FrameResult frame = test::renderFrame(scene, technique, params, kWidth, kHeight, /*frames=*/2);
     const auto& c = frame.counters;
     EXPECT_EQ(c.at("device_submissions"), submissions);
+    EXPECT_EQ(c.at("device_diagnostic_submissions"), diagnosticSubmissions);
+    // The timed frame reads back the image, its counters and timestamps: nothing per texel besides.
+    EXPECT_LT(c.at("device_readback_bytes"), kImageBytes + 1024);
     EXPECT_EQ(c.at("device_allocations"), 0.0);
     EXPECT_GE(c.at("device_readback_bytes"), kImageBytes);
     if (technique != "rt_only") {
         params.push_back({"launch", std::string("full")});
         EXPECT_TRUE(sameBytes(frame.image, test::renderFrame(scene, technique, params, kWidth, kHeight, 2).image));
     }
-    std::printf("[ device   ] %s: %.0f submissions, %.0f bytes read back, %.0f allocations a frame\n", technique.c_str(),
-                c.at("device_submissions"), c.at("device_readback_bytes"), c.at("device_allocations"));
+    std::printf("[ device   ] %s: %.0f submissions, %.0f bytes read back, %.0f allocations a frame; diagnostics %.0f, %.0f bytes\n",
+                technique.c_str(), c.at("device_submissions"), c.at("device_readback_bytes"), c.at("device_allocations"),
+                c.at("device_diagnostic_submissions"), c.at("device_diagnostic_readback_bytes"));
     return frame;
 }
 
 TEST(DeviceFrameSubmissions, RtOnlyIsOneSubmissionReadingBackTheImage) {
     REQUIRE_RAY_TRACING_DEVICE();
     const Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
-    const FrameResult frame = expectSteadyFrame(scene, "rt_only", {}, 1);
+    const FrameResult frame = expectSteadyFrame(scene, "rt_only", {}, 1, 0);
     // The image, the ray counters and the trace's two timestamps.
     EXPECT_LT(frame.counters.at("device_readback_bytes"), kImageBytes + 256);
 }
@@ -56,18 +62,22 @@ TEST(DeviceFrameSubmissions, RtOnlyIsOneSubmissionReadingBackTheImage) {
 TEST(DeviceFrameSubmissions, SsrFallbackIsOneSubmissionWithEitherGBuffer) {
     REQUIRE_RAY_TRACING_DEVICE();
     const Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
-    expectSteadyFrame(scene, "ssr_fallback", {}, 1);
-    expectSteadyFrame(scene, "ssr_fallback", {{"gbuffer", std::string("rays")}}, 1);
+    // SSR's statistics: its outputs (2 x vec4) and the texels' records (4 x vec4) a pixel.
+    for (const FrameResult& f : {expectSteadyFrame(scene, "ssr_fallback", {}, 1, 1),
+                                 expectSteadyFrame(scene, "ssr_fallback", {{"gbuffer", std::string("rays")}}, 1, 1)})
+        EXPECT_EQ(f.counters.at("device_diagnostic_readback_bytes"), 6 * kImageBytes);
 }
 
 TEST(DeviceFrameSubmissions, HeuristicRtWaitsOnlyForItsSelection) {
     REQUIRE_RAY_TRACING_DEVICE();
     const Scene scene = loadSceneFile(findSceneFile("cornell-mirror-glass"));
-    expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}}, 2);
-    expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}, {"gbuffer", std::string("rays")}}, 2);
-    // Without debug images only the image (and counters and timestamps) comes back.
-    const FrameResult bare = expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}, {"debug_images", false}}, 2);
-    EXPECT_LT(bare.counters.at("device_readback_bytes"), kImageBytes + 1024);
+    // With debug images the texels' records (4 x vec4 a pixel) after the timed work.
+    const FrameResult debug = expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}}, 2, 1);
+    EXPECT_EQ(debug.counters.at("device_diagnostic_readback_bytes"), 4 * kImageBytes);
+    expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}, {"gbuffer", std::string("rays")}}, 2, 1);
+    // Without debug images nothing besides.
+    const FrameResult bare = expectSteadyFrame(scene, "heuristic_rt", {{"budget", 2000.0}, {"debug_images", false}}, 2, 0);
+    EXPECT_EQ(bare.counters.at("device_diagnostic_readback_bytes"), 0.0);
 }
 
 }  // namespace
