@@ -27,6 +27,22 @@ void checkGBufferSource(const RasterRequest& request, const GBufferPass& gbuffer
     }
 }
 
+// The timer's stages as the frame records them: times, and work counts where the device has them.
+std::vector<RasterStageTime> rasterStageTimes(const std::vector<GpuStageTime>& stages) {
+    std::vector<RasterStageTime> out;
+    for (const GpuStageTime& s : stages) {
+        out.push_back({s.name, s.milliseconds});
+        if (!s.statistics) continue;
+        RasterStageTime& t = out.back();
+        t.counted = true;
+        t.inputPrimitives = s.statistics->inputPrimitives;
+        t.clippingPrimitives = s.statistics->clippingPrimitives;
+        t.fragmentInvocations = s.statistics->fragmentInvocations;
+        t.computeInvocations = s.statistics->computeInvocations;
+    }
+    return out;
+}
+
 }  // namespace
 
 double RasterFrame::gpuMilliseconds(const std::string& stage) const {
@@ -202,17 +218,7 @@ void Rasterizer::render(const RasterRequest& request, RasterFrame& frame) {
         }
     }
     for (RasterFramePass* pass : request.passes) pass->finish();
-    frame.gpuStages.clear();
-    for (const GpuStageTime& s : r.timer.read()) {
-        frame.gpuStages.push_back({s.name, s.milliseconds});
-        if (!s.statistics) continue;
-        RasterStageTime& t = frame.gpuStages.back();
-        t.counted = true;
-        t.inputPrimitives = s.statistics->inputPrimitives;
-        t.clippingPrimitives = s.statistics->clippingPrimitives;
-        t.fragmentInvocations = s.statistics->fragmentInvocations;
-        t.computeInvocations = s.statistics->computeInvocations;
-    }
+    frame.gpuStages = rasterStageTimes(r.timer.read());
     frame.unpackMilliseconds = millisecondsSince(start);
 }
 
