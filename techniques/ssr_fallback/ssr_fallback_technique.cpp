@@ -305,9 +305,8 @@ FrameResult SsrFallbackTechnique::render(SceneContext& context, const FrameReque
 
     const RayScene& rays = primaryRays ? *primaryRays : updateRayScene(context, frame.time, clock, result);
     result.image = Image(frame.width, frame.height);
-    const sl::SsrTexelPolicy policy{rayTracedShadows_, ssrSettings_.refractive, static_cast<int>(fallback_), recursion_ == Recursion::RayTraced};
     TracedTexels traced = traceTexels(g, raster_.lighting, ssrOn_ ? &ssr_->result() : nullptr, WhittedTracer(rays, tracerSettings_),
-                                      tracerSettings_, policy, frame.camera, result.image);
+                                      tracerSettings_, texelPolicy(), frame.camera, result.image);
     clock.lap("trace");
 
     const std::size_t blurred = blurReflectionSeams(traced.reflection, traced.source, frame.width, frame.height, blurRadius_, blurRange_);
@@ -366,6 +365,10 @@ void SsrFallbackTechnique::recordSsrStatistics(const std::vector<ReflectionSourc
     result.counters["ssr_fail_max_distance"] = static_cast<double>(failuresByReason[kSsrMaxDistance]);
 }
 
+sl::SsrTexelPolicy SsrFallbackTechnique::texelPolicy() const {
+    return {rayTracedShadows_, ssrSettings_.refractive, static_cast<int>(fallback_), recursion_ == Recursion::RayTraced};
+}
+
 FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const FrameRequest& frame) {
     Rasterizer& rasterizer = rayTracingDeviceRasterizer(context);
     warmUp_.atSizeOf(frame, [&](const FrameRequest& f) {
@@ -384,9 +387,7 @@ FrameResult SsrFallbackTechnique::renderOnDevice(SceneContext& context, const Fr
     updateDeviceRayScene(context, frame.time, clock, result);
     RasterRequest request = rasterRequest(frame);
     deviceTracer_->setSsr(ssrOn_ ? ssr_->colorView() : VK_NULL_HANDLE, ssrOn_ ? ssr_->hitView() : VK_NULL_HANDLE);
-    // device_ssr_fallback.rgen's options (frame.rules.y).
-    const std::uint32_t options = (rayTracedShadows_ ? 1u : 0u) | (static_cast<std::uint32_t>(fallback_) << 1) |
-                                  (recursion_ == Recursion::Single ? 8u : 0u) | (ssrSettings_.refractive ? 16u : 0u) | (ssrOn_ ? 0u : 32u);
+    const std::uint32_t options = sl::packSsrOptions(texelPolicy(), ssrOn_);  // frame.rules.y
     const bool walewski = tracerSettings_.blend == BlendRule::Walewski2019;
     request.last = [&](VkCommandBuffer cb) {
         deviceTracer_->record(

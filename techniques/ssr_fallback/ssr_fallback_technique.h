@@ -19,6 +19,7 @@
 #include "common/device_rays/device_gbuffer_tracer.h"
 #include "techniques/ssr_fallback/device_seam_composite.h"
 #include "techniques/ssr_fallback/seam_blur.h"
+#include "techniques/ssr_fallback/shaders/ssr_texel.h"
 #include "techniques/shared/device_launch_parameters.h"
 #include "techniques/shared/gbuffer_source.h"
 #include "techniques/shared/raster_warm_up.h"
@@ -48,6 +49,8 @@ public:
 private:
     RasterRequest rasterRequest(const FrameRequest& frame);
     FrameResult renderOnDevice(SceneContext& context, const FrameRequest& frame);
+    // The stage's settings, for both backends (the device reads them packed, packSsrOptions).
+    shading_language::SsrTexelPolicy texelPolicy() const;
     // SSR's work and the debug images of SSR's outputs (the same for both backends).
     void recordSsrStatistics(const std::vector<ReflectionSource>& source, const std::vector<std::uint8_t>& refractive, FrameResult& result) const;
 

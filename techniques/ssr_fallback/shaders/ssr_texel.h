@@ -65,6 +65,29 @@ struct SsrTexelPolicy {
     bool recursionTraced;   // recursion = "rt": an SSR hit that reflects or refracts has its next bounce traced
 };
 
+// The settings and whether SSR runs, as the one word the device reads (frame.rules.y): bit 0
+// shadows = "rt"; bits 1-2 the fallback; bit 3 recursion = "single"; bit 4 glass = "ssr"; bit 5
+// ssr = false.
+const uint kSsrOptionRayTracedShadows = 1u;
+const uint kSsrOptionSingleRecursion = 8u;
+const uint kSsrOptionGlassSsr = 16u;
+const uint kSsrOptionSsrOff = 32u;
+
+SHARED_FUNCTION uint packSsrOptions(SsrTexelPolicy policy, bool ssrOn) {
+    return (policy.rayTracedShadows ? kSsrOptionRayTracedShadows : 0u) | (uint(policy.fallback) << 1u) |
+           (policy.recursionTraced ? 0u : kSsrOptionSingleRecursion) | (policy.ssrRefracts ? kSsrOptionGlassSsr : 0u) |
+           (ssrOn ? 0u : kSsrOptionSsrOff);
+}
+
+SHARED_FUNCTION SsrTexelPolicy unpackSsrPolicy(uint options) {
+    SsrTexelPolicy policy;
+    policy.rayTracedShadows = (options & kSsrOptionRayTracedShadows) != 0u;
+    policy.ssrRefracts = (options & kSsrOptionGlassSsr) != 0u;
+    policy.fallback = int((options >> 1u) & 3u);
+    policy.recursionTraced = (options & kSsrOptionSingleRecursion) == 0u;
+    return policy;
+}
+
 SHARED_END
 
 #endif
