@@ -62,24 +62,6 @@ glm::vec3 WhittedTracer::localColor(const SurfaceHit& hit, glm::vec3 normal, glm
                              settings_.shadows && shadowRays, tex, mediumAbsorption);
 }
 
-namespace {
-
-// shading_language::shadeParts()'s terms as ShadingParts, and its environment terms where the hit
-// would trace rays (at a hit that composes, above the depth limit).
-ShadingParts shadingParts(const sl::HitParts& p, bool tracesRays, EnvironmentTerms* environment) {
-    ShadingParts parts;
-    parts.local = p.local;
-    parts.reflected = p.reflected;
-    parts.refracted = p.refracted;
-    parts.reflectivity = p.reflectivity;
-    parts.transparency = p.transparency;
-    parts.composes = p.composes;
-    if (environment && p.composes && tracesRays) *environment = {p.skyReflected, p.skyRefracted};
-    return parts;
-}
-
-}  // namespace
-
 glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                RayCone footprint, const MediumStack& media) const {
     EmbreeTreeBackend backend(*this, stats, footprint.spread);
@@ -90,14 +72,13 @@ glm::vec3 WhittedTracer::shade(const SurfaceHit& hit, glm::vec3 incoming, int de
     return sl::composedParts(p, settings_.blend == BlendRule::Walewski2019);
 }
 
-ShadingParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+sl::HitParts WhittedTracer::shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
                                        TracedEffects effects, RayCone footprint, std::optional<glm::vec3> local,
-                                       EnvironmentTerms* environment, const MediumStack& media) const {
+                                       const MediumStack& media) const {
     EmbreeTreeBackend backend(*this, stats, footprint.spread);
-    return shadingParts(sl::shadeParts(backend, hit, EmbreeTreeBackend::surfaceMaterial(hit), incoming, depth, importance,
-                                       backend.coneWidthAt(footprint.width, 0.0f), media, effectsOf(effects), local.has_value(),
-                                       local.value_or(glm::vec3(0.0f)), false, environment != nullptr),
-                        depth < settings_.maxDepth, environment);
+    return sl::shadeParts(backend, hit, EmbreeTreeBackend::surfaceMaterial(hit), incoming, depth, importance,
+                          backend.coneWidthAt(footprint.width, 0.0f), media, effectsOf(effects), local.has_value(),
+                          local.value_or(glm::vec3(0.0f)), false, false);
 }
 
 }  // namespace hybridlab

@@ -49,29 +49,6 @@ struct TracedEffects {
     bool refraction = true;
 };
 
-// The terms the composition (DESIGN.md "The shading model") combines at a surface: o_m * M + (1 - o_m) * (o_r * R + (1 - o_r) * C).
-struct ShadingParts {
-    glm::vec3 local{0.0f};      // C: local colour
-    glm::vec3 reflected{0.0f};  // M
-    glm::vec3 refracted{0.0f};  // R
-    float reflectivity = 0.0f;  // o_m (the Fresnel reflectance for dielectrics)
-    float transparency = 0.0f;  // o_r = 1 - opacity
-    bool composes = false;      // false: the surface neither reflects nor refracts, or the depth limit was
-                                // reached with DepthLimit::Local; its radiance is C alone
-
-    glm::vec3 composed(BlendRule rule) const {
-        return composes ? compose(reflectivity, transparency, reflected, refracted, local, rule) : local;
-    }
-};
-
-// What the rasterizer's environment mapping puts in place of reflection and refraction at a surface
-// (common/raster/shaders/deferred_lighting.frag): the sky in the reflected and refracted directions
-// (total internal reflection's refraction is the reflection).
-struct EnvironmentTerms {
-    glm::vec3 reflected{0.0f};
-    glm::vec3 refracted{0.0f};
-};
-
 class EmbreeTreeBackend;
 
 class WhittedTracer {
@@ -102,15 +79,15 @@ public:
     glm::vec3 shade(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats, RayCone footprint = {},
                     const MediumStack& media = kAmbientMedium) const;
 
-    // shade()'s terms before composition, tracing only `effects` at this surface (deeper hits trace
-    // everything), so that a hybrid technique can substitute or blend its own. `local`: the surface's
-    // local colour C when the caller already has it (a hybrid's lit G-buffer texel, shadowed by the
-    // shadow maps), taken as is rather than shaded again; unset, it is shaded here (with shadow rays
-    // when effects.shadows). An effect not traced takes its environment term; `environment`, when
-    // given, receives both (where parts.composes).
-    ShadingParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
-                            TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt,
-                            EnvironmentTerms* environment = nullptr, const MediumStack& media = kAmbientMedium) const;
+    // shade()'s terms before composition (shading_language::composedParts composes them), tracing
+    // only `effects` at this surface (deeper hits trace everything), so that a hybrid technique can
+    // substitute or blend its own. `local`: the surface's local colour C when the caller already has
+    // it (a hybrid's lit G-buffer texel, shadowed by the shadow maps), taken as is rather than shaded
+    // again; unset, it is shaded here (with shadow rays when effects.shadows). An effect not traced
+    // takes the sky in its direction, as the rasterizer's environment mapping does.
+    shading_language::HitParts shadeParts(const SurfaceHit& hit, glm::vec3 incoming, int depth, float importance, RayStats& stats,
+                                          TracedEffects effects = {}, RayCone footprint = {}, std::optional<glm::vec3> local = std::nullopt,
+                                          const MediumStack& media = kAmbientMedium) const;
 
     // The local colour C (Blinn-Phong, all lights, ray-traced hard shadows) with `normal` facing
     // the viewer and `geometricNormal` on the viewer's side; the diffuse texture filtered over a

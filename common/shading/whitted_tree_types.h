@@ -69,10 +69,10 @@ struct HitShading {
     bool composes;       // false: C alone
     bool tir;            // total internal reflection: R is M
     HitTerm reflected, refracted;
-    vec3 skyReflected, skyRefracted;  // the rasterizer's environment terms (EnvironmentTerms), where asked for
+    vec3 skyReflected, skyRefracted;  // the rasterizer's environment terms, where asked for
 };
 
-// A hit's terms before composition (ShadingParts, EnvironmentTerms): what the hybrids blend or
+// A hit's terms before composition (composedParts composes them): what the hybrids blend or
 // substitute at their first hit.
 struct HitParts {
     vec3 local, reflected, refracted;

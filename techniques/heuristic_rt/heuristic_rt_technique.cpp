@@ -292,9 +292,9 @@ RayStats HeuristicRtTechnique::lightUnmaskedPixels(const RayScene& rays, const G
             return;
         }
         const GBufferSurface surface(g, i, frame.camera);
-        const ShadingParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st, {unselectedShadowRays_, false, false},
-                                                 surface.footprint());
-        pbuffer.at(x, y) = glm::vec4(p.composed(tracer_.blend), 1.0f);
+        const shading_language::HitParts p = tracer.shadeParts(surface.hit(), surface.incoming(), 0, 1.0f, st,
+                                                               {unselectedShadowRays_, false, false}, surface.footprint());
+        pbuffer.at(x, y) = glm::vec4(shading_language::composedParts(p, tracer_.blend == BlendRule::Walewski2019), 1.0f);
     });
 }
 

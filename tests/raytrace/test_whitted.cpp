@@ -12,6 +12,7 @@
 #include "common/core/input_error.h"
 #include "common/raytrace/ray_offset.h"
 #include "common/raytrace/whitted_tracer.h"
+#include "common/shading/whitted_tree.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "techniques/technique.h"
@@ -197,9 +198,9 @@ TEST(Whitted, ALocalColourTheCallerHasIsComposedAsIsWithoutShadowRays) {
     ASSERT_TRUE(rays.intersect(down, 0.0f, kInf, hit));
     const glm::vec3 given(0.1f, 0.2f, 0.3f);
     RayStats withGiven, shaded;
-    const ShadingParts parts = tracer.shadeParts(hit, down.direction, 0, 1.0f, withGiven, {}, {}, given);
+    const shading_language::HitParts parts = tracer.shadeParts(hit, down.direction, 0, 1.0f, withGiven, {}, {}, given);
     expectNear(parts.local, given, 0.0f, "C as given");
-    expectNear(parts.composed(BlendRule::Design), 0.5f * glm::vec3(0, 0, 1) + 0.5f * given, 1e-6f, "composed with the given C");
+    expectNear(shading_language::composedParts(parts, false), 0.5f * glm::vec3(0, 0, 1) + 0.5f * given, 1e-6f, "composed with the given C");
     EXPECT_EQ(withGiven.shadow, 0u);
     EXPECT_EQ(withGiven.reflection, 1u);
     expectNear(tracer.shadeParts(hit, down.direction, 0, 1.0f, shaded).local, glm::vec3(0.5f), 1e-6f, "C shaded");
@@ -266,9 +267,9 @@ TEST(Whitted, ShadeSkipsTheLocalColourOnlyWhereItWeighsNothing) {
                     for (const int depth : {0, 3}) {
                         for (const float importance : {1.0f, 0.3f, 0.05f}) {
                             RayStats always, ifWeighted;
-                            const ShadingParts parts = tracer.shadeParts(hit, incoming, depth, importance, always, {}, footprint);
+                            const shading_language::HitParts parts = tracer.shadeParts(hit, incoming, depth, importance, always, {}, footprint);
                             const glm::vec3 shaded = tracer.shade(hit, incoming, depth, importance, ifWeighted, footprint);
-                            differing += parts.composed(rule) != shaded;
+                            differing += shading_language::composedParts(parts, rule == BlendRule::Walewski2019) != shaded;
                             EXPECT_LE(ifWeighted.shadow, always.shadow);
                             skipped += ifWeighted.shadow < always.shadow;
                         }
