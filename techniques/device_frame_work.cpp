@@ -9,7 +9,7 @@ namespace {
 // The counters of the device work since `before`, where there was any.
 void recordDeviceWork(const DeviceWork& before, FrameResult& result) {
     const DeviceWork work = VulkanDevice::workSoFar() - before;
-    if (work.submissions == 0 && work.readBackBytes == 0 && work.allocations == 0 && work.diagnosticSubmissions == 0) return;
+    if (work == DeviceWork{}) return;
     result.counters["device_submissions"] = static_cast<double>(work.submissions);
     result.counters["device_readback_bytes"] = static_cast<double>(work.readBackBytes);
     result.counters["device_allocations"] = static_cast<double>(work.allocations);

@@ -19,9 +19,8 @@ std::string reasonFor(int error) {
            "(`ulimit -r`, RLIMIT_RTPRIO) to at least " + std::to_string(kTimingRealTimePriority);
 }
 
-}  // namespace
-
-std::vector<pid_t> RealTimePriority::threads() {
+// The ids of this process's threads (/proc/self/task).
+std::vector<pid_t> threads() {
     std::vector<pid_t> out;
     DIR* dir = opendir("/proc/self/task");
     if (!dir) return out;
@@ -29,9 +28,10 @@ std::vector<pid_t> RealTimePriority::threads() {
         if (e->d_name[0] >= '0' && e->d_name[0] <= '9') out.push_back(static_cast<pid_t>(std::atol(e->d_name)));
     }
     closedir(dir);
-    std::sort(out.begin(), out.end());
     return out;
 }
+
+}  // namespace
 
 std::optional<std::string> realTimePriorityUnavailable() {
     const int policy = sched_getscheduler(0);

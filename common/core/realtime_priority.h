@@ -32,9 +32,6 @@ public:
     RealTimePriority(const RealTimePriority&) = delete;
     RealTimePriority& operator=(const RealTimePriority&) = delete;
 
-    // The ids of this process's threads (/proc/self/task).
-    static std::vector<pid_t> threads();
-
 private:
     struct SavedPolicy {
         pid_t thread;

@@ -46,6 +46,7 @@ struct DeviceWork {
         return {submissions - since.submissions, readBackBytes - since.readBackBytes, allocations - since.allocations,
                 diagnosticSubmissions - since.diagnosticSubmissions, diagnosticReadBackBytes - since.diagnosticReadBackBytes};
     }
+    bool operator==(const DeviceWork&) const = default;
 };
 
 // The ray-tracing entry points, which the loader does not export: looked up on the device.
