@@ -28,6 +28,9 @@ PACKAGES=(
   # image formats: EXR, PNG, JPEG, and stb_image for BMP, TGA, GIF, PSD, PNM and HDR; OpenImageIO for
   # the rest (TIFF, PFM, DDS, WebP, ...), in a plugin the program loads only when it meets such a file
   libopenexr-dev libpng-dev libjpeg-dev libstb-dev libopenimageio-dev
+  # the command-line tools that libopenimageio-dev's CMake config names as imported targets (iconvert,
+  # oiiotool, ...): without them find_package(OpenImageIO) stops; the image fixtures' scripts use oiiotool
+  openimageio-tools
   # metrics (SSIM's filtering)
   libopencv-dev
   # tests and benchmarks
