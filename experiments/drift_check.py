@@ -13,8 +13,8 @@ Each alternation measures, per commit:
   - `hybridlab bench --embree-only` on whitted-classic and on sponza-spheres: the reference
     frame, the same rays through RayScene with every hit resolved and nothing shaded (the
     ceiling), and the same rays through bare Embree (medians over --repeats). A commit whose bench
-    lacks --embree-only runs the whole bench with the Vulkan device hidden (VK_ICD_FILENAMES), so
-    that its device sections end at once; its one-thread split still runs, after the lines read.
+    lacks --embree-only is stopped after those lines (its output line-buffered by stdbuf), the
+    Vulkan device hidden (VK_ICD_FILENAMES) in case it gets further.
   - the steady-state frame of rt_only and the hybrids (heuristic_rt, ssr_fallback; their defaults)
     on sponza-spheres: `hybridlab run` of a config written here, --repeats rounds after the
     runner's warm-up, the reference untimed; rt_only's frame and each hybrid's `trace` stage
@@ -73,6 +73,8 @@ QUANTITIES = [
     ("steady.ssr_fallback.trace_ms", "sponza-spheres ssr_fallback trace stage"),
 ]
 
+# bench's line after those read: an older bench (no --embree-only) is stopped there.
+LAST_BENCH_LINE = "resolved / bare Embree"
 BENCH_LINES = {
     "reference_ms": "reference frame",
     "bare_ms": "bare Embree, same rays",
@@ -266,19 +268,28 @@ class Program:
 
     def bench(self, scene, args):
         command = [self.path, "bench", "--scene", scene, "--width", str(args.width), "--height", str(args.height),
-                   "--threads", str(args.threads), "--repeats", str(args.repeats)] + (["--embree-only"] if self.embree_only else [])
+                   "--threads", str(args.threads), "--repeats", str(args.repeats)]
+        if self.embree_only:
+            command.append("--embree-only")
+        else:
+            # An older bench goes on to its one-thread split (seconds a repeat at 1280x720): its
+            # output line-buffered, so that it is stopped once the lines read here are out.
+            command = ["stdbuf", "-oL"] + command
         if args.realtime:
             command = ["chrt", "-f", "50"] + command
-        done = subprocess.run(command, capture_output=True, text=True, env=dict(os.environ, **HIDDEN_DEVICE))
-        if done.returncode != 0 and not self.embree_only:
-            # An older bench may stop on the hidden device after the lines read here.
-            try:
-                return parse_bench(done.stdout)
-            except Failure:
-                pass
-        if done.returncode != 0:
-            raise Failure("%s failed (exit %d): %s" % (" ".join(command), done.returncode, done.stderr.strip()[-2000:]))
-        return parse_bench(done.stdout)
+        bench = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 env=dict(os.environ, **HIDDEN_DEVICE))
+        lines, stopped = [], False
+        for line in bench.stdout:
+            lines.append(line)
+            if not self.embree_only and line.startswith(LAST_BENCH_LINE):
+                bench.terminate()
+                stopped = True
+                break
+        _, errors = bench.communicate()
+        if bench.returncode != 0 and not stopped:
+            raise Failure("%s failed (exit %d): %s" % (" ".join(command), bench.returncode, errors.strip()[-2000:]))
+        return parse_bench("".join(lines))
 
     def steady(self, args, scratch):
         config = os.path.join(scratch, "steady.toml")
@@ -361,7 +372,7 @@ def main(argv):
     programs = {"A": Program("A", base, build(repo, base, args.cache)), "B": Program("B", head, build(repo, head, args.cache))}
     for p in programs.values():
         if not p.embree_only:
-            progress("%s (%s): bench has no --embree-only; it runs whole, the Vulkan device hidden" % (p.name, p.commit[:12]))
+            progress("%s (%s): bench has no --embree-only; it is stopped after the lines read" % (p.name, p.commit[:12]))
     load = os.getloadavg()[0]
     start = time.monotonic()
     measured = measure(programs, args)
