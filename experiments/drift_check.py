@@ -265,6 +265,7 @@ class Program:
         self.name, self.commit, self.path = name, commit, path
         helped = subprocess.run([path, "bench", "--help"], capture_output=True, text=True, env=dict(os.environ, **HIDDEN_DEVICE))
         self.embree_only = "--embree-only" in helped.stdout
+        self.other_loads = []  # the runner's timing.other_load of each steady-state run
 
     def bench(self, scene, args):
         command = [self.path, "bench", "--scene", scene, "--width", str(args.width), "--height", str(args.height),
@@ -306,6 +307,7 @@ class Program:
         with open(os.path.join(out, "results.json")) as f:
             records = json.load(f)
         shutil.rmtree(out, ignore_errors=True)
+        self.other_loads += [r["timing"]["other_load"] for r in records[:1] if (r.get("timing") or {}).get("other_load") is not None]
         return parse_steady(records)
 
 
@@ -380,6 +382,12 @@ def main(argv):
     print("%dx%d, %d alternations (ABBA), %d repeats, bench on %d threads, %s priority; load average %.1f before, %.1f after; %.0f s"
           % (args.width, args.height, args.alternations, args.repeats, args.threads, "real-time" if args.realtime else "normal", load,
              os.getloadavg()[0], time.monotonic() - start))
+    loads = sorted(programs["A"].other_loads + programs["B"].other_loads)
+    if loads:
+        # Load slows settings unequally, which no pairing cancels (experiments/README.md, Timing).
+        print("other processes' load while the runner timed the steady frames: median %.0f%%, max %.0f%% of the cores%s"
+              % (100.0 * statistics.median(loads), 100.0 * loads[-1],
+                 "; a busy machine: ratios spread, take them with their min-max" if loads[-1] > timing.BUSY_MACHINE else ""))
     print("\n".join(table(measured)))
     print("B/A: the median over the alternations of B's time over A's in the same alternation (above 1: B slower)")
 
