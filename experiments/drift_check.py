@@ -346,7 +346,6 @@ def options(argv):
     ap.add_argument("--quick", action="store_true", help="a smoke test: 160x90, 2 alternations, 3 repeats")
     ap.add_argument("--cache", default=os.environ.get("HYBRIDLAB_DRIFT_CACHE") or os.path.expanduser("~/.cache/hybridlab-drift"),
                     help="where the commits are exported and built (default: $HYBRIDLAB_DRIFT_CACHE or %(default)s)")
-    ap.add_argument("--repo", default=os.path.join(HERE, ".."), help=argparse.SUPPRESS)
 
     ap.error = lambda message: (_ for _ in ()).throw(BadInput(message))
     args = ap.parse_args(argv)
@@ -364,7 +363,7 @@ def options(argv):
 
 def main(argv):
     args = options(argv)
-    repo = os.path.abspath(args.repo)
+    repo = os.path.abspath(os.path.join(HERE, ".."))  # the checkout this script is in
     base = resolve_commit(repo, args.base, "--base")
     head = worktree_commit(repo) if args.worktree else resolve_commit(repo, args.head, "--head")
     if args.realtime and not realtime_permitted():

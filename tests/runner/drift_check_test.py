@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """experiments/drift_check.py without building anything: bench's text and the runner's records
-read, the paired ratios and their table, the ABBA order, the steady-state config, and bad options
-refused with exit status 2 before any build.
+read, the paired ratios and their table, the ABBA order, the steady-state config, the working
+tree's commit, and bad options refused with exit status 2 before any build.
 
     drift_check_test.py        (standard library unittest; no hybridlab program needed)"""
 import os
 import subprocess
 import sys
+import tempfile
 import tomllib
 import unittest
 
@@ -105,6 +106,27 @@ class PairedRatios(unittest.TestCase):
 
     def test_abba_order(self):
         self.assertEqual([dc.alternation_order(k) for k in range(4)], [("A", "B"), ("B", "A"), ("A", "B"), ("B", "A")])
+
+
+class WorktreeCommit(unittest.TestCase):
+    def test_uncommitted_changes_make_a_commit_of_their_own(self):
+        with tempfile.TemporaryDirectory() as repo:
+            def git(*args):
+                return subprocess.run(["git", "-C", repo, "-c", "user.name=t", "-c", "user.email=t@t"] + list(args), check=True,
+                                      capture_output=True, text=True).stdout.strip()
+            git("init", "-q")
+            with open(os.path.join(repo, "walk.h"), "w") as f:
+                f.write("before\n")
+            git("add", "walk.h")
+            git("commit", "-q", "-m", "one")
+            head = git("rev-parse", "HEAD")
+            self.assertEqual(dc.worktree_commit(repo), head)  # nothing changed: HEAD itself
+            with open(os.path.join(repo, "walk.h"), "w") as f:
+                f.write("after\n")
+            changed = dc.worktree_commit(repo)
+            self.assertNotEqual(changed, head)
+            self.assertEqual(git("show", changed + ":walk.h"), "after")
+            self.assertEqual(git("status", "--porcelain"), "M walk.h")  # the working tree left as it was
 
 
 class BadOptions(unittest.TestCase):
