@@ -47,6 +47,7 @@ struct BenchOptions {
     int threads = 0;
     double budget = 0.0;              // heuristic_rt's in the device traces; 0: 1e6 scaled to the image's area
     bool deviceTracesOnly = false;
+    bool embreeOnly = false;
 };
 
 struct Summary {
@@ -447,6 +448,7 @@ void run(const BenchOptions& o) {
     // A shader that cost nothing would still resolve every hit: the reference's ceiling.
     std::printf("resolved / bare Embree   %10.1f %% (the reference's ceiling: every hit resolved, nothing shaded)\n",
                 100.0 * resolvedRate / rawRate);
+    if (o.embreeOnly) return;
     benchSplit(o, context, *whitted, rays, request, logged);
     benchDevice(o, context, rays, request, logged, ref.median);
     benchDeviceTraces(o, context, request);
@@ -467,7 +469,12 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
     cmd->add_option("--budget", o->budget, "heuristic_rt's budget in the device traces (default: 1e6 scaled to the image's area)")
         ->check(CLI::Range(1.0, 1e18));
-    cmd->add_flag("--device-traces-only", o->deviceTracesOnly, "Only the device traces per ray (no Embree measurements)");
+    auto* deviceTracesOnly =
+        cmd->add_flag("--device-traces-only", o->deviceTracesOnly, "Only the device traces per ray (no Embree measurements)");
+    // For a drift check between commits (experiments/drift_check.py): minutes of lavapipe spared.
+    cmd->add_flag("--embree-only", o->embreeOnly,
+                  "Only the reference against bare Embree and its ceiling (no one-thread split, no Vulkan device)")
+        ->excludes(deviceTracesOnly);
     cmd->callback([o] { run(*o); });
 }
 

@@ -3,6 +3,7 @@
 // nothing shaded, and the one-thread split of the frame.
 #include <regex>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -49,6 +50,27 @@ TEST(CliBench, LogsEveryRayOfTheReferenceAndComparesItsThroughput) {
     EXPECT_LT(inside, 3.0 * bare);
     EXPECT_GT(std::stod(m[6]), 0.0);  // the same frame with the clock off: what the clock's readings cost
     EXPECT_CONTAINS(r.out, "vulkan: not measured");  // no device here: said, not failed
+}
+
+// --embree-only: the Embree lines alone, so that a drift check between commits spends nothing on
+// the one-thread split or a device; it and --device-traces-only exclude each other.
+TEST(CliBench, EmbreeOnlyStopsAfterTheCeiling) {
+    const std::vector<std::string> args = {"bench", "--scene", "whitted-classic", "--width", "48", "--height", "27", "--repeats", "2",
+                                           "--threads", "2", "--embree-only"};
+    const test::CliResult r = test::runHybridlab(args, {{"VK_ICD_FILENAMES", "/nonexistent"}});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    EXPECT_CONTAINS(r.out, "reference frame");
+    EXPECT_CONTAINS(r.out, "bare Embree, same rays");
+    EXPECT_CONTAINS(r.out, "resolved / bare Embree");
+    EXPECT_EQ(r.out.find("one thread:"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("vulkan"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("device traces"), std::string::npos) << r.out;
+
+    std::vector<std::string> both = args;
+    both.push_back("--device-traces-only");
+    const test::CliResult refused = test::runHybridlab(both);
+    EXPECT_EQ(refused.exitStatus, 2);
+    EXPECT_CONTAINS(refused.err, "--embree-only");
 }
 
 }  // namespace
