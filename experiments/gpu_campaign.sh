@@ -5,23 +5,30 @@
 #   gpu_campaign.sh bundle [FILE.tar.xz|DIR]  (here, in the checkout) the portable bundle with the
 #                                          campaign's configs, their models and this script
 #                                          (default out/hybridlab-gpu-campaign.tar.xz)
-#   gpu_campaign.sh run OUT [--scale S] [--deadline-s N] [--max-mib M] [--only A,B] [--cache DIR]
-#                           [--skip-scenes A,B] [--bench-s N] [--repeat NAME:K|none]
+#   gpu_campaign.sh run OUT [--scale S] [--limit-s N] [--deadline-s N] [--pack DIR] [--max-mib M]
+#                           [--only A,B] [--cache DIR] [--skip-scenes A,B] [--bench-s N]
+#                           [--repeat NAME:K|none] [--launch compact|full]
 #                                          the device traces per ray (`hybridlab bench`, OUT/bench.txt,
 #                                          at most --bench-s, default 60; 0: none), every config of
 #                                          configs/gpu_campaign/ into OUT/NAME, then NAME K more times
-#                                          (default gbuffer_rays_gpu:2) into OUT/repeats/run-2.. for the
+#                                          (default gbuffer_rays_gpu:1) into OUT/repeats/run-2.. for the
 #                                          verdict's repeatability, then each one's table and report
-#                                          where the Python packages are; --skip-scenes runs copies
-#                                          without those scenes (OUT/configs/)
+#                                          where the Python packages are; all of it, OUT packed into
+#                                          DIR/OUT.tar.xz.aa.. (--pack) included, within --limit-s
 #   gpu_campaign.sh finish OUT             the tables and reports of a campaign folder, on a machine
 #                                          set up by setup.sh (after a GPU machine that lacks them)
 #
 # `run` works from the checkout (build/hybridlab, experiments/configs/gpu_campaign/) or from the
 # bundle (its hybridlab and configs/; the tables and reports then read the checkout in the working
-# folder or $HYBRIDLAB_CHECKOUT). It stops starting configs at --deadline-s (default 450: the
-# campaign in 8 minutes) and stops a config still running then, keeping its finished runs; then it
-# keeps OUT under --max-mib (default 60) by dropping whole result sets' images, largest set first.
+# folder or $HYBRIDLAB_CHECKOUT). It ends, packed, within --limit-s (default 480): every program it
+# starts is stopped at the limit, so that a hung driver cannot cost the results. It stops starting
+# configs at --deadline-s (default: the limit less 30 s, for packing) and stops a config still
+# running then, keeping its finished runs; then it keeps OUT under --max-mib (default 60) by
+# dropping whole result sets' images, largest set first. Exit status: 0 the campaign ran (configs
+# stopped at the deadline included), 2 bad arguments, 3 a folder could not be written, 4 the bench
+# failed (the campaign stopped there: its log is printed; `--launch full` is the fallback that
+# launches the hybrids' rays one invocation a texel), 5 this machine has an NVIDIA GPU that Vulkan
+# does not find (the loader's own account in OUT/logs/vulkan_loader.log).
 set -uo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
@@ -41,7 +48,7 @@ CAMPAIGN=(
 )
 
 die() { echo "gpu_campaign: $*" >&2; exit 2; }
-usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
 
 # Where the program and the configs are: a bundle has both beside this script.
 if [ -x "$here/hybridlab" ] && [ -d "$here/configs" ]; then
@@ -87,16 +94,25 @@ without_scenes() {
     END { flush() }' "$1"
 }
 
+# The Python scripts, stopped at $PYTHON_UNTIL (seconds since the epoch) where it is set.
+py() {
+  if [ -n "${PYTHON_UNTIL:-}" ]; then
+    timeout --signal=TERM --kill-after=5 $((PYTHON_UNTIL - $(date +%s) > 1 ? PYTHON_UNTIL - $(date +%s) : 1)) "$PYTHON" "$@"
+  else
+    "$PYTHON" "$@"
+  fi
+}
+
 # The table and the report of one result set, each beside it, with the device record under the
 # table (the table scripts print it). report.py is what `hybridlab report` runs, called directly
 # because a bundle's program names the build machine's checkout.
 tables_and_report() {
   local dir=$1 table=$2
-  "$PYTHON" "$CHECKOUT/paper_figures/$table" "$dir" --out "$dir/tables.md" >/dev/null &&
+  py "$CHECKOUT/paper_figures/$table" "$dir" --out "$dir/tables.md" >/dev/null &&
     echo "  table:  $dir/tables.md" || echo "  table:  $table failed (above)"
   if [ ! -d "$dir/images" ]; then
     echo "  report: none, the images were dropped to fit the size limit"
-  elif "$PYTHON" "$CHECKOUT/report/report.py" "$dir" --out "$dir/report" >/dev/null; then
+  elif py "$CHECKOUT/report/report.py" "$dir" --out "$dir/report" >/dev/null; then
     echo "  report: $dir/report/index.html"
   else
     echo "  report: report.py failed (above)"
@@ -132,28 +148,59 @@ cmd_bundle() {
   echo "run: $(basename "$folder")/gpu_campaign.sh run OUT   (from the folder that holds it)"
 }
 
+# A config whose hybrids on the device (heuristic_rt and ssr_fallback with rays = "vulkan") launch
+# their rays one invocation a texel (launch = "full") instead of over the classified texels.
+with_full_launch() {
+  awk '
+    /^\[\[techniques\]\]/ { hybrid = 0; intech = 1 }
+    /^\[/ && !/^\[\[techniques\]\]/ { intech = 0 }
+    intech && /^name *= *"(heuristic_rt|ssr_fallback)"/ { hybrid = 1 }
+    intech && hybrid && /^params *= *\{/ && /rays *= *"vulkan"/ && !/launch *=/ { sub(/\{ */, "{ launch = \"full\", ") }
+    { print }' "$1"
+}
+
+at_most() { echo $(($1 < $2 ? $1 : $2)); }
+
+# Runs "$@" for at most $1 seconds (TERM, then KILL 5 s later); exit status 124 without running it
+# when no time is left.
+bounded() {
+  local seconds=$1
+  shift
+  [ "$seconds" -ge 1 ] || return 124
+  timeout --signal=TERM --kill-after=5 "$seconds" "$@"
+}
+
 cmd_run() {
   local out=${1:-}
   [ -n "$out" ] && [ "${out#-}" = "$out" ] || die "run: expected an output folder first (gpu_campaign.sh run OUT ...)"
   shift
-  local scale=1 deadline=450 maxmib=60 only="" cache="" skip="" bench_s=60 repeat=gbuffer_rays_gpu:2
+  local scale=1 limit=480 deadline="" maxmib=60 only="" cache="" skip="" bench_s=60 repeat=gbuffer_rays_gpu:1 pack="" launch=compact
   while [ $# -gt 0 ]; do
     case $1 in
       --scale) scale=${2:-}; shift 2 || die "--scale needs a value" ;;
+      --limit-s) limit=${2:-}; shift 2 || die "--limit-s needs a value" ;;
       --deadline-s) deadline=${2:-}; shift 2 || die "--deadline-s needs a value" ;;
+      --pack) pack=${2:-}; shift 2 || die "--pack needs a value" ;;
       --max-mib) maxmib=${2:-}; shift 2 || die "--max-mib needs a value" ;;
       --only) only=${2:-}; shift 2 || die "--only needs a value" ;;
       --cache) cache=${2:-}; shift 2 || die "--cache needs a value" ;;
       --skip-scenes) skip=${2:-}; shift 2 || die "--skip-scenes needs a value" ;;
       --bench-s) bench_s=${2:-}; shift 2 || die "--bench-s needs a value" ;;
       --repeat) repeat=${2:-}; shift 2 || die "--repeat needs a value" ;;
-      *) die "run: unknown argument '$1' (expected --scale, --deadline-s, --max-mib, --only, --cache, --skip-scenes, --bench-s, --repeat)" ;;
+      --launch) launch=${2:-}; shift 2 || die "--launch needs a value" ;;
+      *) die "run: unknown argument '$1' (expected --scale, --limit-s, --deadline-s, --pack, --max-mib, --only, --cache, --skip-scenes, --bench-s, --repeat, --launch)" ;;
     esac
   done
+  # The packing's share of the limit (xz -1 of 60 MiB takes seconds on 16 cores, 10 s on 2).
+  local pack_s=30
+  [[ $limit =~ ^[0-9]+$ ]] && [ "$limit" -gt "$pack_s" ] || die "--limit-s $limit: expected a whole number of seconds above $pack_s"
+  [ -n "$deadline" ] || deadline=$((limit - pack_s))
   [[ $deadline =~ ^[0-9]+$ ]] && [ "$deadline" -gt 0 ] || die "--deadline-s $deadline: expected a whole number of seconds above 0"
+  [ "$deadline" -le $((limit - pack_s)) ] || die "--deadline-s $deadline: past --limit-s $limit less the $pack_s s its packing takes"
   [[ $maxmib =~ ^[0-9]+$ ]] && [ "$maxmib" -gt 0 ] || die "--max-mib $maxmib: expected a whole number of MiB above 0"
   [[ $scale =~ ^(0?\.[0-9]+|1(\.0*)?)$ ]] && [ "$scale" != "0" ] || die "--scale $scale: expected a number in (0, 1]"
   [[ $bench_s =~ ^[0-9]+$ ]] || die "--bench-s $bench_s: expected a whole number of seconds (0: no bench)"
+  [[ $launch =~ ^(compact|full)$ ]] || die "--launch $launch: expected compact (the hybrids' default) or full"
   local repeat_name="" repeat_runs=0
   if [ "$repeat" != none ]; then
     [[ $repeat =~ ^([a-z0-9_]+):([1-9])$ ]] || die "--repeat $repeat: expected NAME:K (K from 1 to 9 more runs of config NAME) or none"
@@ -170,6 +217,10 @@ cmd_run() {
   if [ -e "$out" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then die "$out: exists and is not empty; choose another folder"; fi
   mkdir -p "$out/logs" || exit 3
   out=$(cd "$out" && pwd -P)
+  if [ -n "$pack" ]; then
+    mkdir -p "$pack" || exit 3
+    pack=$(cd "$pack" && pwd -P)
+  fi
   # References and layered-EM bakes are made on the campaign's machine (they are Embree's work,
   # on its CPUs), in a cache of the campaign's own, removed at the end, unless --cache names one
   # ($HYBRIDLAB_CACHE's layout: references/, layered-em/).
@@ -177,13 +228,49 @@ cmd_run() {
   [ -n "$cache" ] || { cache=$out/cache; own_cache=1; }
   export HYBRIDLAB_CACHE=$cache
 
-  local start=$SECONDS estimate=0 spent_est=0 spent=0
+  local start=$SECONDS estimate=0 spent_est=0 spent=0 status summary=()
+  # Seconds left to the deadline, and to the start of the packing.
+  to_deadline() { echo $((deadline - (SECONDS - start))); }
+  to_packing() { echo $((limit - pack_s - (SECONDS - start))); }
+  # ... and to the last seconds of the limit, which the packing keeps in any case.
+  to_last() { echo $((limit - 15 - (SECONDS - start))); }
+  # The end of the campaign, early or not: the own cache removed, the summary, OUT packed; exit $1.
+  conclude() {
+    [ "$own_cache" -eq 0 ] || rm -rf "$cache"
+    {
+      echo
+      echo "campaign: $((SECONDS - start)) s, $(mib "$out") MiB in $out"
+      for line in "${summary[@]}"; do echo "  $line"; done
+    } | tee -a "$out/campaign.log"
+    if [ -n "$pack" ]; then
+      local name parent
+      name=$(basename "$out") parent=$(dirname "$out")
+      rm -f "$pack/$name.tar.xz."*
+      # At least 10 s, past the limit if it must: an unpacked campaign does not come back.
+      # shellcheck disable=SC2016  # the inner script's own arguments
+      if bounded $((limit - (SECONDS - start) > 10 ? limit - (SECONDS - start) : 10)) \
+           bash -c 'set -o pipefail; tar -C "$1" -cf - "$2" | xz -T0 -1 | split -b 15M - "$3/$2.tar.xz."' _ "$parent" "$name" "$pack"; then
+        echo "packed: $(cd "$pack" && echo "$name".tar.xz.*) ($(du -cm "$pack/$name".tar.xz.* | tail -1 | cut -f1) MiB in $pack," \
+             "$((SECONDS - start)) s in all)"
+      else
+        echo "packing $out into $pack failed or was stopped"
+        [ "$1" -ne 0 ] || set -- 3
+      fi
+    fi
+    exit "$1"
+  }
+
   for entry in "${selected[@]}"; do set -- $entry; estimate=$((estimate + $4)); done
   {
-    echo "gpu_campaign: ${#selected[@]} configs into $out, scale $scale, deadline ${deadline} s, at most $maxmib MiB"
+    echo "gpu_campaign: ${#selected[@]} configs into $out, scale $scale, deadline ${deadline} s, limit ${limit} s," \
+         "at most $maxmib MiB$([ "$launch" = compact ] || echo ", the hybrids' rays launched full")"
     echo "program: $HYBRIDLAB"
-    "$HYBRIDLAB" --version
+    bounded "$(at_most 60 "$(to_packing)")" "$HYBRIDLAB" --version
   } | tee "$out/campaign.log"
+  # The results on disk: a memory file system may be small, and is lost with the machine anyway.
+  case $(stat -f -c %T "$out" 2>/dev/null) in
+    tmpfs|ramfs) echo "warning: $out is on a memory file system; a folder on disk keeps what does not fit there" | tee -a "$out/campaign.log" ;;
+  esac
   # An NVIDIA driver mounted into a container registers its Vulkan driver outside the loader's
   # search path; without its Vulkan device the campaign would measure nothing, so it stops here.
   local icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
@@ -191,29 +278,48 @@ cmd_run() {
      ! ls /usr/share/vulkan/icd.d/nvidia* /etc/vulkan/icd.d/nvidia* >/dev/null 2>&1; then
     export VK_DRIVER_FILES=$icd
   fi
-  "$HYBRIDLAB" --version --json >"$out/device.json" 2>/dev/null
+  bounded "$(at_most 60 "$(to_packing)")" "$HYBRIDLAB" --version --json >"$out/device.json" 2>"$out/logs/device.log"
   if command -v nvidia-smi >/dev/null && ! grep -q '"vulkan_device_type": "[a-z]*_gpu"' "$out/device.json"; then
-    die "this machine has an NVIDIA GPU, but Vulkan found $(grep '"vulkan_device"' "$out/device.json" | cut -d'"' -f4):" \
-        "its driver needs glvnd's libraries (libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2; experiments/README.md)"
+    # The loader's own account of the drivers it found and refused, kept for the next try.
+    VK_LOADER_DEBUG=all bounded "$(at_most 60 "$(to_packing)")" "$HYBRIDLAB" --version --json >/dev/null 2>"$out/logs/vulkan_loader.log"
+    echo "gpu_campaign: this machine has an NVIDIA GPU, but Vulkan found $(grep '"vulkan_device"' "$out/device.json" | cut -d'"' -f4):" \
+         "its driver needs glvnd's libraries (libglvnd0 libgl1 libglx0 libegl1 libopengl0 libgles2; experiments/README.md)." \
+         "The loader's account: $out/logs/vulkan_loader.log; its drivers and errors:" | tee -a "$out/campaign.log"
+    grep -E 'ICD manifest|ICD drivers named|ERROR|WARNING|[Ff]ail|Using "' "$out/logs/vulkan_loader.log" | awk '!seen[$0]++' |
+      tail -n 25 | cut -c1-300 | tee -a "$out/campaign.log"
+    summary+=("stopped: no NVIDIA Vulkan device (logs/vulkan_loader.log)")
+    conclude 5
   fi
   echo "estimate: about $estimate s on an H100/H200 at full size (updated as configs finish)" | tee -a "$out/campaign.log"
 
-  local status summary=()
   # The device traces per ray by kind, each hybrid beside rt_only (`hybridlab bench`), first: it is
-  # short, and what the campaign's tables cannot show.
+  # short, what the campaign's tables cannot show, and the first compacted launch on the device,
+  # so a failure here stops the campaign before it spends minutes on configs that would fail alike.
   if [ "$bench_s" -gt 0 ]; then
-    local bw bh t0=$SECONDS
+    local bw bh t0=$SECONDS bench_limit
     bw=$(scaled_size 1280 "$scale") bh=$(scaled_size 720 "$scale")
-    echo "bench: the device traces per ray, sponza-spheres at ${bw}x${bh}, at most ${bench_s} s" | tee -a "$out/campaign.log"
-    timeout --signal=TERM --kill-after=10 "$bench_s" "$HYBRIDLAB" bench --scene sponza-spheres --width "$bw" --height "$bh" \
-      --repeats 5 --device-traces-only >"$out/bench.txt" 2>"$out/logs/bench.log"
+    bench_limit=$(at_most "$bench_s" "$(to_deadline)")
+    echo "bench: the device traces per ray, sponza-spheres at ${bw}x${bh}, at most ${bench_limit} s" | tee -a "$out/campaign.log"
+    bounded "$bench_limit" "$HYBRIDLAB" bench --scene sponza-spheres --width "$bw" --height "$bh" \
+      --repeats 5 --device-traces-only --launch "$([ "$launch" = full ] && echo full || echo both)" >"$out/bench.txt" 2>"$out/logs/bench.log"
     status=$?
-    if [ "$status" -eq 0 ]; then
+    if [ "$status" -eq 0 ] && grep -q "^device traces per ray" "$out/bench.txt" && ! grep -q "not measured" "$out/bench.txt"; then
       summary+=("bench: $((SECONDS - t0)) s, $out/bench.txt")
+      echo "  ${summary[-1]}" | tee -a "$out/campaign.log"
     else
-      summary+=("bench: stopped or failed (exit status $status) after $((SECONDS - t0)) s: $out/logs/bench.log")
+      local what="failed (exit status $status)"
+      [ "$status" -ne 0 ] || what="measured no traces"
+      [ "$status" -ne 124 ] && [ "$status" -ne 137 ] || what="stopped at its ${bench_limit} s"
+      summary+=("bench: $what after $((SECONDS - t0)) s: the campaign stopped there")
+      {
+        echo "  ${summary[-1]}; its output and log (logs/bench.log):"
+        tail -n 15 "$out/bench.txt" | sed 's/^/  | /'
+        grep -v '^warning:' "$out/logs/bench.log" | tail -n 25 | cut -c1-300 | sed 's/^/  | /'
+        [ "$launch" = full ] ||
+          echo "  the fallback, every hybrid's rays launched one invocation a texel: gpu_campaign.sh run OUT2 --launch full (same options)"
+      } | tee -a "$out/campaign.log"
+      conclude 4
     fi
-    echo "  ${summary[-1]}" | tee -a "$out/campaign.log"
   fi
 
   local k=0
@@ -222,9 +328,12 @@ cmd_run() {
     set -- $entry
     local name=$1 config=$CONFIGS/$2 est=$4
     k=$((k + 1))
-    if [ -n "$skip" ]; then
+    # The copies run (OUT/configs/): without the skipped scenes, with the full launch.
+    if [ -n "$skip" ] || [ "$launch" = full ]; then
       mkdir -p "$out/configs"
-      without_scenes "$config" "$skip" >"$out/configs/$2"
+      if [ -n "$skip" ]; then without_scenes "$config" "$skip"; else cat "$config"; fi >"$out/configs/$2.tmp"
+      if [ "$launch" = full ]; then with_full_launch "$out/configs/$2.tmp"; else cat "$out/configs/$2.tmp"; fi >"$out/configs/$2"
+      rm -f "$out/configs/$2.tmp"
       config=$out/configs/$2
       if ! grep -q '^\[\[scenes\]\]' "$config"; then
         summary+=("$name: skipped, every scene of it is in --skip-scenes")
@@ -232,7 +341,7 @@ cmd_run() {
       fi
     fi
     local elapsed=$((SECONDS - start)) left
-    left=$((deadline - elapsed))
+    left=$(to_deadline)
     # The estimate scaled by how the finished configs went against theirs (a CPU, a smaller scale).
     local scaled=$est
     [ "$spent_est" -gt 0 ] && scaled=$((est * spent / spent_est))
@@ -245,8 +354,7 @@ cmd_run() {
       tee -a "$out/campaign.log"
     local t0=$SECONDS
     # The runner's progress lines (a group at a time) shown as they come, and kept in logs/.
-    timeout --signal=TERM --kill-after=10 "$left" \
-      "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" 2>&1 |
+    bounded "$left" "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" 2>&1 |
       tee "$out/logs/$name.log" | grep --line-buffered -v '^warning:' | sed -u 's/^/  /'
     status=${PIPESTATUS[0]}
     local took=$((SECONDS - t0))
@@ -257,7 +365,7 @@ cmd_run() {
     # Stopped (the deadline) or failed: the finished runs stay, and results.json is written from
     # them as the runner does when it stops (no rendering).
     if [ "$status" -ne 0 ] && [ "$runs" -gt 0 ] && [ ! -f "$out/$name/results.json" ]; then
-      "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" --quiet --resume --max-runs 0 \
+      bounded "$(at_most 60 "$(to_last)")" "$HYBRIDLAB" run "$config" --out "$out/$name" --scale "$scale" --quiet --resume --max-runs 0 \
         >>"$out/logs/$name.log" 2>&1
     fi
     if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
@@ -281,13 +389,14 @@ cmd_run() {
       mkdir -p "$out/repeats" && ln -sfn "../$repeat_name" "$out/repeats/run-1"
       local i
       for ((i = 2; i <= repeat_runs + 1; ++i)); do
-        local left=$((deadline - (SECONDS - start))) t0=$SECONDS
+        local left t0=$SECONDS
+        left=$(to_deadline)
         if [ "$left" -lt $((ran_seconds[$repeat_name] + 15)) ]; then
           summary+=("repeats: $repeat_name run $i skipped, ${left} s to the deadline")
           break
         fi
         echo "repeat: $repeat_name run $i; ${left} s to the deadline" | tee -a "$out/campaign.log"
-        timeout --signal=TERM --kill-after=10 "$left" "$HYBRIDLAB" run "${ran_config[$repeat_name]}" --out "$out/repeats/run-$i" \
+        bounded "$left" "$HYBRIDLAB" run "${ran_config[$repeat_name]}" --out "$out/repeats/run-$i" \
           --scale "$scale" --quiet >"$out/logs/$repeat_name-run-$i.log" 2>&1
         status=$?
         rm -rf "$out/repeats/run-$i/images" "$out/repeats/run-$i/references"
@@ -302,14 +411,18 @@ cmd_run() {
   fi
   [ "$own_cache" -eq 0 ] || rm -rf "$cache"
 
-  # The tables and reports, before any image is dropped.
+  # The tables and reports, before any image is dropped, where this machine can and the limit
+  # leaves the time (else `finish` writes them from what comes back).
   local missing
   missing=$(python_missing)
-  if [ -z "$missing" ]; then
-    finish_sets "$out"
-  else
+  if [ -n "$missing" ]; then
     echo "tables and reports: not here ($missing); on a machine set up by setup.sh: gpu_campaign.sh finish OUT" |
       tee -a "$out/campaign.log"
+  elif [ "$(to_packing)" -lt 10 ]; then
+    echo "tables and reports: no time left before the limit (${limit} s); gpu_campaign.sh finish OUT writes them" |
+      tee -a "$out/campaign.log"
+  else
+    PYTHON_UNTIL=$(($(date +%s) + $(to_packing))) finish_sets "$out"
   fi
 
   # Under the size limit: whole result sets' images dropped, the largest set first.
@@ -321,12 +434,7 @@ cmd_run() {
     rm -rf "${set}images" "${set}references"
     echo "dropped the images of $(basename "$set") to stay under $maxmib MiB" | tee -a "$out/campaign.log"
   done
-
-  {
-    echo
-    echo "campaign: $((SECONDS - start)) s, $(mib "$out") MiB in $out"
-    for line in "${summary[@]}"; do echo "  $line"; done
-  } | tee -a "$out/campaign.log"
+  conclude 0
 }
 
 finish_sets() {
@@ -354,7 +462,7 @@ repeatability() {
     echo "repeats: $runs run(s) of $(readlink "$dir/run-1"): nothing to compare"
     return 0
   fi
-  "$PYTHON" "$CHECKOUT/experiments/verdict_repeatability.py" --reuse --out "$dir" --runs "$runs" --speedups rt_only \
+  py "$CHECKOUT/experiments/verdict_repeatability.py" --reuse --out "$dir" --runs "$runs" --speedups rt_only \
     >"$dir/verdicts.txt" 2>&1 &&
     echo "repeats: $(grep -E 'verdict rows identical' "$dir/verdicts.txt") ($dir/verdicts.txt)" ||
     echo "repeats: verdict_repeatability.py failed: $dir/verdicts.txt"

@@ -3,7 +3,7 @@ record (processor, Vulkan device and driver, Embree, threads, system) and the ra
 runs (their parameter `rays`; Embree where a run does not name one), and the fraction of the
 configured size the set was rendered at (`hybridlab run --scale`) where not all of it. A raster that ran on a
 software Vulkan device (vulkan_device_type "cpu", e.g. Mesa's lavapipe) is flagged: its frame times
-are not a GPU's."""
+are not a GPU's; so is a GPU that runs graphics on few of its units (results.graphics_caveat)."""
 import html
 
 import results as rs
@@ -41,6 +41,7 @@ def lines(result_dir, records):
     if device.get("vulkan_device_type") == "cpu":
         warning = ("The raster ran on a software Vulkan device (%s): its frame times are a CPU's, not a GPU's, and the "
                    "rasterizing techniques' speed-ups are not what a GPU would give." % device.get("vulkan_device", "?"))
+    warning = warning or rs.graphics_caveat(device)
     return rows, warning
 
 

@@ -307,6 +307,16 @@ def device_summary(d):
         g("embree_version"), g("tbb_threads"), g("lp_num_threads"), g("os"), g("program_version"))
 
 
+def graphics_caveat(device):
+    """What a device's build does to the hybrids' times, where it is known to matter: NVIDIA's
+    H100 and H200 (and GH200) are built for compute and run graphics on few of their units, which
+    slows the hybrids' raster stages, and not rt_only's frame of rays alone. None for other devices."""
+    if re.search(r"\bG?H[12]00\b", str((device or {}).get("vulkan_device", ""))):
+        return ("An H100/H200 runs graphics on few of its units (fragment work was measured 30x slower than compute there), "
+                "which handicaps the hybrids' raster stages against rt_only.")
+    return None
+
+
 def devices(result_dir, rows=()):
     """The devices a result set was measured on: each run's own where a merge kept them (shards from
     several devices), else experiment.json's one; [None] when the set predates device records."""
@@ -345,6 +355,9 @@ def device_line(result_dir, rows=()):
     scale = resolution_scale(result_dir)
     if scale != 1.0:
         line += "; rendered at %g of the configured size (hybridlab run --scale %g)" % (scale, scale)
+    caveats = [c for c in map(graphics_caveat, ds) if c]
+    if caveats:
+        line += ". " + caveats[0]
     return line
 
 

@@ -61,7 +61,7 @@ DeviceGBufferTracer::DeviceGBufferTracer(const DeviceRayScene& scene, const std:
 void DeviceGBufferTracer::setObjectData(const std::vector<std::uint32_t>& data) {
     const VkDeviceSize bytes = std::max<std::size_t>(1, data.size()) * sizeof(std::uint32_t);
     if (!objectData_.valid() || objectData_.size() != bytes) {
-        objectData_ = GpuBuffer(pipeline_.device(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+        objectData_ = GpuBuffer(pipeline_.device(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
         pipeline_.inputs().writeBuffer(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, objectData_.buffer());
     }
     if (!data.empty()) objectData_.write(data.data(), data.size() * sizeof(std::uint32_t));

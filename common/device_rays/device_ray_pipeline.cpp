@@ -116,11 +116,14 @@ std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, cons
     std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
     std::memcpy(&table[hitOffset + stride], &handles[4 * handleSize], handleSize);
     // The table's start must meet the base alignment too: allocate one alignment more and offset.
-    program->bindingTable = GpuBuffer(dev, tableSize + base, VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                              GpuBuffer::Memory::HostVisible);
+    // Device-local: every ray reads its records.
+    program->bindingTable = GpuBuffer(dev, tableSize + base,
+                                      VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      GpuBuffer::Memory::DeviceLocal);
     const VkDeviceAddress address = program->bindingTable.deviceAddress(dev);
     const VkDeviceSize shift = alignUp(address, base) - address;
-    program->bindingTable.write(table.data(), tableSize, shift);
+    program->bindingTable.upload(dev, table.data(), tableSize, shift);
     program->raygen = {address + shift + raygenOffset, stride, stride};
     program->miss = {address + shift + missOffset, stride, 2 * stride};
     program->hit = {address + shift + hitOffset, stride, 2 * stride};
@@ -131,7 +134,7 @@ std::shared_ptr<const CompiledRayPipeline> compile(const VulkanDevice& dev, cons
 
 DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::string& raygenShader,
                                      const std::vector<VkDescriptorSetLayoutBinding>& inputs)
-    : device_(scene.device()), timer_(scene.device(), kLaunchStages, /*statistics=*/false) {
+    : scene_(scene), device_(scene.device()), timer_(scene.device(), kLaunchStages, /*statistics=*/false) {
     const VulkanDevice& dev = device_;
     const std::uint32_t textureCount = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(scene.scene().textures.size()));
     {
@@ -153,7 +156,7 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
     const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     descriptors_ = DescriptorSet(dev, descriptorBindings(textureCount));
     if (!inputs.empty()) inputs_ = DescriptorSet(dev, inputs);
-    frame_ = GpuBuffer(dev, sizeof(DeviceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    frame_ = GpuBuffer(dev, sizeof(DeviceFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
     counters_ = GpuBuffer(dev, kRayCounterCount * sizeof(std::uint32_t),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                           GpuBuffer::Memory::DeviceLocal);
@@ -183,7 +186,7 @@ DeviceRayPipeline::DeviceRayPipeline(const DeviceRayScene& scene, const std::str
     }
     descriptors_.writeImages(10, sampler, textures);
     output(sizeof(glm::vec4));
-    setReplayRays(GpuBuffer(dev, sizeof(DeviceRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::HostVisible));
+    setReplayRays(GpuBuffer(dev, sizeof(DeviceRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Memory::DeviceLocal));
 }
 
 const GpuBuffer& DeviceRayPipeline::output(VkDeviceSize bytes) {
@@ -194,6 +197,20 @@ const GpuBuffer& DeviceRayPipeline::output(VkDeviceSize bytes) {
         descriptors_.writeBuffer(8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output_.buffer());
     }
     return output_;
+}
+
+std::vector<std::pair<std::string, VkMemoryPropertyFlags>> DeviceRayPipeline::bufferMemory() const {
+    return {{"vertices", scene_.vertices().memoryProperties()},
+            {"indices", scene_.indices().memoryProperties()},
+            {"materials", scene_.materials().memoryProperties()},
+            {"lights", scene_.lights().memoryProperties()},
+            {"instances", scene_.instances().memoryProperties()},
+            {"instance descriptors", scene_.instanceDescriptors().memoryProperties()},
+            {"shader binding table", program_->bindingTable.memoryProperties()},
+            {"frame", frame_.memoryProperties()},
+            {"replayed rays", replay_.memoryProperties()},
+            {"counters", counters_.memoryProperties()},
+            {"output", output_.memoryProperties()}};
 }
 
 void DeviceRayPipeline::setReplayRays(GpuBuffer rays) {

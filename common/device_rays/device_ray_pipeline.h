@@ -10,6 +10,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/device_rays/device_ray_scene.h"
 #include "common/raster/gpu_timer.h"
@@ -99,7 +101,12 @@ public:
     // After the launch completed: the trace's GPU stage, then the pass after it where there was one.
     std::vector<GpuStageTime> gpuStages() const { return timer_.read(); }
 
+    // What memory each buffer the launch's rays read lives in (the scene's and the pipeline's), by
+    // name: its type's property flags (VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, ...).
+    std::vector<std::pair<std::string, VkMemoryPropertyFlags>> bufferMemory() const;
+
 private:
+    const DeviceRayScene& scene_;
     const VulkanDevice& device_;
     std::shared_ptr<const CompiledRayPipeline> program_;
     DescriptorSet descriptors_, inputs_;

@@ -20,10 +20,9 @@ void DeviceRayReplay::setRays(const std::vector<LoggedRay>& rays) {
         (shadow ? shadowRays_ : radianceRays_) = static_cast<std::uint32_t>(list.size()) - (shadow ? radianceRays_ : 0u);
     }
     const VulkanDevice& dev = pipeline_.device();
-    GpuBuffer buffer(dev, std::max<std::size_t>(1, list.size()) * sizeof(DeviceRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                     GpuBuffer::Memory::HostVisible);
-    buffer.write(list.data(), list.size() * sizeof(DeviceRay));
-    pipeline_.setReplayRays(std::move(buffer));
+    // Device-local, as the rays a frame traces are made on the device: the replay times tracing.
+    if (list.empty()) list.push_back({});
+    pipeline_.setReplayRays(GpuBuffer::withData(dev, list.data(), list.size() * sizeof(DeviceRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
 }
 
 ReplayResult DeviceRayReplay::trace() {

@@ -155,9 +155,18 @@ void DeviceRayScene::uploadSceneBuffers(const PackedGeometry& packed) {
     using Memory = GpuBuffer::Memory;
     const auto& vertices = packed.vertices;
     const auto& indices = packed.indices;
-    // Host-visible: deforming objects' vertices and the instances are rewritten each frame.
-    vertices_ = GpuBuffer(dev, vertices.size() * sizeof(DeviceVertex), storage | kBuildInput, Memory::HostVisible);
-    vertices_.write(vertices.data(), vertices.size() * sizeof(DeviceVertex));
+    // What every ray reads lies in device memory: on a GPU, host memory is read across PCIe.
+    vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(DeviceVertex), storage | kBuildInput);
+    // Deforming objects' vertices are rewritten each frame: written here, copied into vertices_
+    // before their refit (build).
+    VkDeviceSize staged = 0;
+    for (BottomLevel& b : bottomLevels_) {
+        if (!b.deforming) continue;
+        b.deformedCopy = deformedCopies_.size();
+        deformedCopies_.push_back({staged, VkDeviceSize(b.firstVertex) * sizeof(DeviceVertex), VkDeviceSize(b.vertexCount) * sizeof(DeviceVertex)});
+        staged += deformedCopies_.back().size;
+    }
+    if (staged > 0) deformedVertices_ = GpuBuffer(dev, staged, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::HostVisible);
     indices_ = GpuBuffer::withData(dev, indices.data(), indices.size() * sizeof(std::uint32_t), storage | kBuildInput);
     std::vector<DeviceMaterial> materials;
     for (const Material& m : scene_.materials) materials.push_back(deviceMaterial(m));
@@ -166,8 +175,10 @@ void DeviceRayScene::uploadSceneBuffers(const PackedGeometry& packed) {
     std::vector<LightData> lights;
     for (const Light& l : scene_.lights) lights.push_back(lightRecord(l, l.castsShadows ? 0 : -1, 0));
     lights_ = GpuBuffer::withData(dev, lights.data(), lights.size() * sizeof(LightData), storage);
-    instances_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(DeviceInstance), storage, Memory::HostVisible);
-    instanceDescriptors_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(VkAccelerationStructureInstanceKHR), kBuildInput, Memory::HostVisible);
+    // Rewritten when objects move (writeInstances), read by every ray and by the top level's build.
+    instances_ = GpuBuffer(dev, instanceRefs_.size() * sizeof(DeviceInstance), storage, Memory::DeviceLocalHostVisible);
+    instanceDescriptors_ =
+        GpuBuffer(dev, instanceRefs_.size() * sizeof(VkAccelerationStructureInstanceKHR), kBuildInput, Memory::DeviceLocalHostVisible);
 }
 
 // Sizes: every bottom level, the top level, one scratch buffer for the largest build.
@@ -255,15 +266,16 @@ VkAccelerationStructureGeometryKHR DeviceRayScene::triangleGeometry(const Bottom
 
 void DeviceRayScene::writeDeformedVertices(std::size_t object, double time) {
     const std::vector<DeformedVertices>& deformed = deformedMeshes_.vertices(object, time, DeformedMeshCache::kDeviceRays);
-    auto* out = static_cast<DeviceVertex*>(vertices_.mapped());
+    auto* staging = static_cast<char*>(deformedVertices_.mapped());
     const std::vector<std::size_t>& levels = objectBottomLevels_[object];
     for (std::size_t k = 0; k < levels.size(); ++k) {
         const BottomLevel& b = bottomLevels_[levels[k]];
+        auto* out = reinterpret_cast<DeviceVertex*>(staging + deformedCopies_[b.deformedCopy].srcOffset);
         const Mesh& m = scene_.meshes[b.mesh];
         const DeformedVertices& d = deformed[k];
         for (std::size_t i = 0; i < d.positions.size(); ++i) {
-            out[b.firstVertex + i] = deviceVertex(d.positions[i], d.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i],
-                                                  d.tangents.empty() ? (m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i]) : d.tangents[i]);
+            out[i] = deviceVertex(d.positions[i], d.normals[i], m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i],
+                                  d.tangents.empty() ? (m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i]) : d.tangents[i]);
         }
     }
 }
@@ -342,6 +354,14 @@ void DeviceRayScene::build(const std::vector<std::size_t>& levels, bool update) 
     const VkAccelerationStructureBuildRangeInfoKHR* topRangePointer = &topRange;
 
     dev.submitAndWait([&](VkCommandBuffer cb) {
+        if (update && !deformedCopies_.empty()) {
+            // The deformed vertices written by the host, into the device's vertex buffer for the refits.
+            vkCmdCopyBuffer(cb, deformedVertices_.buffer(), vertices_.buffer(), static_cast<std::uint32_t>(deformedCopies_.size()),
+                            deformedCopies_.data());
+            VkMemoryBarrier copied{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT};
+            vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &copied, 0,
+                                 nullptr, 0, nullptr);
+        }
         if (!infos.empty()) {
             dev.rayTracing().cmdBuildAccelerationStructures(cb, static_cast<std::uint32_t>(infos.size()), infos.data(), rangePointers.data());
             // The top level reads the bottom levels and reuses their scratch memory.

@@ -58,6 +58,7 @@ public:
     const GpuBuffer& instances() const { return instances_; }
     const GpuBuffer& vertices() const { return vertices_; }
     const GpuBuffer& indices() const { return indices_; }
+    const GpuBuffer& instanceDescriptors() const { return instanceDescriptors_; }
     const SceneTextures& textures() const { return textures_; }
     std::uint32_t lightCount() const { return static_cast<std::uint32_t>(scene_.lights.size()); }
 
@@ -78,6 +79,7 @@ private:
         bool opaque = true;       // any-hit skipped: the material stops shadow rays
         bool deforming = false;   // built to be updated
         std::int32_t object = -1; // the deforming object, or -1 (shared by every object that uses the mesh)
+        std::size_t deformedCopy = 0;  // deforming: its entry in deformedCopies_
         VkAccelerationStructureBuildSizesInfoKHR sizes{};
         AccelerationStructure structure;
     };
@@ -115,6 +117,8 @@ private:
     DeformedMeshCache& deformedMeshes_;
     SceneTextures textures_;
     GpuBuffer materials_, lights_, instances_, vertices_, indices_;
+    GpuBuffer deformedVertices_;                   // host-written: the deforming bottom levels' vertices, one after another
+    std::vector<VkBufferCopy> deformedCopies_;     // per deforming bottom level: its range there and in vertices_
     GpuBuffer instanceDescriptors_;  // VkAccelerationStructureInstanceKHR per instance
     GpuBuffer scratch_;
     std::vector<BottomLevel> bottomLevels_;

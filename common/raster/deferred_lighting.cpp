@@ -38,7 +38,7 @@ DeferredLighting::DeferredLighting(const GpuScene& scene, const GBufferPass& gbu
 
     nearest_ = createNearestSampler(device, "the G-buffer sampler");
 
-    uniforms_ = GpuBuffer(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    uniforms_ = GpuBuffer(device, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
     const auto& lights = scene.scene().lights;
     std::vector<LightData> data;
     for (std::size_t i = 0; i < lights.size(); ++i) data.push_back(lightRecord(lights[i], shadows.firstLayer(i), shadows.layerCount(i)));

@@ -17,21 +17,25 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     buffer_ = UniqueBuffer(d, b);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(d, b, &req);
-    memory_ = device.allocate(req, memory, "buffer", (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0);
+    memory_ = device.allocate(req, memory, "buffer", (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0, &properties_);
     checkVk(vkBindBufferMemory(d, b, memory_, 0), "binding buffer memory");
-    if (memory == Memory::HostVisible) checkVk(vkMapMemory(d, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
+    if (memory != Memory::DeviceLocal) checkVk(vkMapMemory(d, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "mapping buffer memory");
 }
 
 GpuBuffer GpuBuffer::withData(const VulkanDevice& device, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
     GpuBuffer b(device, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::DeviceLocal);
-    if (size == 0) return b;
+    b.upload(device, data, size);
+    return b;
+}
+
+void GpuBuffer::upload(const VulkanDevice& device, const void* data, VkDeviceSize size, VkDeviceSize offset) {
+    if (size == 0) return;
     GpuBuffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::HostVisible);
     staging.write(data, size);
     device.submitAndWait([&](VkCommandBuffer cb) {
-        VkBufferCopy copy{0, 0, size};
-        vkCmdCopyBuffer(cb, staging.buffer(), b.buffer(), 1, &copy);
+        VkBufferCopy copy{0, offset, size};
+        vkCmdCopyBuffer(cb, staging.buffer(), buffer_, 1, &copy);
     });
-    return b;
 }
 
 VkDeviceAddress GpuBuffer::deviceAddress(const VulkanDevice& device) const {

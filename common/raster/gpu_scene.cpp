@@ -88,9 +88,9 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, Def
     bool anyDeforming = false;
     for (const SceneObject& o : scene.objects) anyDeforming |= o.isDeforming();
     if (anyDeforming) {
-        // Deforming meshes are rewritten every frame (setTime): host-visible, like the draw records.
+        // Deforming meshes are rewritten every frame (setTime): mapped, like the draw records.
         vertices_ = GpuBuffer(dev, std::max<std::size_t>(1, vertices.size()) * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                              GpuBuffer::Memory::HostVisible);
+                              GpuBuffer::Memory::DeviceLocalHostVisible);
         vertices_.write(vertices.data(), vertices.size() * sizeof(Vertex));
     } else {
         vertices_ = GpuBuffer::withData(dev, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -99,7 +99,7 @@ GpuScene::GpuScene(std::shared_ptr<VulkanDevice> device, const Scene& scene, Def
     const VkDeviceSize align = std::max<VkDeviceSize>(16, dev.properties().limits.minUniformBufferOffsetAlignment);
     recordStride_ = (sizeof(DrawRecord) + align - 1) / align * align;
     drawRecords_ = GpuBuffer(dev, std::max<std::size_t>(1, draws_.size()) * recordStride_, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                             GpuBuffer::Memory::HostVisible);
+                             GpuBuffer::Memory::DeviceLocalHostVisible);
     for (std::size_t d = 0; d < draws_.size(); ++d) {
         const MaterialData m = materialData(scene.materials[draws_[d].material]);
         drawRecords_.write(&m, sizeof m, d * recordStride_ + offsetof(DrawRecord, material));

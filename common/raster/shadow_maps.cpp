@@ -112,7 +112,7 @@ ShadowMaps::ShadowMaps(const GpuScene& scene) : scene_(scene) {
                                 std::to_string(device.properties().limits.maxUniformBufferRange) + " bytes; the shadow maps of " +
                                 std::to_string(lights.size()) + " lights need " + std::to_string(bytes));
     }
-    layerBuffer_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    layerBuffer_ = GpuBuffer(device, bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
     // Until shadows are first rendered, an empty 1 x 1 map keeps the lighting pass's binding valid.
     image_ = GpuImage(device, {kFormat, 1, 1, 1, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                VK_IMAGE_VIEW_TYPE_2D_ARRAY});

@@ -356,32 +356,27 @@ VulkanDevice::~VulkanDevice() {
     if (instance_) vkDestroyInstance(instance_, nullptr);
 }
 
-std::uint32_t VulkanDevice::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags flags) const {
-    for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
-        if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & flags) == flags) return i;
-    }
-    throw VulkanError("Vulkan: " + name() + " has no memory type with the properties the raster core needs (flags " +
-                      std::to_string(flags) + ")");
-}
-
-UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress) const {
+UniqueDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress,
+                                          VkMemoryPropertyFlags* properties) const {
     VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
     flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, deviceAddress ? &flags : nullptr};
     ai.allocationSize = req.size;
-    if (use == MemoryUse::DeviceLocal) {
-        ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    } else {
-        // Every device has coherent host-visible memory; cached is preferred where there is one.
-        const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        try {
-            ai.memoryTypeIndex = memoryType(req.memoryTypeBits, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-        } catch (const VulkanError&) {
-            ai.memoryTypeIndex = memoryType(req.memoryTypeBits, coherent);
-        }
+    const std::vector<std::uint32_t> types = memoryTypeCandidates(memory_, req.memoryTypeBits, use);
+    if (types.empty()) {
+        throw VulkanError("Vulkan: " + name() + " has no memory type for " + what + " memory (" +
+                          (use == MemoryUse::DeviceLocal ? "device-local" : "host-visible") + ")");
     }
-    VkDeviceMemory m;
-    checkVk(vkAllocateMemory(device_, &ai, nullptr, &m), (std::string("allocating ") + what + " memory").c_str());
+    VkResult result = VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    VkDeviceMemory m = VK_NULL_HANDLE;
+    for (std::uint32_t type : types) {
+        ai.memoryTypeIndex = type;
+        result = vkAllocateMemory(device_, &ai, nullptr, &m);
+        // A full heap (a small BAR heap) leaves the next type to try.
+        if (result != VK_ERROR_OUT_OF_DEVICE_MEMORY) break;
+    }
+    checkVk(result, (std::string("allocating ") + what + " memory").c_str());
+    if (properties) *properties = memory_.memoryTypes[ai.memoryTypeIndex].propertyFlags;
     countAllocations(1);
     return UniqueDeviceMemory(device_, m);
 }

@@ -14,6 +14,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "common/raster/memory_use.h"
 #include "common/raster/vk_unique.h"
 
 namespace hybridlab {
@@ -101,13 +102,14 @@ public:
     // Nanoseconds per timestamp tick.
     double timestampPeriod() const { return properties_.limits.timestampPeriod; }
 
-    // A memory type among `typeBits` with `flags`; throws VulkanError when there is none.
-    std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags flags) const;
-    // Memory for a resource with requirements `req`: device-local, or host-visible and coherent
-    // (cached where the device has it: read-back is then fast). `what` names it in errors.
-    enum class MemoryUse { DeviceLocal, HostVisible };
-    // `deviceAddress`: the memory of a buffer whose device address shaders or builds take.
-    UniqueDeviceMemory allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress = false) const;
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memory_; }
+    // Memory for a resource with requirements `req`, of the first type memoryTypeCandidates() gives
+    // for `use` whose allocation succeeds; its type's property flags in `properties` where given.
+    // `what` names it in errors. `deviceAddress`: the memory of a buffer whose device address
+    // shaders or builds take.
+    using MemoryUse = hybridlab::MemoryUse;
+    UniqueDeviceMemory allocate(const VkMemoryRequirements& req, MemoryUse use, const char* what, bool deviceAddress = false,
+                                VkMemoryPropertyFlags* properties = nullptr) const;
 
     // Throws VulkanError naming the format and what it is needed for unless the format supports
     // `features` with optimal tiling.

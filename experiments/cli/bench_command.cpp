@@ -48,6 +48,7 @@ struct BenchOptions {
     double budget = 0.0;              // heuristic_rt's in the device traces; 0: 1e6 scaled to the image's area
     bool deviceTracesOnly = false;
     bool embreeOnly = false;
+    std::string launch = "both";      // the hybrids' launches in the device traces: full, compact or both
 };
 
 struct Summary {
@@ -321,6 +322,7 @@ void benchDeviceTraces(const BenchOptions& o, SceneContext& context, const Frame
              {"ssr_fallback, gbuffer raster", "ssr_fallback", {vulkan}},
              {"ssr_fallback, gbuffer rays", "ssr_fallback", {vulkan, castGBuffer}}}) {
         for (const char* launch : {"full", "compact"}) {
+            if (o.launch != "both" && o.launch != launch) continue;
             DeviceTraceSetting s = hybrid;
             s.label += std::string(", ") + launch;
             s.params.emplace_back("launch", std::string(launch));
@@ -475,6 +477,9 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_flag("--embree-only", o->embreeOnly,
                   "Only the reference against bare Embree and its ceiling (no one-thread split, no Vulkan device)")
         ->excludes(deviceTracesOnly);
+    cmd->add_option("--launch", o->launch, "The hybrids' launches in the device traces: full (one invocation a texel), compact, or both")
+        ->check(CLI::IsMember({"both", "full", "compact"}))
+        ->capture_default_str();
     cmd->callback([o] { run(*o); });
 }
 

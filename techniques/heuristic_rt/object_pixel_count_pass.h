@@ -30,7 +30,8 @@ private:
     UniquePipelineLayout layout_;
     UniquePipeline pipeline_;
     UniqueSampler nearest_;
-    GpuBuffer buffer_;  // the sky, then one count an object
+    GpuBuffer buffer_;  // the sky, then one count an object: device-local
+    GpuBuffer onHost_;  // its copy, read by the host
     std::vector<std::uint64_t> counts_;
 };
 

@@ -19,12 +19,12 @@ using GpuLensVertex = layered_em_records::LensVertex;
 using layered_em_records::LensDrawConstants;
 static_assert(layered_em_records::kDrawnPathTerms == kPathTerms);
 
-// A host-visible buffer of at least `bytes` (grown, never shrunk); true when it was (re)allocated,
-// its contents lost.
+// A mapped buffer of at least `bytes` (grown, never shrunk), in device memory where the device maps
+// it (the lens pass reads it every frame); true when it was (re)allocated, its contents lost.
 bool ensureBuffer(const VulkanDevice& device, GpuBuffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
     bytes = std::max<VkDeviceSize>(bytes, 16);
     if (buffer.valid() && buffer.size() >= bytes) return false;
-    buffer = GpuBuffer(device, bytes + bytes / 2, usage, GpuBuffer::Memory::HostVisible);
+    buffer = GpuBuffer(device, bytes + bytes / 2, usage, GpuBuffer::Memory::DeviceLocalHostVisible);
     return true;
 }
 

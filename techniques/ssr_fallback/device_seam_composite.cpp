@@ -14,7 +14,7 @@ DeviceSeamComposite::DeviceSeamComposite(const VulkanDevice& device) : device_(d
                                           {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}});
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
     pipeline_ = createComputePipeline(device, "ssr_composite.comp", layout_);
-    uniforms_ = GpuBuffer(device, sizeof(CompositeUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    uniforms_ = GpuBuffer(device, sizeof(CompositeUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
     counter_ = GpuBuffer(device, sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          GpuBuffer::Memory::HostVisible);
     descriptors_.writeBuffer(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms_.buffer());

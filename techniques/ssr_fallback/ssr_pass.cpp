@@ -41,9 +41,9 @@ SsrPass::SsrPass(std::shared_ptr<VulkanDevice> onDevice) : device_(std::move(onD
     layout_ = createPipelineLayout(device, {descriptors_.layout()}, 0);
     for (std::uint32_t hiz = 0; hiz < 2; ++hiz) pipelines_[hiz] = createComputePipeline(device, "ssr_trace.comp", layout_, {hiz});
     device.requireFormat(kPyramidFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT, "the SSR depth pyramid");
-    pyramidUniforms_ = GpuBuffer(device, sizeof(PyramidUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    pyramidUniforms_ = GpuBuffer(device, sizeof(PyramidUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
     nearest_ = createNearestSampler(device, "the SSR sampler");
-    uniforms_ = GpuBuffer(device, sizeof(SsrUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::HostVisible);
+    uniforms_ = GpuBuffer(device, sizeof(SsrUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Memory::DeviceLocalHostVisible);
 }
 
 void SsrPass::resize(std::uint32_t width, std::uint32_t height) {

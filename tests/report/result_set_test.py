@@ -112,6 +112,19 @@ class Results(unittest.TestCase):
             mixed = [dict(r, device=dict(device_record(), vulkan_device=name)) for r, name in zip(results.load(VERDICT_SET), "abab")]
             self.assertTrue(results.device_line(d, mixed).startswith("Measured on MIXED devices"))
 
+    def test_an_h100_or_h200_is_said_to_handicap_the_hybrids_raster_stages(self):
+        records = results.load(VERDICT_SET)
+        for name, caveat in (("NVIDIA H200", True), ("NVIDIA H100 80GB HBM3", True), ("NVIDIA GH200 480GB", True),
+                             ("NVIDIA GeForce RTX 4090", False), ("llvmpipe (LLVM 15.0.6, 256 bits)", False), ("NVIDIA H2000", False)):
+            with self.subTest(name=name):
+                gpu = [dict(r, device=dict(device_record(), vulkan_device=name, vulkan_device_type="discrete_gpu")) for r in records]
+                line = results.device_line(VERDICT_SET, gpu)
+                self.assertEqual(line.endswith(". An H100/H200 runs graphics on few of its units (fragment work was measured 30x "
+                                               "slower than compute there), which handicaps the hybrids' raster stages against rt_only."),
+                                 caveat)
+                _, warning = device.lines(VERDICT_SET, gpu)
+                self.assertEqual(warning is not None and "30x slower" in warning, caveat)
+
     def test_write_table_puts_the_device_under_each_table(self):
         with tempfile.TemporaryDirectory() as d:
             out = io.StringIO()
