@@ -388,8 +388,8 @@ def describe_rule(records):
 def caveats(records):
     """Sentences on runs whose times the runner itself doubts: the precision not reached in the
     rounds allowed, no steady state after the warm-up, other processes' load while timed
-    (`timing.other_load`) unless the rounds ran ahead of it (`timing.priority`), the GPU's clocks
-    changed while timed."""
+    (`timing.other_load`) unless the rounds ran ahead of it (`timing.priority`), groups timed by
+    several calls (whose rounds do not all pair), the GPU's clocks changed while timed."""
     timed = [r.get("timing") or {} for r in records]
     out = []
     missed = sum(t.get("precision_reached") is False for t in timed)
@@ -414,6 +414,15 @@ def caveats(records):
                    "%.0f%%): load slows settings unequally (a parallel frame waits for its preempted thread, a serial one "
                    "barely notices), so their ranks answer for a loaded machine; time them on a quiet one, or with run "
                    "--realtime ahead of the load, to rank for an idle machine." % (len(loaded), len(records), 100.0 * BUSY_MACHINE, 100.0 * max(loaded)))
+    ids = collections.defaultdict(set)
+    for t in timed:
+        if t.get("timing_id"):
+            ids[t.get("group")].add(t["timing_id"])
+    split = sorted(g for g, found in ids.items() if len(found) > 1)
+    if split:
+        out.append("%d of %d groups were timed by more than one call of the runner (split by --max-runs, --resume or "
+                   "shards): their rounds pair only within each call, and settings with no call in common are not "
+                   "decided against each other." % (len(split), len(ids)))
     clocks = sum(bool((t.get("gpu_clocks") or {}).get("changed")) for t in timed)
     if clocks:
         out.append("The GPU's clocks changed while %d of %d runs were timed." % (clocks, len(records)))

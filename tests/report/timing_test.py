@@ -221,6 +221,14 @@ class Caveats(unittest.TestCase):
         del quiet["timing"]["other_load"], busy["timing"]["other_load"]  # a result set measured before the meter
         self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
 
+    def test_groups_timed_by_two_calls_are_named(self):
+        reference = [1.0] * 8
+        first, second, other = sr.Group("s", reference), sr.Group("s", reference), sr.Group("s", reference, view="path")
+        records = [sr.timed_record(first, "hyb", "", [1.0] * 8), sr.timed_record(second, "hyb", "x", [1.0] * 8),
+                   sr.timed_record(other, "hyb", "", [1.0] * 8), sr.timed_record(other, "hyb", "x", [1.0] * 8)]
+        self.assertIn("1 of 2 groups were timed by more than one call of the runner", " ".join(timing.caveats(records)))
+        self.assertNotIn("more than one call", " ".join(timing.caveats(records[2:])))
+
     def test_runs_timed_ahead_of_the_load_are_not_called_loaded(self):
         g = sr.Group("s", [1.0] * 8)
         quiet, busy = sr.timed_record(g, "hyb", "", [1.0] * 8), sr.timed_record(g, "hyb", "x", [1.0] * 8)
