@@ -348,7 +348,7 @@ def fastest(candidates, runs_of, tol=DEFAULT_TOLERANCE, key=None):
             chosen = [min(candidates, key=lambda c: setting_time(runs_of(c)).ms)]
         best = min(chosen, key=lambda c: setting_time(runs_of(c)).ms)
         decision, unpaired = (SINGLE if len(chosen) == 1 else TIED), 0
-        basis = compare(runs_of(candidates[0]), runs_of(candidates[-1]), tol)[1] if len(candidates) > 1 else "medians"
+        basis = "intervals" if all(setting_time(runs_of(c)).is_interval for c in candidates) else "medians"
     return FastestSet(sorted(chosen, key=key) if key else chosen, best, decision, unpaired, basis)
 
 
