@@ -2,13 +2,16 @@
 """Does the verdict hold from run to run? Runs one experiment several times back to back (the
 references cached), optionally with busy loops on every core throughout, and compares the
 report's verdict rows: per scene, size and SSIM threshold, the fastest setting (or the settings
-tied for fastest) reaching it.
+the rounds cannot tell from it, tied or not decided) reaching it.
 
     /usr/bin/python3 experiments/verdict_repeatability.py [--config experiments/configs/quick.toml]
         [--runs 3] [--busy N] [--realtime] [--out DIR] [--program build/hybridlab] [--reuse]
 
 Prints each run's wall time, the load other processes put on the machine while it was timed
-(`timing.other_load`), and its rows, then how many rows name the same settings in every run.
+(`timing.other_load`), and its rows, then first the contradictions (rows where two runs' fastest
+sets share no setting: one run's answer excludes another's), then how many rows name the same
+settings in every run, and the mean number of settings a row names (the price of naming only
+what the rounds can tell apart).
 `--busy N` keeps N busy loops (one process each) running while the experiments run; `--reuse`
 reports result sets already in DIR/run-K instead of running them (where some lack their images,
 as the GPU campaign's repeats do, no run's images are compared); `--against DIR` also counts the
@@ -46,13 +49,26 @@ def verdicts_of(result_dir):
 
 
 def verdict_rows(result_dir):
-    """{(scene, size, region, threshold): "name" or "a and b (tied)"} of one result set."""
+    """{(scene, size, region, threshold): (the names of the row's fastest set, its decision)} of
+    one result set; no names where nothing reaches the threshold."""
     rows = {}
     for v in verdicts_of(result_dir):
-        for region, label, threshold, tied in v.thresholds:
-            names = " and ".join(s.name for s in tied) if tied else "none"
-            rows[(v.scene, v.size, label, threshold)] = names
+        for region, label, threshold, fastest in v.thresholds:
+            rows[(v.scene, v.size, label, threshold)] = (tuple(s.name for s in fastest.settings), fastest.decision)
     return rows
+
+
+def row_text(row):
+    names, decision = row
+    if not names:
+        return "none"
+    return " and ".join(names) + ("" if len(names) == 1 else " (%s)" % decision)
+
+
+def contradicts(rows):
+    """Whether some two of a row's answers over the runs share no setting."""
+    sets = [set(names) for names, _ in rows]
+    return any(not (a & b) for i, a in enumerate(sets) for b in sets[i + 1:])
 
 
 def setting_speedups(result_dir, over):
@@ -135,14 +151,21 @@ def main():
             p.kill()
 
     keys = sorted(set().union(*tables))
-    same = 0
+    same = contradictions = 0
+    named = []
     for key in keys:
-        values = [t.get(key, "-") for t in tables]
-        agree = len(set(values)) == 1
+        rows = [t.get(key, ((), "-")) for t in tables]
+        agree = len(set(rows)) == 1
+        contradiction = contradicts(rows)
         same += agree
+        contradictions += contradiction
+        named += [len(names) for names, _ in rows if names]
         scene, size, label, threshold = key
-        print("%s %s SSIM >= %.2f %s: %s%s" % (scene, size, threshold, label, " | ".join(values), "" if agree else "   <- differs"))
-    print("%d of %d verdict rows identical in all %d runs" % (same, len(keys), len(tables)))
+        print("%s %s SSIM >= %.2f %s: %s%s" % (scene, size, threshold, label, " | ".join(row_text(r) for r in rows),
+                                               "   <- contradicts" if contradiction else "" if agree else "   <- differs"))
+    print("%d of %d verdict rows contradict another run's (their fastest sets share no setting)" % (contradictions, len(keys)))
+    print("%d of %d verdict rows identical in all %d runs; a row names %.2f settings on average"
+          % (same, len(keys), len(tables), sum(named) / max(len(named), 1)))
     if args.speedups:
         first = os.path.join(args.out, "run-1")
         for k in range(1, len(tables)):

@@ -13,18 +13,22 @@ did with those.
   true median): the narrowest symmetric pair u = n + 1 - l whose coverage is at least 95%. No
   assumption about the shape of the distribution (frame times are skewed: a slow outlier, never a
   fast one). Below 6 values no such pair exists (x_(1), x_(n) cover 1 - 2 / 2^n < 95%).
-- Paired comparison of settings A and B: in every group where both were timed, the ratios
-  A_k / B_k of their times in the same round k, pooled over the groups; their median and interval
-  as above. A load that drifts during a run (another process, a clock that changes) hits both
-  settings of a round alike and cancels in their ratio, which comparing two medians timed at
-  different moments does not.
-- The tie rule: A is faster than B only when the paired ratio's interval lies wholly below 1 (the
-  difference is beyond the timing noise) AND its median is below 1 - tolerance (the difference
-  matters), the tolerance being the precision the runner timed to (`timing.precision`, 3% by
-  default). Otherwise they are tied. Where the records hold no rounds to pair, A is faster when the
+- Paired comparison of settings A and B: the ratios A_k / B_k of their times in the same round k
+  of the same timing (a record's `timing.timing_id`: the runner's call that timed the group; a
+  group split over processes, shards or resumed runs has several, which never pair), pooled over
+  the timings both were in; their median and interval as above. A load that drifts during a run
+  (another process, a clock that changes) hits both settings of a round alike and cancels in their
+  ratio, which comparing two medians timed at different moments does not.
+- The rule (fastest_of_rounds, compare_rounds; the runner's experiments/runner/fastest_set.h is the
+  same, held to it by tests/fixtures/fastest_set_cases.json): A is faster than B only when the
+  paired ratio's whole interval lies below 1 - tolerance and A's time below 1 - tolerance of B's,
+  the tolerance being the precision the runner timed to (`timing.precision`, 3% by default); tied
+  when both lie inside [1 - tolerance, 1 / (1 - tolerance)]; otherwise not decided. The fastest
+  settings are a confidence set for the fastest: the empirical best and every setting it is not
+  faster than, the k - 1 comparisons each at 1 - 0.05 / (k - 1). Where the records hold no rounds
+  (result sets measured before them), the rules they were reported by: A is faster when the
   intervals of the two medians do not overlap and A's median is below 1 - tolerance of B's; where
-  they hold no intervals either, when its median is lower (a result set measured before intervals:
-  no tie but an exact one).
+  they hold no intervals either, when its median is lower (no tie but an exact one).
 - A setting measured over several runs (views, frames of a path) has as its time the median of its
   runs' medians; its interval is [median of the runs' ci_low, median of the runs' ci_high]: the
   median is monotone in every run's time, so it lies there whenever each run's median lies in its
@@ -36,11 +40,12 @@ import statistics
 
 CONFIDENCE = 0.95
 DEFAULT_TOLERANCE = 0.03
-MIN_VALUES = 6  # the fewest values with a 95% interval of the median
 # Other processes' share of the cores above which a run's times answer for a loaded machine: two
 # busy loops on this project's two-core machine slowed settings 1.6x to 3.0x, unequally.
 BUSY_MACHINE = 0.2
-FASTER, SLOWER, TIED = "faster", "slower", "tied"
+FASTER, SLOWER, TIED, NOT_DECIDED = "faster", "slower", "tied", "not decided"
+SINGLE = "single"  # a fastest set of one setting
+PAIRED = "paired rounds"
 
 # The clocks a record may hold: its key (the summary's place), where its per-round times are, and
 # what it measures. frame_ms is the one every record has and every table uses.
@@ -68,15 +73,16 @@ fastest and slowest run's median (what the report drew before intervals)."""
 def interval_ranks(n, confidence=CONFIDENCE):
     """The 1-based ranks (l, n + 1 - l) of the narrowest symmetric pair of order statistics of n
     values that holds the median with probability at least `confidence`; None when even the
-    smallest and largest do not (n < 6 at 95%)."""
-    if n < 1:
-        return None
-    total = 2 ** n
-    below = 0  # P(B < l) * 2^n for B ~ binomial(n, 1/2), accumulated as l grows
-    best = None
+    smallest and largest do not (n < 6 at 95%). The binomial terms C(n, i) / 2^n are formed in log
+    space, as the runner's intervalRank forms them (the two choose the same ranks, and the sum
+    costs no big integers at 100000 rounds)."""
+    best = 0
+    below = 0.0  # P(B < l) for B ~ binomial(n, 1/2), accumulated as l grows
+    log_term = -n * math.log(2.0)
     for l in range(1, (n + 1) // 2 + 1):
-        below += math.comb(n, l - 1)
-        if 1.0 - 2.0 * below / total < confidence:
+        below += math.exp(log_term)
+        log_term += math.log(n - (l - 1)) - math.log(l)
+        if 1.0 - 2.0 * below < confidence:
             break
         best = l
     return (best, n + 1 - best) if best else None
@@ -124,23 +130,38 @@ def tolerance(records):
     return max(given) if given else DEFAULT_TOLERANCE
 
 
-def _by_group(runs, clock):
+def timing_key(r):
+    """What a record's rounds pair with: its `timing.timing_id`, the runner's call that timed them;
+    in a set written before timing ids, its group (rounds then pair by group name and count, which
+    a group split over processes by --max-runs, --resume or shards may fake); None without rounds."""
+    t = r.get("timing") or {}
+    if t.get("timing_id"):
+        return t["timing_id"]
+    return "group " + t["group"] if t.get("group") is not None else None
+
+
+def setting_rounds(runs, clock=WALL):
+    """{timing key: the setting's time in each of its rounds} over its runs that have rounds."""
     out = {}
     for r in runs:
-        if group(r) is not None and rounds(r, clock):
-            out[group(r)] = rounds(r, clock)
+        if timing_key(r) is not None and rounds(r, clock):
+            out[timing_key(r)] = rounds(r, clock)
     return out
 
 
-def round_ratios(a_runs, b_runs, clock=WALL):
-    """A_k / B_k for every round k of every group that both A's and B's runs were timed in, groups
-    in name order."""
-    a, b = _by_group(a_runs, clock), _by_group(b_runs, clock)
+def paired_ratios(a, b):
+    """A_k / B_k over the rounds of every timing both setting_rounds `a` and `b` were in (timings in
+    key order); none across two timings."""
     ratios = []
-    for g in sorted(set(a) & set(b)):
-        if len(a[g]) == len(b[g]):
-            ratios += [x / y for x, y in zip(a[g], b[g]) if x > 0 and y > 0]
+    for key in sorted(set(a) & set(b)):
+        if len(a[key]) == len(b[key]):
+            ratios += [x / y for x, y in zip(a[key], b[key]) if x > 0 and y > 0]
     return ratios
+
+
+def round_ratios(a_runs, b_runs, clock=WALL):
+    """A_k / B_k for every round k of every timing that both A's and B's runs were in."""
+    return paired_ratios(setting_rounds(a_runs, clock), setting_rounds(b_runs, clock))
 
 
 def paired_ratio(a_runs, b_runs, clock=WALL):
@@ -199,21 +220,106 @@ def setting_time(runs, clock=WALL):
     return SettingTime(ms, min(medians), max(medians), False)
 
 
-def _beats(ratios, tol):
-    iv = median_interval(ratios)
-    return iv is not None and iv.high < 1.0 and iv.median < 1.0 - tol
+def _in_band(x, tol):
+    return 1.0 - tol <= x <= 1.0 / (1.0 - tol)
+
+
+def compare_ratio(iv, tol):
+    """A ratio A/B's Interval (or None) against the band [1 - tol, 1 / (1 - tol)]: FASTER wholly
+    below it, SLOWER wholly above, TIED wholly inside, NOT_DECIDED otherwise or without one."""
+    if iv is None:
+        return NOT_DECIDED
+    if iv.high < 1.0 - tol:
+        return FASTER
+    if iv.low > 1.0 / (1.0 - tol):
+        return SLOWER
+    return TIED if _in_band(iv.low, tol) and _in_band(iv.high, tol) else NOT_DECIDED
+
+
+def rounds_time(a):
+    """A setting's time from its setting_rounds: the median over its timings of its median in each
+    (the median of its runs' medians); None without rounds."""
+    medians = [statistics.median(v) for v in a.values() if v]
+    return statistics.median(medians) if medians else None
+
+
+def compare_rounds(a, b, tol, confidence=CONFIDENCE):
+    """A against B from their setting_rounds: the paired ratio's interval at `confidence` by
+    compare_ratio, and their times' ratio on the same side of the band (or inside it, for TIED);
+    NOT_DECIDED where the two disagree (rounds pooled over frames where A is faster on some and B on
+    others) or nothing pairs."""
+    ratios = paired_ratios(a, b)
+    if not ratios:
+        return NOT_DECIDED
+    by_rounds = compare_ratio(median_interval(ratios, confidence), tol)
+    times = rounds_time(a) / rounds_time(b)
+    agree = {FASTER: times < 1.0 - tol, SLOWER: times > 1.0 / (1.0 - tol), TIED: _in_band(times, tol)}.get(by_rounds, True)
+    return by_rounds if agree else NOT_DECIDED
+
+
+def comparison_confidence(settings, family=CONFIDENCE):
+    """The confidence of each of the k - 1 comparisons with the empirical best (Bonferroni)."""
+    return family if settings <= 2 else 1.0 - (1.0 - family) / (settings - 1)
+
+
+def rounds_for_decision(settings, family=CONFIDENCE):
+    """The fewest paired rounds with which the best of `settings` can be told apart from each other
+    one: 6 for two settings, 10 for 16 (the runner times at least these)."""
+    if settings <= 1:
+        return 0
+    n = 1
+    while interval_ranks(n, comparison_confidence(settings, family)) is None:
+        n += 1
+    return n
+
+
+FastestSet = collections.namedtuple("FastestSet", "settings best decision unpaired basis")
+FastestSet.__doc__ = """The fastest settings: `settings` (the set, ordered), `best` (the empirical
+best), `decision` (SINGLE, TIED or NOT_DECIDED), `unpaired` (members kept because they share no
+round with the best) and `basis` (PAIRED, "intervals" or "medians": which rule decided)."""
+
+
+def fastest_of_rounds(settings, tol, family=CONFIDENCE):
+    """The fastest set of a list of setting_rounds, as (indices of the members in order, index of
+    the best, decision, unpaired): a confidence set for the fastest. The empirical best (the lowest
+    rounds_time, the first of equal ones) is compared with each of the k - 1 others at
+    comparison_confidence (Bonferroni); a setting leaves only when it is SLOWER than the best so.
+    The true fastest leaves only when one of its k - 1 comparisons wrongly finds it slower, so the
+    set holds it with probability at least `family`. Tied: every other member TIED with the best;
+    otherwise not decided. The runner's fastestSet (experiments/runner/fastest_set.h) is the same
+    rule; tests/fixtures/fastest_set_cases.json holds the two to it."""
+    times = [rounds_time(s) for s in settings]
+    timed = [i for i, t in enumerate(times) if t is not None]
+    best = min(timed, key=lambda i: times[i]) if timed else 0
+    confidence = comparison_confidence(len(settings), family)
+    members, unpaired, all_tied = [], 0, True
+    for i, s in enumerate(settings):
+        if i == best:
+            members.append(i)
+            continue
+        if not paired_ratios(s, settings[best]):
+            members.append(i)
+            unpaired += 1
+            all_tied = False
+            continue
+        order = compare_rounds(s, settings[best], tol, confidence)
+        if order == SLOWER:
+            continue
+        members.append(i)
+        all_tied = all_tied and order == TIED
+    decision = SINGLE if len(members) == 1 else TIED if all_tied else NOT_DECIDED
+    return members, best, decision, unpaired
 
 
 def compare(a_runs, b_runs, tol=DEFAULT_TOLERANCE):
-    """(FASTER, SLOWER or TIED: A against B by the tie rule, the basis: "paired rounds",
-    "intervals" or "medians")."""
-    ratios = round_ratios(a_runs, b_runs)
-    if len(ratios) >= MIN_VALUES:
-        if _beats(ratios, tol):
-            return FASTER, "paired rounds"
-        if _beats([1.0 / x for x in ratios], tol):
-            return SLOWER, "paired rounds"
-        return TIED, "paired rounds"
+    """(FASTER, SLOWER, TIED or NOT_DECIDED: A against B, the basis: PAIRED, "intervals" or
+    "medians"). Where either has rounds: compare_rounds at 95%, paired within timings (no rounds in
+    common, or fewer than 6: not decided). In a result set without rounds, the rules it was
+    reported by before: the medians' intervals apart and the medians more than the tolerance
+    apart; without intervals, the lower median (tied only when equal)."""
+    if has_rounds(a_runs) or has_rounds(b_runs):
+        a, b = setting_rounds(a_runs), setting_rounds(b_runs)
+        return (compare_rounds(a, b, tol) if a and b else NOT_DECIDED), PAIRED
     a, b = setting_time(a_runs), setting_time(b_runs)
     if a.is_interval and b.is_interval:
         if a.high < b.low and a.ms < (1.0 - tol) * b.ms:
@@ -225,28 +331,51 @@ def compare(a_runs, b_runs, tol=DEFAULT_TOLERANCE):
 
 
 def fastest(candidates, runs_of, tol=DEFAULT_TOLERANCE, key=None):
-    """The candidates no other candidate is faster than by the tie rule: the fastest and those
-    tied with it. Which of them has the lowest median does not change the answer (the set depends
-    only on the pairwise comparisons), and it is ordered by `key` (default: as given), so that
-    two measurements of the same tie name it alike. `runs_of(c)`: a candidate's records."""
-    unbeaten = [c for c in candidates
-                if not any(o is not c and compare(runs_of(o), runs_of(c), tol)[0] == FASTER for o in candidates)]
-    if not unbeaten and candidates:  # a cycle of "faster" (medians of ratios need not compose): the lowest median
-        unbeaten = [min(candidates, key=lambda c: setting_time(runs_of(c)).ms)]
-    return sorted(unbeaten, key=key) if key else unbeaten
+    """The FastestSet of `candidates` (`runs_of(c)`: a candidate's records), its settings ordered by
+    `key` (default: as given). With rounds: fastest_of_rounds. In a result set without rounds, the
+    rule it was reported by before: the candidates no other is faster than by compare (a cycle:
+    the lowest median), tied when more than one."""
+    if not candidates:
+        return FastestSet([], None, NOT_DECIDED, 0, PAIRED)
+    if any(has_rounds(runs_of(c)) for c in candidates):
+        members, best, decision, unpaired = fastest_of_rounds([setting_rounds(runs_of(c)) for c in candidates], tol)
+        chosen, basis = [candidates[i] for i in members], PAIRED
+        best = candidates[best]
+    else:
+        chosen = [c for c in candidates
+                  if not any(o is not c and compare(runs_of(o), runs_of(c), tol)[0] == FASTER for o in candidates)]
+        if not chosen:  # a cycle of "faster" (medians of ratios need not compose): the lowest median
+            chosen = [min(candidates, key=lambda c: setting_time(runs_of(c)).ms)]
+        best = min(chosen, key=lambda c: setting_time(runs_of(c)).ms)
+        decision, unpaired = (SINGLE if len(chosen) == 1 else TIED), 0
+        basis = "intervals" if all(setting_time(runs_of(c)).is_interval for c in candidates) else "medians"
+    return FastestSet(sorted(chosen, key=key) if key else chosen, best, decision, unpaired, basis)
+
+
+def has_timing_ids(records):
+    return any((r.get("timing") or {}).get("timing_id") for r in records)
 
 
 def describe_rule(records):
-    """One paragraph for a report's intro: which test decides "faster" and "tied" on this result
-    set, and why."""
+    """One paragraph for a report's intro: which test decides "faster", "tied" and "not decided" on
+    this result set, and why."""
     tol = tolerance(records)
     if has_rounds(records):
+        pairing = ("in the same round of the same timing (the runner's call that timed them: a group split over "
+                   "processes, shards or resumed runs is not paired across them)" if has_timing_ids(records) else
+                   "in the same round of the same group (this set predates timing ids: a group split over processes, "
+                   "shards or resumed runs cannot be told apart)")
         return ("Times are wall-clock frame times (frame_ms), medians with their 95%% interval (order statistics, no "
                 "assumption about the distribution). Each setting was timed in interleaved rounds with the other settings "
                 "of its scene, view, frame and size and with the reference, so two settings are compared by the ratio of "
-                "their times in the same round (a load that drifts hits both alike and cancels): A is faster than B only "
-                "when that ratio's 95%% interval lies wholly below 1 and its median below %.2f (the set's precision, "
-                "%.0f%%); otherwise they are tied, and tied settings are named together." % (1.0 - tol, 100.0 * tol))
+                "their times %s: A is faster than B only when that ratio's 95%% interval lies wholly below %.2f (the "
+                "set's precision, %.0f%%) and A's median time too; slower likewise above %.2f; tied when both lie inside "
+                "%.2f-%.2f; otherwise not decided. A row's fastest settings are a 95%% confidence set for the fastest: the "
+                "setting with the lowest median and every setting it is not faster than, each comparison at 1 - 0.05 / "
+                "(k - 1) for k settings; a row naming several says whether they are tied or not decided (the rounds "
+                "cannot tell them apart). With fewer paired rounds than a comparison needs (6 for two settings, 10 for "
+                "16) nothing is called faster." % (pairing, 1.0 - tol, 100.0 * tol, 1.0 / (1.0 - tol), 1.0 - tol,
+                                                   1.0 / (1.0 - tol)))
     if has_intervals(records):
         return ("Times are wall-clock frame times (frame_ms), medians with their 95%% interval. The records hold no "
                 "rounds to pair, so A is faster than B only when their intervals do not overlap and A's median is more "
@@ -259,8 +388,8 @@ def describe_rule(records):
 def caveats(records):
     """Sentences on runs whose times the runner itself doubts: the precision not reached in the
     rounds allowed, no steady state after the warm-up, other processes' load while timed
-    (`timing.other_load`) unless the rounds ran ahead of it (`timing.priority`), the GPU's clocks
-    changed while timed."""
+    (`timing.other_load`) unless the rounds ran ahead of it (`timing.priority`), groups timed by
+    several calls (whose rounds do not all pair), the GPU's clocks changed while timed."""
     timed = [r.get("timing") or {} for r in records]
     out = []
     missed = sum(t.get("precision_reached") is False for t in timed)
@@ -285,6 +414,15 @@ def caveats(records):
                    "%.0f%%): load slows settings unequally (a parallel frame waits for its preempted thread, a serial one "
                    "barely notices), so their ranks answer for a loaded machine; time them on a quiet one, or with run "
                    "--realtime ahead of the load, to rank for an idle machine." % (len(loaded), len(records), 100.0 * BUSY_MACHINE, 100.0 * max(loaded)))
+    ids = collections.defaultdict(set)
+    for t in timed:
+        if t.get("timing_id"):
+            ids[t.get("group")].add(t["timing_id"])
+    split = sorted(g for g, found in ids.items() if len(found) > 1)
+    if split:
+        out.append("%d of %d groups were timed by more than one call of the runner (split by --max-runs, --resume or "
+                   "shards): their rounds pair only within each call, and settings with no call in common are not "
+                   "decided against each other." % (len(split), len(ids)))
     clocks = sum(bool((t.get("gpu_clocks") or {}).get("changed")) for t in timed)
     if clocks:
         out.append("The GPU's clocks changed while %d of %d runs were timed." % (clocks, len(records)))

@@ -13,11 +13,12 @@ the same runs. From these:
   where it is tied in time with the next faster one;
 - per quality threshold (SSIM >= 0.99, 0.97, 0.95, whole image and reflective/refractive pixels)
   the fastest setting reaching it, with its speed-up over the reference and over `rt_only`; where
-  others reaching it are tied with it in time (timing.py's tie rule: paired rounds, beyond the
-  noise and by more than the set's precision), the row names them all, in name order; thresholds
-  whose answer is the same settings share one row; each row says in words whether what reaches
-  the threshold beats the reference and rt_only at all (by the same rule: a speed-up whose
-  interval lies wholly above 1 and whose median is above 1 / (1 - precision));
+  the rounds cannot rule out others reaching it (timing.py's rule: a confidence set for the
+  fastest, from paired rounds), the row names them all, in name order, and says whether they are
+  tied (within the set's precision) or not decided (the rounds cannot tell them apart);
+  thresholds whose answer is the same settings, decided alike, share one row; each row says in
+  words whether what reaches the threshold beats the reference and rt_only at all (by the same
+  rule: a speed-up whose interval lies wholly above 1 / (1 - precision));
 - one sentence per scene saying it in words, "nothing ... beats the reference" where nothing does.
 
 A setting that changes nothing on a scene is not applicable there (`not_applicable`): left off the
@@ -129,22 +130,24 @@ def by_name(s):
 
 
 def fastest_of(candidates, tolerance):
-    """The fastest of `candidates` and those tied with it (timing.fastest), in name order."""
+    """The timing.FastestSet of `candidates`, its settings in name order."""
     return timing.fastest(candidates, lambda s: s.records, tolerance, key=by_name)
 
 
 def fastest_reaching(settings, region, threshold, tolerance=timing.DEFAULT_TOLERANCE):
-    """The fastest applicable settings whose median SSIM on `region` is at least `threshold`: one,
-    or several tied in time; [] when none reaches it."""
+    """The timing.FastestSet of the applicable settings whose median SSIM on `region` is at least
+    `threshold`: one setting, or several (tied, or not decided); no settings when none reaches it."""
     ok = [s for s in settings.values() if not s.not_applicable and (s.score(region, THRESHOLD_METRIC) or 0.0) >= threshold]
     return fastest_of(ok, tolerance)
 
 
 class Tie:
-    """Settings tied in time, named together in name order: "a and b, tied within 3% or the noise"."""
+    """A fastest set (timing.FastestSet) named together in name order: "a and b, tied within 3%",
+    "a and b, not decided (the rounds cannot tell them apart)"."""
 
-    def __init__(self, settings, tolerance):
-        self.settings, self.tolerance = settings, tolerance
+    def __init__(self, fastest, tolerance):
+        self.settings, self.tolerance = fastest.settings, tolerance
+        self.decision, self.unpaired, self.basis = fastest.decision, fastest.unpaired, fastest.basis
 
     def words(self, about):
         """The tie in a sentence: "X at 10.1 ms (what)" for one setting, "X and Y, tied ... (X: 10.1
@@ -159,7 +162,13 @@ class Tie:
         return ("setting", "is") if len(self.settings) == 1 else ("settings", "are")
 
     def suffix(self):
-        return ", tied within %.0f%% or the noise" % (100.0 * self.tolerance) if len(self.settings) > 1 else ""
+        if len(self.settings) <= 1:
+            return ""
+        if self.decision == timing.TIED:
+            return ", tied within %.0f%%" % (100.0 * self.tolerance) if self.basis == timing.PAIRED else \
+                ", tied within %.0f%% or the noise" % (100.0 * self.tolerance)
+        unpaired = " (%d timed in other processes, not paired)" % self.unpaired if self.unpaired else ""
+        return ", not decided: the rounds cannot tell them apart%s" % unpaired
 
     def text(self, name=lambda s: s.name):
         names = [name(s) for s in self.settings]
@@ -188,7 +197,7 @@ class SceneVerdict:
         self.rt_only = rt_only_setting(self.settings)
         self.pareto = pareto(self.settings)
         self.regions = [(rg, label) for rg, label in REGIONS if any(s.score(rg, THRESHOLD_METRIC) is not None for s in self.settings.values())]
-        # Per row: the settings reaching the threshold that none reaching it beats ([] for none).
+        # Per row: the timing.FastestSet of the settings reaching the threshold (no settings for none).
         self.thresholds = [(rg, label, t, fastest_reaching(self.settings, rg, t, self.tolerance))
                            for rg, label in self.regions for t in THRESHOLDS]
 
@@ -213,14 +222,22 @@ class SceneVerdict:
         return [prev if prev and timing.compare(s.records, prev.records, self.tolerance)[0] == timing.TIED else None
                 for prev, s in zip([None] + settings[:-1], settings)]
 
-    def beats_reference(self, s):
-        """Whether `s` is faster than the reference by the tie rule (its speed-up's interval wholly
-        above 1 and its median above 1 / (1 - precision)); by the ratio of the medians alone in a
-        result set without rounds."""
+    def against_reference(self, s):
+        """`s` against the reference (timing.FASTER, SLOWER, TIED or NOT_DECIDED) by the rule: its
+        speed-up's interval against the band (timing.compare_ratio on reference / own); without an
+        interval, not decided where the records hold rounds (too few), and by the ratio of the
+        medians alone in a result set without rounds."""
         ref, _ = self.speedups(s)
         if isinstance(ref, timing.Interval):
-            return ref.low > 1.0 and ref.median > 1.0 / (1.0 - self.tolerance)
-        return ref > 1.0
+            inverse = timing.Interval(1.0 / ref.median, 1.0 / ref.high, 1.0 / ref.low)
+            return timing.compare_ratio(inverse, self.tolerance)
+        if timing.has_rounds(s.records):
+            return timing.NOT_DECIDED
+        return timing.FASTER if ref > 1.0 else timing.SLOWER
+
+    def beats_reference(self, s):
+        """Whether `s` is faster than the reference (against_reference)."""
+        return self.against_reference(s) == timing.FASTER
 
     def beats_rt_only(self, s):
         """Whether `s` is faster than rt_only by the tie rule (False without rt_only, and for rt_only)."""
@@ -234,6 +251,8 @@ class SceneVerdict:
         if not tied:
             return "no setting reaches it"
         if not any(self.beats_reference(s) for s in tied):
+            if any(self.against_reference(s) == timing.NOT_DECIDED for s in tied):
+                return "not decided against the reference (too few rounds or too wide an interval)"
             return "nothing reaching it beats the reference"
         if self.rt_only and self.rt_only not in tied and not any(self.beats_rt_only(s) for s in tied):
             return "beats the reference; nothing reaching it beats rt_only"
@@ -241,16 +260,16 @@ class SceneVerdict:
 
     def threshold_rows(self):
         """The threshold rows with their answers joined: [(the (region label, threshold) pairs a row
-        covers, the settings that answer them)], in the order of the first pair; thresholds whose
-        fastest settings are the same share one row."""
+        covers, the timing.FastestSet that answers them)], in the order of the first pair;
+        thresholds whose fastest settings are the same, decided alike, share one row."""
         rows = []
-        for _, label, t, tied in self.thresholds:
-            names = [s.name for s in tied]
-            same = [row for row in rows if [s.name for s in row[1]] == names]
+        for _, label, t, fastest in self.thresholds:
+            answer = ([s.name for s in fastest.settings], fastest.decision, fastest.unpaired)
+            same = [row for row in rows if ([s.name for s in row[1].settings], row[1].decision, row[1].unpaired) == answer]
             if same:
                 same[0][0].append((label, t))
             else:
-                rows.append(([(label, t)], tied))
+                rows.append(([(label, t)], fastest))
         return rows
 
     def speed_words(self, s):
@@ -268,17 +287,20 @@ class SceneVerdict:
         if not self.regions:
             parts.append("no run has an SSIM score (the config's metrics leave it out)")
         for region, label in self.regions:
-            reached = [(t, tied) for rg, _, t, tied in self.thresholds if rg == region and tied]
+            reached = [(t, fastest) for rg, _, t, fastest in self.thresholds if rg == region and fastest.settings]
             if not reached:
                 best = max(self.applicable(), key=lambda s: s.score(region, THRESHOLD_METRIC) or 0.0)
                 parts.append("no setting reaches SSIM %.2f on the %s (best: %s, %s)" % (THRESHOLDS[-1], label, best.name,
                                                                                       rs.fmt(best.score(region, THRESHOLD_METRIC), "%.4f")))
                 continue
-            t, tied = reached[0]
-            tie = Tie(tied, self.tolerance)
+            t, fastest = reached[0]
+            tied = fastest.settings
+            tie = Tie(fastest, self.tolerance)
             if not any(self.beats_reference(s) for s in tied):
-                parts.append("nothing reaching SSIM %.2f on the %s beats the reference (%.1f ms): the fastest, %s" % (
-                    t, label, self.reference_ms, tie.words(self.speed_words)))
+                undecided = any(self.against_reference(s) == timing.NOT_DECIDED for s in tied)
+                parts.append("%s reaching SSIM %.2f on the %s %s the reference (%.1f ms): the fastest, %s" % (
+                    "no setting" if undecided else "nothing", t, label,
+                    "is decided faster than" if undecided else "beats", self.reference_ms, tie.words(self.speed_words)))
                 continue
             noun, verb = tie.noun()
             part = "the fastest %s reaching SSIM %.2f on the %s %s %s" % (noun, t, label, verb, tie.words(self.speed_words))
@@ -352,12 +374,13 @@ def threshold_table(v):
     they beat the reference and rt_only, in words."""
     header = ["quality reached", "fastest setting", "frame ms", "x ref.", "x rt_only", "in words"]
     rows = []
-    for covers, tied in v.threshold_rows():
+    for covers, fastest in v.threshold_rows():
+        tied = fastest.settings
         if not tied:
             rows.append([qualities_text(covers), "none", "-", "-", "-", v.beaten(tied)])
             continue
         speeds = [v.speedups(s) for s in tied]
-        rows.append([qualities_text(covers), Tie(tied, v.tolerance), " / ".join("%.2f" % s.ms for s in tied),
+        rows.append([qualities_text(covers), Tie(fastest, v.tolerance), " / ".join("%.2f" % s.ms for s in tied),
                      " / ".join(speedup_text(ref) for ref, _ in speeds), " / ".join(speedup_text(rt) for _, rt in speeds),
                      v.beaten(tied)])
     return header, rows

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -12,6 +14,7 @@
 #include <set>
 #include <tuple>
 
+#include <random>
 #include <nlohmann/json.hpp>
 
 #include "common/core/atomic_file.h"
@@ -376,7 +379,7 @@ RunRecord runRecord(const RunSpec& run, const SceneSpec& sceneSpec, const SceneS
 
 // A run's timing fields (run_record.h's RunTiming), its frame time's interval and its speed-ups
 // over the reference and rt_only, paired over the group's rounds.
-void addTiming(RunRecord& record, const ExperimentConfig& config, const std::string& group, const GroupTiming& timing, const SettingTiming& st,
+void addTiming(RunRecord& record, const ExperimentConfig& config, const std::string& group, const std::string& timingId, const GroupTiming& timing, const SettingTiming& st,
                const std::vector<double>& referenceRounds, const std::optional<std::vector<double>>& rtOnlyRounds,
                const std::optional<nlohmann::json>& gpuClocks, std::optional<double> otherLoad) {
     const std::vector<double> wall = wallTimes(st);
@@ -384,6 +387,7 @@ void addTiming(RunRecord& record, const ExperimentConfig& config, const std::str
     record.warmupFrames = st.warmupFrames;
     RunTiming t;
     t.group = group;
+    t.timingId = timingId;
     t.rounds = timing.rounds;
     t.frameRounds = wall;
     t.referenceRounds = referenceRounds;
@@ -412,8 +416,19 @@ void addTiming(RunRecord& record, const ExperimentConfig& config, const std::str
     if (rtOnlyRounds) record.speedup["rt_only"] = speedupOver(*rtOnlyRounds);
 }
 
+// A name for one call's rounds, unique across processes and machines (shards, resumed runs): 64
+// random bits.
+std::string newTimingId() {
+    std::random_device device;
+    const std::uint64_t bits = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(bits));
+    return text;
+}
+
 // A group's rounds (interleaved_timing.h) and what was measured around them.
 struct TimedGroup {
+    std::string timingId;                      // the rounds' name: they pair only with each other
     GroupTiming timing;
     std::optional<double> otherLoad;           // other processes' share of the cores meanwhile
     std::optional<nlohmann::json> gpuClocks;   // at the start and end, on an NVIDIA GPU
@@ -423,6 +438,7 @@ TimedGroup timeGroup(const std::vector<TimedRender>& renders, const TimingProtoc
     const std::optional<GpuClockSample> clocksBefore = sampleGpuClocks();
     const OtherLoadMeter otherLoad;
     TimedGroup g;
+    g.timingId = newTimingId();
     {
         std::optional<RealTimePriority> aheadOfOtherProcesses;
         if (realTime) aheadOfOtherProcesses.emplace();
@@ -520,7 +536,7 @@ std::size_t renderGroup(const ExperimentConfig& config, const RunnerOptions& o, 
             rtOnly ? std::optional(wallTimes(timing.settings[static_cast<std::size_t>(std::find(timedRuns.begin(), timedRuns.end(), rtOnly) -
                                                                                       timedRuns.begin())]))
                    : std::nullopt;
-        addTiming(record, config, name, timing, st, referenceRounds, rtOnlyRounds, timed.gpuClocks, timed.otherLoad);
+        addTiming(record, config, name, timed.timingId, timing, st, referenceRounds, rtOnlyRounds, timed.gpuClocks, timed.otherLoad);
         record.timing->priority = o.realTime ? "realtime" : "normal";
         // The run's time: its share of the group's (scene, reference, warm-up, rounds), then its
         // scoring and files: what `merge` sums per shard beside the shard's estimated cost.
@@ -589,6 +605,7 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
         protocol.groupBudgetMs = protocol.sceneBudgetMs / groupsOfScene.at({group.front()->scene, group.front()->width, group.front()->height});
         protocol.budgetClock = onCpu ? BudgetClock::CpuPerCore : BudgetClock::Wall;
         protocol.cores = usableCores();
+        protocol.settingsCompared = static_cast<int>(group.size());
         done += renderGroup(config, o, store, cache, active, group, pending, protocol, mixed, progress, done, summary);
         if (o.maxRuns >= 0 && static_cast<long>(summary.runsRendered) >= o.maxRuns) break;
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "experiments/runner/fastest_set.h"
 #include "experiments/runner/timing_statistics.h"
 
 namespace hybridlab {
@@ -73,8 +74,10 @@ GroupTiming timeInterleaved(const std::vector<TimedRender>& settings, const Timi
     g.settings.resize(settings.size());
     for (std::size_t i = 0; i < settings.size(); ++i) warmUp(settings[i], p, g.settings[i]);
     // Fewer rounds than an interval needs: exactly those (a quick check, a test), no more.
-    const int minRounds = std::max(p.minRounds, 1);
-    const int maxRounds = minRounds < static_cast<int>(minimumSamplesForInterval()) ? minRounds : std::max(p.maxRounds, minRounds);
+    const bool quick = p.minRounds < static_cast<int>(minimumSamplesForInterval());
+    const int maxRounds = quick ? std::max(p.minRounds, 1) : std::max(p.maxRounds, p.minRounds);
+    const int decision = static_cast<int>(roundsForDecision(static_cast<std::size_t>(std::max(p.settingsCompared, 0))));
+    const int minRounds = quick ? maxRounds : std::min(std::max(p.minRounds, decision), maxRounds);
     while (g.rounds < maxRounds) {
         if (g.rounds >= minRounds) {
             g.precisionReached = precisionReached(g, p.precision);

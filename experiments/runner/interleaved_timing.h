@@ -45,6 +45,7 @@ struct TimingProtocol {
     int maxWarmupFrames = 5;
     int minRounds = 6;  // `repeats`
     int maxRounds = 30;
+    int settingsCompared = 0;  // the group's settings the verdict compares (the reference not among them)
     double precision = 0.03;
     double groupBudgetMs = 2000.0;  // the runner's share of `budget_s` for one group (see below)
     double sceneBudgetMs = 6000.0;  // `budget_s`: for one scene and size, shared by its groups

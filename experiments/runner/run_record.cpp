@@ -42,6 +42,7 @@ json timingJson(const RunTiming& t) {
         j["device_ms"] = spreadJson(*t.device);
         j["device_ms_rounds"] = t.deviceRounds;
     }
+    if (t.timingId) j["timing_id"] = *t.timingId;
     if (t.budgetClock) j["budget_clock"] = *t.budgetClock;
     if (t.otherLoad) j["other_load"] = *t.otherLoad;
     if (t.priority) j["priority"] = *t.priority;
@@ -189,6 +190,7 @@ RunTiming timingFrom(const json& j, const std::string& where) {
     FieldReader f(j, where);
     RunTiming t;
     t.group = f.get<std::string>("group");
+    t.timingId = f.getOptional<std::string>("timing_id");
     t.rounds = f.get<int>("rounds");
     t.frameRounds = numbersFrom(f.required("frame_ms_rounds"), f.path("frame_ms_rounds"));
     t.referenceRounds = numbersFrom(f.required("reference_ms_rounds"), f.path("reference_ms_rounds"));

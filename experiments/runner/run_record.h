@@ -38,6 +38,9 @@ struct RatioInterval {
 // its group (same scene, view, frame and size) and the reference.
 struct RunTiming {
     std::string group;
+    // The runner's call that timed the group's rounds: rounds pair only within one (a group split
+    // by --max-runs, --resume or shards is timed in several). Absent in sets written before it.
+    std::optional<std::string> timingId;
     int rounds = 0;
     std::vector<double> frameRounds;      // this run's frame time (wall) in round k at [k]
     std::vector<double> referenceRounds;  // the reference's, in the same rounds

@@ -9,12 +9,13 @@ namespace hybridlab {
 
 namespace {
 
-// P(X <= k) for X ~ binomial(n, 1/2).
+// P(X <= k) for X ~ binomial(n, 1/2), each term C(n, i) / 2^n formed in log space (report/timing.py
+// sums the same terms the same way, so both sides choose the same ranks).
 double binomialHalfCdf(std::size_t n, std::size_t k) {
-    double sum = 0.0, term = std::pow(0.5, static_cast<double>(n));  // C(n, 0) / 2^n
+    double sum = 0.0, logTerm = -static_cast<double>(n) * std::log(2.0);  // log(C(n, 0) / 2^n)
     for (std::size_t i = 0; i <= k && i <= n; ++i) {
-        sum += term;
-        term *= static_cast<double>(n - i) / static_cast<double>(i + 1);
+        sum += std::exp(logTerm);
+        logTerm += std::log(static_cast<double>(n - i)) - std::log(static_cast<double>(i + 1));
     }
     return sum;
 }
@@ -39,19 +40,27 @@ MedianInterval medianInterval(std::vector<double> values, double confidence) {
     m.median = medianOfSorted(values);
     m.low = values.front();
     m.high = values.back();
-    // The interval [x_(l), x_(n+1-l)] covers the median with probability 1 - 2 P(X <= l - 1):
-    // the largest l that keeps the coverage at the confidence.
-    const std::size_t n = m.n;
-    std::size_t l = 0;
-    for (std::size_t k = 1; k <= (n + 1) / 2; ++k) {
-        if (1.0 - 2.0 * binomialHalfCdf(n, k - 1) >= confidence) l = k;
-        else break;
-    }
+    const std::size_t l = intervalRank(m.n, confidence);
     if (l == 0) return m;  // no pair reaches the confidence: min and max stand, without an interval
     m.low = values[l - 1];
-    m.high = values[n - l];
+    m.high = values[m.n - l];
     m.hasInterval = true;
     return m;
+}
+
+std::size_t intervalRank(std::size_t n, double confidence) {
+    // [x_(l), x_(n+1-l)] covers the median with probability 1 - 2 P(X <= l - 1): the largest l
+    // that keeps the coverage at the confidence.
+    std::size_t l = 0;
+    double below = 0.0;  // P(X <= k - 1), accumulated as k grows
+    double logTerm = -static_cast<double>(n) * std::log(2.0);
+    for (std::size_t k = 1; k <= (n + 1) / 2; ++k) {
+        below += std::exp(logTerm);
+        logTerm += std::log(static_cast<double>(n - (k - 1))) - std::log(static_cast<double>(k));
+        if (1.0 - 2.0 * below >= confidence) l = k;
+        else break;
+    }
+    return l;
 }
 
 std::size_t minimumSamplesForInterval(double confidence) {
@@ -60,35 +69,21 @@ std::size_t minimumSamplesForInterval(double confidence) {
     return n;
 }
 
-MedianInterval pairedRatio(const std::vector<double>& numerator, const std::vector<double>& denominator) {
+MedianInterval pairedRatio(const std::vector<double>& numerator, const std::vector<double>& denominator, double confidence) {
     if (numerator.size() != denominator.size() || numerator.empty())
         throw std::invalid_argument("pairedRatio: the rounds of the two settings differ in number");
     std::vector<double> ratios(numerator.size());
     for (std::size_t k = 0; k < ratios.size(); ++k) ratios[k] = numerator[k] / denominator[k];
-    return medianInterval(std::move(ratios));
-}
-
-TimeOrder compareTimes(const MedianInterval& ratio, double tolerance) {
-    if (!ratio.hasInterval) return TimeOrder::Tied;
-    if (ratio.high < 1.0 && ratio.median < 1.0 - tolerance) return TimeOrder::Faster;
-    if (ratio.low > 1.0 && ratio.median > 1.0 + tolerance) return TimeOrder::Slower;
-    return TimeOrder::Tied;
-}
-
-const char* timeOrderName(TimeOrder order) {
-    switch (order) {
-        case TimeOrder::Faster: return "faster";
-        case TimeOrder::Slower: return "slower";
-        case TimeOrder::Tied: return "tied";
-    }
-    return "?";
+    return medianInterval(std::move(ratios), confidence);
 }
 
 std::vector<std::size_t> roundOrder(std::size_t count, std::size_t round, std::uint64_t seed) {
-    std::vector<std::size_t> base(count);
-    std::iota(base.begin(), base.end(), std::size_t{0});
-    // Fisher-Yates with splitmix64: the same permutation from the same seed on every platform
-    // (std::shuffle's and the standard distributions' algorithms are the library's choice).
+    if (count == 0) return {};
+    // The settings relabelled: Fisher-Yates with splitmix64, the same permutation from the same
+    // seed on every platform (std::shuffle's and the standard distributions' algorithms are the
+    // library's choice).
+    std::vector<std::size_t> label(count);
+    std::iota(label.begin(), label.end(), std::size_t{0});
     std::uint64_t state = seed;
     const auto next = [&state] {
         std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
@@ -96,9 +91,20 @@ std::vector<std::size_t> roundOrder(std::size_t count, std::size_t round, std::u
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
         return z ^ (z >> 31);
     };
-    for (std::size_t i = count; i > 1; --i) std::swap(base[i - 1], base[next() % i]);
-    if (count > 0) std::rotate(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(round % count), base.end());
-    return base;
+    for (std::size_t i = count; i > 1; --i) std::swap(label[i - 1], label[next() % i]);
+    // Williams' first row 0, 1, n-1, 2, n-2, ...; row r adds r to every entry (mod n). Each
+    // difference between neighbours occurs once in the row, so each ordered pair of neighbours
+    // occurs once in the square; an odd n needs the square's rows reversed as well.
+    const std::size_t period = count % 2 ? 2 * count : count;
+    const std::size_t row = round % period;
+    std::vector<std::size_t> order(count);
+    for (std::size_t p = 0; p < count; ++p) {
+        const std::size_t step = (p + 1) / 2;
+        const std::size_t first = p % 2 ? step : (count - step) % count;
+        order[p] = label[(first + row) % count];
+    }
+    if (row >= count) std::reverse(order.begin(), order.end());
+    return order;
 }
 
 bool steadyTimes(const std::vector<double>& times, std::size_t frames, double tolerance) {

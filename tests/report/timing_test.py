@@ -3,6 +3,8 @@
 the tie rule, on known numbers and on made-up records (tests/support/synthetic_records.py).
 
     timing_test.py        (standard library unittest; no hybridlab program needed)"""
+import json
+import math
 import os
 import random
 import sys
@@ -13,6 +15,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 sys.path.insert(0, os.path.join(HERE, "..", "support"))
 import synthetic_records as sr  # noqa: E402
 import timing  # noqa: E402
+
+CASES = os.path.join(HERE, "..", "fixtures", "fastest_set_cases.json")
 
 
 class MedianInterval(unittest.TestCase):
@@ -97,8 +101,24 @@ class PairedComparison(unittest.TestCase):
         a = [sr.timed_record(sr.Group("s", reference, view="camera"), "hyb", "k=a", sr.drifting_rounds(10.0, 8, 1))]
         b = [sr.timed_record(sr.Group("s", reference, view="path", frame=0), "hyb", "k=b", sr.drifting_rounds(20.0, 8, 1))]
         self.assertEqual(timing.round_ratios(a, b), [])
-        # No pairing: the medians' intervals decide (here far apart).
-        self.assertEqual(timing.compare(a, b), (timing.FASTER, "intervals"))
+        # Nothing pairs: not decided, however far apart the medians (they were timed at different
+        # moments, under whatever load each had).
+        self.assertEqual(timing.compare(a, b), (timing.NOT_DECIDED, "paired rounds"))
+
+    def test_rounds_pair_only_within_a_timing(self):
+        # One group (the same name, as many rounds) timed by two processes: no pairs.
+        reference = sr.drifting_rounds(200.0, 8, 1)
+        first, second = sr.Group("s", reference), sr.Group("s", reference)
+        self.assertEqual(first.name, second.name)
+        a = [sr.timed_record(first, "hyb", "k=a", sr.drifting_rounds(10.0, 8, 1))]
+        b = [sr.timed_record(second, "hyb", "k=b", sr.drifting_rounds(20.0, 8, 1))]
+        self.assertEqual(timing.round_ratios(a, b), [])
+        self.assertEqual(timing.compare(a, b), (timing.NOT_DECIDED, "paired rounds"))
+        # A set written before timing ids pairs by group name and count, as it did.
+        for r in a + b:
+            del r["timing"]["timing_id"]
+        self.assertEqual(len(timing.round_ratios(a, b)), 8)
+        self.assertEqual(timing.compare(a, b), (timing.FASTER, "paired rounds"))
 
     def test_without_intervals_the_lower_median_is_faster(self):
         a = [sr.old_record("s", "hyb", "k=a", 10.0)]
@@ -109,16 +129,84 @@ class PairedComparison(unittest.TestCase):
         self.assertEqual(timing.tolerance(a + b), timing.DEFAULT_TOLERANCE)
 
     def test_fastest_names_a_tie_whatever_the_order(self):
-        a, b = self.settings(1.01)
-        _, c = self.settings(1.2)
-        runs = {"a": a, "b": b, "c": [dict(r, id=r["id"] + "c") for r in c]}
+        reference = sr.drifting_rounds(200.0, 30, 3)
+        g = sr.Group("s", reference)
+        runs = {name: [sr.timed_record(g, "hyb", "k=" + name, sr.drifting_rounds(ms, 30, 3, noise=0.002))]
+                for name, ms in (("a", 10.0), ("b", 10.05), ("c", 12.0))}
         for order in (["a", "b", "c"], ["c", "b", "a"], ["b", "c", "a"]):
-            self.assertEqual(timing.fastest(order, runs.get, key=str), ["a", "b"], order)
+            found = timing.fastest(order, runs.get, key=str)
+            self.assertEqual(found.settings, ["a", "b"], order)
+            self.assertEqual((found.best, found.decision, found.basis), ("a", timing.TIED, timing.PAIRED))
 
     def test_tolerance_is_the_sets_precision(self):
         g = sr.Group("s", [1.0] * 8)
         records = [sr.timed_record(g, "hyb", "", [1.0] * 8, precision=0.05), sr.timed_record(g, "hyb", "x", [1.0] * 8, precision=0.02)]
         self.assertEqual(timing.tolerance(records), 0.05)
+
+
+class SharedTable(unittest.TestCase):
+    """tests/fixtures/fastest_set_cases.json, which the runner's C++ answers too
+    (tests/runner/test_fastest_set.cpp)."""
+
+    def table(self):
+        with open(CASES) as f:
+            return json.load(f)
+
+    def test_every_fastest_set_case(self):
+        cases = self.table()["fastest_set"]
+        self.assertGreaterEqual(len(cases), 10)
+        for c in cases:
+            with self.subTest(c["name"]):
+                names = [s["name"] for s in c["settings"]]
+                rounds = [s["timings"] for s in c["settings"]]
+                members, best, decision, unpaired = timing.fastest_of_rounds(rounds, c["tolerance"])
+                self.assertEqual({"members": [names[i] for i in members], "best": names[best], "decision": decision,
+                                  "unpaired": unpaired}, c["expected"])
+                by_name = dict(zip(names, rounds))
+                for a, b, order in c["pairs"]:
+                    self.assertEqual(timing.compare_rounds(by_name[a], by_name[b], c["tolerance"]), order, (a, b))
+
+    def test_every_case_from_records(self):
+        """The same cases as result records, one per setting and timing (a timing's group named by
+        the case, so that the split group's two timings share a group name and a round count)."""
+        for c in self.table()["fastest_set"]:
+            with self.subTest(c["name"]):
+                groups, runs = {}, {}
+                for s in c["settings"]:
+                    for key, ms in s["timings"].items():
+                        g = groups.setdefault(key, sr.Group("scene", ms, view="camera", timing_id=key))
+                        runs.setdefault(s["name"], []).append(sr.timed_record(g, "hyb", "k=" + s["name"], ms, precision=c["tolerance"]))
+                found = timing.fastest(list(runs), runs.get, timing.tolerance([r for v in runs.values() for r in v]))
+                self.assertEqual((found.settings, found.best, found.decision, found.unpaired),
+                                 (c["expected"]["members"], c["expected"]["best"], c["expected"]["decision"],
+                                  c["expected"]["unpaired"]))
+
+    def test_interval_ranks_and_rounds(self):
+        table = self.table()
+        for r in table["interval_ranks"]:
+            ranks = timing.interval_ranks(r["n"], r["confidence"])
+            self.assertEqual(ranks[0] if ranks else 0, r["rank"], r)
+        for r in table["rounds_for_decision"]:
+            self.assertEqual(timing.rounds_for_decision(r["settings"]), r["rounds"], r)
+
+    def test_log_space_ranks_agree_with_exact_integers(self):
+        def exact(n, confidence):
+            below, best = 0, 0
+            for l in range(1, (n + 1) // 2 + 1):
+                below += math.comb(n, l - 1)
+                if 1 - 2 * below / 2 ** n < confidence:
+                    break
+                best = l
+            return best
+        for n in list(range(1, 200)) + [1074, 1075, 1076, 2000]:
+            for confidence in (0.95, 0.975, 1 - 0.05 / 15):
+                ranks = timing.interval_ranks(n, confidence)
+                self.assertEqual(ranks[0] if ranks else 0, exact(n, confidence), (n, confidence))
+
+    def test_2000_rounds_keep_their_interval(self):
+        # 2^-2000 is 0 as a double: summed so, the interval collapsed to the median.
+        iv = timing.median_interval([float(v) for v in range(2000, 0, -1)])
+        self.assertEqual(iv, (1000.5, 956.0, 1045.0))
 
 
 class Caveats(unittest.TestCase):
@@ -132,6 +220,14 @@ class Caveats(unittest.TestCase):
         self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
         del quiet["timing"]["other_load"], busy["timing"]["other_load"]  # a result set measured before the meter
         self.assertNotIn("other processes", " ".join(timing.caveats([quiet, busy])))
+
+    def test_groups_timed_by_two_calls_are_named(self):
+        reference = [1.0] * 8
+        first, second, other = sr.Group("s", reference), sr.Group("s", reference), sr.Group("s", reference, view="path")
+        records = [sr.timed_record(first, "hyb", "", [1.0] * 8), sr.timed_record(second, "hyb", "x", [1.0] * 8),
+                   sr.timed_record(other, "hyb", "", [1.0] * 8), sr.timed_record(other, "hyb", "x", [1.0] * 8)]
+        self.assertIn("1 of 2 groups were timed by more than one call of the runner", " ".join(timing.caveats(records)))
+        self.assertNotIn("more than one call", " ".join(timing.caveats(records[2:])))
 
     def test_runs_timed_ahead_of_the_load_are_not_called_loaded(self):
         g = sr.Group("s", [1.0] * 8)

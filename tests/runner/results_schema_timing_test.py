@@ -34,6 +34,12 @@ class TimingFields(unittest.TestCase):
         self.assertIn("rt_only", r["speedup"])
         self.assertEqual(results.schema_problems(r), [])
 
+    def test_a_record_timed_before_timing_ids_validates(self):
+        r = timed()
+        self.assertRegex(r["timing"]["timing_id"], "^[0-9a-f]{16}$")
+        del r["timing"]["timing_id"]
+        self.assertEqual(results.schema_problems(r), [])
+
     def test_a_record_of_fewer_than_6_rounds_validates_without_intervals(self):
         r = sr.timed_record(sr.Group("s", [20.0, 21.0, 22.0]), "hyb", "", [10.0, 10.5, 11.0])
         self.assertNotIn("ci_low", r["frame_ms"])
@@ -52,6 +58,8 @@ class TimingFields(unittest.TestCase):
             (lambda r: r["speedup"]["reference"].pop("ratio"), "$.speedup.reference: missing required 'ratio'"),
             (lambda r: r["frame_ms"].update(ci_low="x"), "$.frame_ms.ci_low: expected number"),
             (lambda r: r["timing"].update(steady="yes"), "$.timing.steady: expected boolean"),
+            (lambda r: r["timing"].update(timing_id=""), "$.timing.timing_id: "),
+            (lambda r: r["timing"].update(timing_id=7), "$.timing.timing_id: expected string"),
         ]
         for breaks, problem in cases:
             r = copy.deepcopy(timed())

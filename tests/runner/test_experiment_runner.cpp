@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <map>
+#include <set>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -238,6 +240,24 @@ TEST(ExperimentRunner, RunsEveryCombinationCachesReferencesAndResumes) {
     EXPECT_EQ(rest.runsSkipped, 7u);
     EXPECT_EQ(rest.runsRendered, 13u);
     expectSameResults(dir.path() / "a", dir.path() / "c");
+
+    // Rounds pair only within one timing: each group's runs share one timing id, every group its
+    // own, and the group split by the stop (2 of its 5 runs before it, 3 after) has two.
+    const auto timingIds = [](const std::vector<json>& records) {
+        std::map<std::string, std::set<std::string>> ids;
+        for (const json& r : records) ids[r.at("timing").at("group").get<std::string>()].insert(r.at("timing").at("timing_id").get<std::string>());
+        return ids;
+    };
+    std::set<std::string> distinct;
+    for (const auto& [group, ids] : timingIds(rows)) {
+        EXPECT_EQ(ids.size(), 1u) << group;
+        for (const std::string& id : ids) EXPECT_EQ(id.size(), 16u) << id;
+        distinct.insert(ids.begin(), ids.end());
+    }
+    EXPECT_EQ(distinct.size(), 4u);
+    std::map<std::size_t, std::size_t> groupsBySplit;
+    for (const auto& [group, ids] : timingIds(test::readResults(dir.path() / "c"))) ++groupsBySplit[ids.size()];
+    EXPECT_EQ(groupsBySplit, (std::map<std::size_t, std::size_t>{{1, 3}, {2, 1}}));
 
     // Three shards merged: the same result set as the unsharded run.
     expectThreeShardsMergeToTheUnshardedSet(config, dir, cache);

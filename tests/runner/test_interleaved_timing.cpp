@@ -97,6 +97,33 @@ TEST(InterleavedTiming, RoundsStopAtThePrecisionOrTheBudget) {
     }
 }
 
+TEST(InterleavedTiming, RoundsEnoughForTheVerdictToTellTheFastestApart) {
+    // 16 settings: each comparison with the fastest at 1 - 0.05 / 15 needs 10 paired rounds.
+    // Noise-free frames reach the precision at once; the rounds go on to 10 all the same.
+    TimingProtocol p;
+    p.warmupFrames = 0;
+    p.settingsCompared = 16;
+    const auto sixteen = [](VirtualMachine& m) {
+        std::vector<TimedRender> settings;
+        for (int i = 0; i < 16; ++i) settings.push_back(m.setting(i, 10.0 + i));
+        return settings;
+    };
+    {
+        VirtualMachine m;
+        EXPECT_EQ(timeInterleaved(sixteen(m), p).rounds, 10);
+    }
+    {
+        VirtualMachine m;  // within max_rounds
+        p.maxRounds = 8;
+        EXPECT_EQ(timeInterleaved(sixteen(m), p).rounds, 8);
+    }
+    {
+        VirtualMachine m;  // repeats below 6: exactly those, and the report decides nothing
+        p.minRounds = 3;
+        EXPECT_EQ(timeInterleaved(sixteen(m), p).rounds, 3);
+    }
+}
+
 TEST(InterleavedTiming, OnTheCpuClockALoadedMachineTimesAsManyRoundsAsAnIdleOne) {
     // Frames of two threads' work: 20 ms of CPU time, 10 ms of wall time on two idle cores, 40 ms
     // with another process's load (a thread preempted in a parallel frame waits its turn).

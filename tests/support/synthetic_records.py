@@ -20,15 +20,18 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 import timing  # noqa: E402
 
 _index = itertools.count()
+_timing = itertools.count()
 
 
 class Group:
-    """One scene, view, frame and size, timed in rounds: the reference's time in each round."""
+    """One scene, view, frame and size, timed in rounds by one call of the runner (`timing_id`, a
+    new one for each Group unless given): the reference's time in each round."""
 
-    def __init__(self, scene, reference_rounds, view="camera", frame=-1, size=(64, 36)):
+    def __init__(self, scene, reference_rounds, view="camera", frame=-1, size=(64, 36), timing_id=None):
         self.scene, self.view, self.frame, self.size = scene, view, frame, size
         self.reference_rounds = list(reference_rounds)
         self.name = "%s|%s|%d|%dx%d" % (scene, view, frame, size[0], size[1])
+        self.timing_id = timing_id or "%016x" % (0x5eed0000 + next(_timing))
         self.rt_only_rounds = None  # the default rt_only's, once a record of it is made
 
 
@@ -74,7 +77,7 @@ def timed_record(group, technique, params_text, ms_rounds, ssim=0.95, label=None
     r = _base(group.scene, group.view, group.frame, group.size, technique, params_text, ssim, label,
               statistics.median(group.reference_rounds), counters, stages)
     r["frame_ms"] = spread(ms_rounds)
-    r["timing"] = {"group": group.name, "rounds": len(ms_rounds), "frame_ms_rounds": list(ms_rounds),
+    r["timing"] = {"group": group.name, "timing_id": group.timing_id, "rounds": len(ms_rounds), "frame_ms_rounds": list(ms_rounds),
                    "reference_ms_rounds": list(group.reference_rounds), "precision": precision, "precision_reached": True,
                    "warmup_frames": 2, "warmup_ms": 1.0, "steady": True}
     if cpu_rounds:
