@@ -86,8 +86,8 @@ cleanup() {
   exit "$status"
 }
 trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+trap 'echo "fresh_machine_check: interrupted; stopping what runs in the root, unmounting, removing it" >&2; exit 130' INT
+trap 'echo "fresh_machine_check: terminated; stopping what runs in the root, unmounting, removing it" >&2; exit 143' TERM
 
 # The package mirror apt uses on this machine, and its security archive: a fresh install takes both.
 uris=$(cat /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null |
