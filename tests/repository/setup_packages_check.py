@@ -43,6 +43,7 @@ PROGRAMS = {
     "ctest": "the test command",
     "ninja": "the build",
     "clang++-14": "the sanitizer build and the fuzz targets (tests/sanitize, tests/fuzz)",
+    "ldd": "the bundle (the libraries it copies)",
     "xz": "the bundle and the GPU campaign",
     "tar": "the bundle and the GPU campaign",
     "timeout": "the tests' time limits",
