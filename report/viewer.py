@@ -25,6 +25,9 @@ VIEWER_SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewer
 PAKO = "/usr/share/nodejs/pako/dist/pako.esm.mjs"
 STYLES = "viewer.css"
 PAGE = "viewer.html"
+# Says the modules are ES modules, for a Node.js that reads the report's copies (Debian's 18 does not
+# guess it from their import statements); a browser goes by the script tag and never reads it.
+MODULE_TYPE = "package.json"
 
 
 def missing():
@@ -83,7 +86,7 @@ def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, m
         json.dump(settings, f, separators=(",", ":"))
     shutil.copyfile(PAKO, os.path.join(viewer_dir, "pako.js"))
     for name in sorted(os.listdir(VIEWER_SOURCE)):
-        if name.endswith(".js") or name == STYLES:
+        if name.endswith(".js") or name in (STYLES, MODULE_TYPE):
             shutil.copyfile(os.path.join(VIEWER_SOURCE, name), os.path.join(viewer_dir, name))
     with open(os.path.join(VIEWER_SOURCE, PAGE)) as f:
         page = f.read().replace("@SERVE_COMMAND@", settings["serve_command"].replace("\\", "\\\\").replace("'", "\\'"))

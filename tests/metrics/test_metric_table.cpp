@@ -79,8 +79,9 @@ TEST(MetricTable, AMetricAddedInOnePlaceReachesTheRecordTheReportAndTheViewer) {
     EXPECT_CONTAINS(markdown, " | 0.7500 |");
     EXPECT_CONTAINS(test::readTextFile(report / "index.html"), "<th>Throwaway score</th>");
 
-    // The viewer's read-out under the run's image, through the report's copy of its modules.
-    const test::CommandOutput viewer = test::commandOutput("node '" + (test::sourceDir() / "tests/report/viewer/read_out_runs.mjs").string() +
+    // The viewer's read-out under the run's image, through the report's copy of its modules, under
+    // Debian's Node.js (setup.sh's nodejs), not whichever node the PATH finds first.
+    const test::CommandOutput viewer = test::commandOutput("/usr/bin/node '" + (test::sourceDir() / "tests/report/viewer/read_out_runs.mjs").string() +
                                                            "' '" + report.string() + "'");
     ASSERT_EQ(viewer.exitStatus, 0) << viewer.out;
     EXPECT_CONTAINS(viewer.out, " · Throwaway score 0.2500");

@@ -93,7 +93,7 @@ TEST(OldResultSets, AVersionOneSetReportsUnderTheCurrentNames) {
         EXPECT_EQ(std::find(run[1].begin(), run[1].end(), "rayt"), run[1].end()) << run;
         EXPECT_EQ(run[2], 7.0);
     }
-    const test::CommandOutput viewer = test::commandOutput("node '" + (test::sourceDir() / "tests/report/viewer/read_out_runs.mjs").string() +
+    const test::CommandOutput viewer = test::commandOutput("/usr/bin/node '" + (test::sourceDir() / "tests/report/viewer/read_out_runs.mjs").string() +
                                                            "' '" + report.string() + "'");
     ASSERT_EQ(viewer.exitStatus, 0) << viewer.out;
     for (const json& record : records) {
