@@ -106,12 +106,19 @@ const srgb = (v) => {
   return Math.round(255 * (c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055));
 };
 
+// CRC-32 of `bytes`, as PNG's chunks carry it: the one a gzip member's trailer holds (RFC 1952),
+// since zlib.crc32 arrived in Node.js 20.15 and Debian 12's Node.js is 18.
+const crc32 = (bytes) => {
+  const member = zlib.gzipSync(bytes, { level: 0 });
+  return member.readUInt32LE(member.length - 8);
+};
+
 function chunk(type, data) {
   const head = Buffer.alloc(8);
   head.writeUInt32BE(data.length);
   head.write(type, 4, 'latin1');
   const crc = Buffer.alloc(4);
-  crc.writeUInt32BE(zlib.crc32(Buffer.concat([head.subarray(4), data])));
+  crc.writeUInt32BE(crc32(Buffer.concat([head.subarray(4), data])));
   return Buffer.concat([head, data, crc]);
 }
 
