@@ -23,7 +23,7 @@ TechniqueInfo makeTechniqueInfo(std::string name, std::string description, Param
             [parameters = std::move(parameters), create = std::move(create)](const ParameterSet& p) -> std::unique_ptr<Technique> {
                 return create(parameters.fill(p));
             },
-            relativeCost, std::nullopt};
+            relativeCost, std::nullopt, /*searchSpace=*/{}};
 }
 
 }  // namespace hybridlab

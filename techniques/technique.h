@@ -14,6 +14,7 @@
 #include "techniques/cache_bake_command.h"
 #include "techniques/parameters.h"
 #include "techniques/scene_context.h"
+#include "techniques/search_space.h"
 
 namespace hybridlab {
 
@@ -74,6 +75,8 @@ struct TechniqueInfo {
     // The subcommand that bakes what prepare() caches on disk ahead of rendering, for a technique
     // that caches anything (layered_em: `hybridlab bake-em`); the program finds it here.
     std::optional<CacheBakeCommand> bakeCommand;
+    // The knobs `hybridlab tune` searches (search_space.h); none: it is not searched.
+    std::vector<SearchDimension> searchSpace;
 };
 
 // The registry (registry.cpp), in display order.

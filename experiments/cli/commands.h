@@ -19,6 +19,7 @@ void addCompareCommand(CLI::App& app);
 void addBakeCommands(CLI::App& app);
 void addBundleCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
+void addTuneCommand(CLI::App& app);
 // `hybridlab help [COMMAND]`: the program's help, or one command's; added last, so that it knows them all.
 void addHelpCommand(CLI::App& app);
 

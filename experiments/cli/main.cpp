@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     hybridlab::cli::addBakeCommands(app);
     hybridlab::cli::addBundleCommand(app);
     hybridlab::cli::addViewCommand(app);
+    hybridlab::cli::addTuneCommand(app);
     app.add_flag("--version")->description("Print the program version on one line, then exit; `--version --json`: this machine's device record "
                                            "as JSON, as result sets store it");
     const std::vector<std::string> arguments(argv + 1, argv + argc);

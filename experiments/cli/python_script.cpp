@@ -20,7 +20,12 @@ std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3
 }  // namespace
 
 int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt, std::string* output) {
-    std::vector<std::string> command = {python(), (fs::path(HYBRIDLAB_SOURCE_DIR) / "report" / script).string()};
+    return runSourceScript((fs::path("report") / script).string(), args, interrupt, output);
+}
+
+int runSourceScript(const std::string& path, const std::vector<std::string>& args, Interrupt interrupt, std::string* output) {
+    const std::string script = fs::path(path).filename().string();
+    std::vector<std::string> command = {python(), (fs::path(HYBRIDLAB_SOURCE_DIR) / path).string()};
     command.insert(command.end(), args.begin(), args.end());
     int pipeEnds[2] = {-1, -1};
     if (output && pipe(pipeEnds) != 0) throw std::runtime_error("cannot make a pipe for " + script);

@@ -16,4 +16,8 @@ enum class Interrupt { StopsBoth, ScriptOnly };
 int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
                     std::string* output = nullptr);
 
+// The same for a script elsewhere in the source folder (`path` relative to it: experiments/tune/tune.py).
+int runSourceScript(const std::string& path, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
+                    std::string* output = nullptr);
+
 }  // namespace hybridlab::cli

@@ -181,7 +181,7 @@ void addRenderCommand(CLI::App& app) {
 void addTechniquesCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("techniques", "List the techniques with their parameters, defaults and descriptions");
     auto json = std::make_shared<bool>(false);
-    cmd->add_flag("--json", *json, "Print a JSON array of {name, description, parameters: [{name, type, default, description}]} instead");
+    cmd->add_flag("--json", *json, "Print a JSON array of {name, description, parameters: [{name, type, default, description}], search: [{parameter, values, scale, per_pixel, type}]} instead");
     cmd->callback([json] {
         if (*json) {
             nlohmann::json out = nlohmann::json::array();
@@ -191,7 +191,20 @@ void addTechniquesCommand(CLI::App& app) {
                     params.push_back({{"name", p.name}, {"type", p.typeDescription()}, {"default", parameterJson(p.defaultValue)},
                                       {"description", p.description}});
                 }
-                out.push_back({{"name", t.name}, {"description", t.description}, {"parameters", params}});
+                // The knobs `tune` searches (techniques/search_space.h), with each value's type.
+                nlohmann::json search = nlohmann::json::array();
+                for (const auto& d : t.searchSpace) {
+                    const auto spec = std::find_if(t.parameters.begin(), t.parameters.end(), [&](const ParamSpec& p) { return p.name == d.parameter; });
+                    nlohmann::json values = nlohmann::json::array();
+                    for (const auto& v : d.values) values.push_back(parameterJson(v));
+                    search.push_back({{"parameter", d.parameter}, {"values", values}, {"scale", searchScaleName(d.scale)},
+                                      {"per_pixel", d.perPixel}, {"type", spec == t.parameters.end()                  ? "unknown"
+                                               : spec->type == ParamSpec::Type::Int   ? "int"
+                                               : spec->type == ParamSpec::Type::Float ? "float"
+                                               : spec->type == ParamSpec::Type::Bool  ? "bool"
+                                                                                      : "choice"}});
+                }
+                out.push_back({{"name", t.name}, {"description", t.description}, {"parameters", params}, {"search", search}});
             }
             std::printf("%s\n", out.dump(1).c_str());
             return;

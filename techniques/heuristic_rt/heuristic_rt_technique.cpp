@@ -65,12 +65,18 @@ TechniqueInfo HeuristicRtTechnique::info() {
     // The tracer recurses and shades as the reference, cut off at rt_only's importance.
     parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
     parameters.bind(&P::shading, tracedShadingParameters());
-    return makeTechniqueInfo(
+    TechniqueInfo info = makeTechniqueInfo(
         "heuristic_rt",
         "Walewski 2019 / Sabino 2012: G-buffer, per-object heuristic and selection graph under a budget, secondary rays "
         "(Embree or the Vulkan device) for the selected objects' pixels, blending",
         std::move(parameters), [](const P& p) { return std::make_unique<HeuristicRtTechnique>(p); },
         /*relativeCost=*/0.4);  // 0.30-0.40 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
+    // The budget T (eq. 2, about rays) per pixel: Walewski 2019 Table 5's 1-3 M at 1280x720 are 1.1-3.3;
+    // and the selected pixels' ray-tree cut-off.
+    using S = SearchDimension::Scale;
+    info.searchSpace = {{"budget", {0.125, 0.25, 0.5, 1.0, 2.0}, S::Log, /*perPixel=*/true},
+                        {"importance_cutoff", {0.0, 0.02, 0.05, 0.1}, S::Linear}};
+    return info;
 }
 
 HeuristicRtTechnique::HeuristicRtTechnique(const HeuristicRtParameters& p)

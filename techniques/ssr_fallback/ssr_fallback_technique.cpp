@@ -113,12 +113,19 @@ TechniqueInfo SsrFallbackTechnique::info() {
     // The fallback rays recurse as the reference's (max_depth, importance_cutoff, blend), cut off at
     // rt_only's importance: the full trees (0) cost 3.7x the rays for the same SSIM (README.md).
     parameters.bind(&P::recursion, recursionParameters(kTracedImportanceCutoff));
-    return makeTechniqueInfo(
+    TechniqueInfo info = makeTechniqueInfo(
         "ssr_fallback",
         "de Macedo & Rodrigues: screen-space reflections (Vulkan compute, McGuire-Mara DDA) with a ray-traced fallback for the "
         "texels SSR fails on, seam blur",
         std::move(parameters), [](const P& p) { return std::make_unique<SsrFallbackTechnique>(p); },
         /*relativeCost=*/0.35);  // 0.20-0.42 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
+    // SSR's march (steps and slab thickness, ssr_fallback_sweep.toml's ranges) and the fallback's
+    // ray-tree cut-off.
+    using S = SearchDimension::Scale;
+    info.searchSpace = {{"max_steps", {16LL, 64LL, 256LL}, S::Log},
+                        {"thickness", {0.005, 0.02, 0.08}, S::Log},
+                        {"importance_cutoff", {0.0, 0.05}, S::Linear}};
+    return info;
 }
 
 SsrFallbackTechnique::SsrFallbackTechnique(const SsrFallbackParameters& p)

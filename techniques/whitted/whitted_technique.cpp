@@ -113,7 +113,7 @@ TechniqueInfo whittedTechniqueInfo() {
                                       "pixels whose first hit is a lens object: the full ray tree, or the two-term greedy model "
                                       "(Hakura & Snyder 2001 §3: uniformly sampled ray tracing as layered_em approximates it)"),
                     {false, true});
-    return makeTechniqueInfo(
+    TechniqueInfo info = makeTechniqueInfo(
         "whitted", "Reference: full recursive Whitted ray tracing (Embree), hard shadows, reflection and refraction to depth 10",
         std::move(parameters),
         [](const WhittedParameters& p) {
@@ -122,6 +122,10 @@ TechniqueInfo whittedTechniqueInfo() {
             return std::make_unique<WhittedTechnique>(p.camera, [](const Scene& scene) { return std::make_unique<TwoTermLenses>(scene); });
         },
         /*relativeCost=*/1.0);  // the unit
+    // The ray tree's depth and importance cut-off: the reference's own speed for accuracy.
+    using S = SearchDimension::Scale;
+    info.searchSpace = {{"max_depth", {1LL, 2LL, 4LL, 8LL}, S::Linear}, {"importance_cutoff", {0.0, 0.02, 0.05, 0.1}, S::Linear}};
+    return info;
 }
 
 }  // namespace hybridlab
