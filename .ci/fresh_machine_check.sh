@@ -3,7 +3,7 @@
 # them, in a clean Debian 12 root (mmdebstrap's minbase variant, plus git and ca-certificates to
 # get the clone) holding a clone of the repository; prints each command's time and the last lines
 # of its output. A used machine hides a missing install step; this starts from nothing. Not a CI
-# test: it downloads about 1 GB and takes 35 to 60 minutes on 2 cores. Run it before any change to
+# test: it downloads about 1 GB and takes about 27 minutes on a quiet 2-core machine. Run it before any change to
 # setup.sh, the CMake files or the packages the project uses (README "Quick start").
 #
 #   sudo .ci/fresh_machine_check.sh [--keep] [REPOSITORY [BRANCH]]

@@ -191,15 +191,18 @@ Stage = collections.namedtuple("Stage", "name settings outcomes seconds fastest"
 
 
 class Plan:
-    """How the search spends its renders."""
-    screen_rounds = 2      # the screen's rounds: a rough time
-    race_size = 6          # the most settings the race times in full
+    """How the search spends its renders: few settings a stage, each stage timed in the fewest
+    rounds its decision needs (the budget buys more stages, not more rounds), the final one in up to
+    `final_rounds` times that."""
+    screen_rounds = 1      # the screen's rounds after its warm-up frame: a rough time
+    race_size = 4          # the most settings the race times in full
     refine_around = 1      # the fastest set's members whose neighbours are tried (besides the boundary)
     refinements = 3        # refinement stages at most
-    boundary_size = 4      # settings on the target's boundary tried in a refinement stage, at most
+    boundary_size = 3      # settings on the target's boundary tried in a refinement stage, at most
     margin = 1.25          # a stage's estimated cost times this must fit in the budget left
-    front_size = 4         # front settings timed in the final stage, besides the fastest set
-    carry = 4              # the fastest set's members carried into the next stage, at most (the fastest)
+    front_size = 3         # front settings timed in the final stage, besides the fastest set
+    carry = 2              # the fastest set's members carried into the next stage, at most (the fastest)
+    final_rounds = 2.0     # the final stage's rounds, at most, in multiples of the fewest
 
 
 def rough_time(outcome):
@@ -310,9 +313,9 @@ def boundary_points(reaching, dims_of, tried, quality_of, target, time_of, faste
 def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERANCE, plan=Plan(), progress=lambda line: None):
     """Runs the stages (see the module's text). `spaces`: {technique: [Dimension]}, each with at
     least one dimension; `evaluator.stage(name, settings, rounds, budget_s)` renders and times the
-    settings (rt_only among them) in one group, `rounds` "screen" (plan.screen_rounds rounds, no
-    interval) or "full" (the runner's protocol within `budget_s`), and returns a Measured. Returns
-    a Result."""
+    settings (rt_only among them) in one group, `rounds` a number (exactly that many rounds after a
+    warm-up frame, no interval: the screen) or "full" (the runner's protocol within `budget_s`),
+    and returns a Measured. Returns a Result."""
     result = Result()
     anchor = setting(RT_ONLY)
     tried = set()
@@ -324,7 +327,8 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
 
     def run(name, settings, rounds, stage_budget):
         settings = list(dict.fromkeys(settings + [anchor]))
-        progress("stage %s: %d settings (%s rounds), %.0f s of the %.0f s budget spent" % (name, len(settings), rounds, result.seconds, budget_s))
+        how = "timed in full" if rounds == "full" else "%d round%s each: a rough time" % (rounds, "" if rounds == 1 else "s")
+        progress("stage %s: %d settings (%s), %.0f s of the %.0f s budget spent" % (name, len(settings), how, result.seconds, budget_s))
         measured = evaluator.stage(name, settings, rounds, stage_budget)
         result.seconds += measured.seconds
         result.renders += measured.renders
@@ -335,7 +339,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         return measured.outcomes, measured.seconds
 
     candidates = [s for technique, dims in spaces.items() for s in grid(technique, dims)]
-    screen, screen_seconds = run("screen", candidates, "screen", budget_s * 0.25)
+    screen, screen_seconds = run("screen", candidates, plan.screen_rounds, 0.0)
     result.stages.append(Stage("screen", list(dict.fromkeys(candidates + [anchor])), screen, screen_seconds, None))
     reaching = [s for s in candidates if met(s)]
     result.front = front(candidates + [anchor], screen, target)
@@ -351,22 +355,29 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         return result
 
     # A stage's least cost in seconds: its settings' warm-up and the fewest full rounds, at their
-    # times so far (a setting not yet timed: the median of its technique's screen times).
+    # times so far (a setting not yet timed: the median of its technique's screen times), and what
+    # a stage costs besides its frames (loading the scene, scoring each setting), a setting's share
+    # as the screen took it.
     screen_times = {}
     for s in candidates:
         screen_times.setdefault(s.technique, []).append(time_of[s])
-    def estimate(settings):
+    def guess(s):
+        times = sorted(screen_times.get(s.technique, [0.0]))
+        return time_of.get(s, times[len(times) // 2])
+    screen_settings = result.stages[0].settings
+    screen_frames_s = (1 + plan.screen_rounds) * sum(guess(s) for s in screen_settings) / 1000.0
+    overhead_s = max(0.0, screen_seconds - screen_frames_s) / len(screen_settings)
+    def estimate(settings, frames_only=False):
+        """The stage's seconds; `frames_only`: its frames' alone (the runner's budget for its rounds)."""
         settings = list(dict.fromkeys(settings + [anchor]))
         rounds = 1 + max(timing.rounds_for_decision(len(settings)), FULL_ROUNDS)
-        guess = lambda s: time_of.get(s, sorted(screen_times.get(s.technique, [0.0]))[len(screen_times.get(s.technique, [0.0])) // 2])  # noqa: E731
-        return rounds * sum(guess(s) for s in settings) / 1000.0
+        return sum(rounds * guess(s) / 1000.0 + (0.0 if frames_only else overhead_s) for s in settings)
 
     reaching.sort(key=lambda s: time_of[s])
     race = reaching[:max(2, min(plan.race_size, math.ceil(len(reaching) / 3)))]
     final_front = [s for s in result.front if s != anchor][:plan.front_size]
     final_reserve = estimate(race[:plan.refine_around] + final_front)
-    race_budget = max(estimate(race), (budget_s - result.seconds - final_reserve) / (plan.refinements + 1))
-    outcomes, seconds = run("race", race, "full", race_budget)
+    outcomes, seconds = run("race", race, "full", estimate(race, frames_only=True))
     def carried(members, outcomes):
         """The fastest set's members the next stage times again: where the rounds cannot tell many
         apart (a flat stretch of the space), the fastest few by this stage's times."""
@@ -396,13 +407,14 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
                      % (budget_s - result.seconds, len(stage_settings) + 1, stage_cost))
             break
         name = "refine-%d" % (level + 1)
-        outcomes, seconds = run(name, stage_settings, "full", max(stage_cost, min(race_budget, budget_s - result.seconds - final_reserve)))
+        outcomes, seconds = run(name, stage_settings, "full", estimate(stage_settings, frames_only=True))
         members, decision = fastest_set(eligible(stage_settings), outcomes, tolerance)
         result.stages.append(Stage(name, list(dict.fromkeys(stage_settings + [anchor])), outcomes, seconds, members))
         progress("%s: fastest %s (%s)" % (name, names_text(members), decision))
 
     final = list(dict.fromkeys(carried(members, outcomes) + final_front))
-    outcomes, seconds = run("final", final, "full", max(budget_s - result.seconds, estimate(final)))
+    least = estimate(final, frames_only=True)
+    outcomes, seconds = run("final", final, "full", max(least, min(budget_s - result.seconds - (estimate(final) - least), plan.final_rounds * least)))
     result.choice, result.decision = fastest_set(eligible(final), outcomes, tolerance)
     result.stages.append(Stage("final", list(dict.fromkeys(final + [anchor])), outcomes, seconds, result.choice))
     result.reached = True

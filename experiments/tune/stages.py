@@ -34,14 +34,14 @@ def toml_value(v):
     return json.dumps(v)
 
 
-def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed, screen_rounds):
+def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed):
     """The TOML of one stage's experiment."""
     full = rounds == "full"
     lines = ["# A stage of `hybridlab tune`: %s." % name, "", "[experiment]",
              'name = "tune-%s"' % name,
              'description = "hybridlab tune: stage %s on %s at %dx%d"' % (name, scene, size[0], size[1]),
              "warmup_frames = 1",
-             "repeats = %d" % (search.FULL_ROUNDS if full else screen_rounds),
+             "repeats = %d" % (search.FULL_ROUNDS if full else rounds),
              "precision = %s" % toml_value(float(tolerance)),
              "budget_s = %s" % toml_value(float(max(budget_s, 0.1))),
              "metrics = [%s]" % ", ".join(json.dumps(m) for m in metrics) if metrics else "",
@@ -70,10 +70,10 @@ def normalised(params):
 class RunnerEvaluator:
     """search.search's evaluator: renders each stage with `hybridlab run` (see the module's text)."""
 
-    def __init__(self, program, out_dir, scene, size, target, region, tolerance, cache=None, quiet=True, screen_rounds=2):
+    def __init__(self, program, out_dir, scene, size, target, region, tolerance, cache=None, quiet=True):
         self.program, self.out_dir, self.scene, self.size = program, out_dir, scene, size
         self.target, self.region, self.tolerance, self.cache = target, region, tolerance, cache
-        self.quiet, self.screen_rounds = quiet, screen_rounds
+        self.quiet = quiet
 
     def stage_dir(self, name):
         return os.path.join(self.out_dir, "result" if name == "final" else os.path.join("stages", name))
@@ -83,7 +83,7 @@ class RunnerEvaluator:
         final = name == "final"
         metrics = None if final else sorted({self.target.metric, "ssim"})
         config = stage_config(name, self.scene, self.size, settings, rounds, budget_s, self.tolerance, metrics,
-                              reference_timed=final, screen_rounds=self.screen_rounds)
+                              reference_timed=final)
         config_file = os.path.join(self.out_dir, "stages", name + ".toml")
         os.makedirs(os.path.dirname(config_file), exist_ok=True)
         if not os.path.exists(os.path.join(d, "results.json")):

@@ -174,6 +174,10 @@ def main(argv):
     print("tune: %d frames rendered in %.0f s%s" % (result.renders, result.seconds,
                                                     " (over the %.0f s budget: the stages a decision needs took longer)" % args.budget_s
                                                     if result.over_budget else ""))
+    if not result.reached and result.best_quality_setting is None:
+        print("tune: not reached: no setting has a %s score on the %s (a region without pixels?)" % (
+            target.metric, "whole image" if args.region == "whole" else "reflective/refractive pixels"))
+        return 0
     if not result.reached:
         best = result.best_quality_setting
         print("tune: not reached: no setting reaches %s; the best is %s with %s = %.4f, %.4f short" % (

@@ -79,7 +79,7 @@ def check(program, out, scene, tuned, best, cache):
     settings = list(dict.fromkeys([tuned, best, search.setting(search.RT_ONLY)]))
     if len(settings) == 2:
         return timing.TIED + " (the same setting)"
-    config = stages.stage_config("check", scene, SIZE, settings, "full", 2.0, timing.DEFAULT_TOLERANCE, ["ssim"], False, 2)
+    config = stages.stage_config("check", scene, SIZE, settings, "full", 2.0, timing.DEFAULT_TOLERANCE, ["ssim"], False)
     os.makedirs(os.path.dirname(out), exist_ok=True)
     with open(out + ".toml", "w") as f:
         f.write(config)

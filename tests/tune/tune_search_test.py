@@ -36,8 +36,8 @@ class Synthetic:
         warm = {s: self.cost(s) for s in settings}
         spent = sum(warm.values()) / 1000.0
         times = {s: [] for s in settings}
-        least = 2 if rounds == "screen" else max(search.FULL_ROUNDS, timing.rounds_for_decision(len(settings)))
-        most = least if rounds == "screen" else 30
+        least = rounds if rounds != "full" else max(search.FULL_ROUNDS, timing.rounds_for_decision(len(settings)))
+        most = least if rounds != "full" else 30
         for k in range(most):
             round_s = sum(self.cost(s) for s in settings) / 1000.0
             if k >= least and (spent + round_s > budget_s or self.precise(times)):
