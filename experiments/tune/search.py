@@ -8,13 +8,13 @@ model), so that the search can be checked against a known optimum.
 The stages, each one group of settings timed in interleaved rounds beside rt_only (the runner's
 protocol, so that every comparison is a paired interval within one timing):
 
-1. screen: every point of each technique's coarse grid (its declared search space: techniques
-   declare the knobs worth searching and their ranges, `hybridlab techniques --json`), rendered
-   once for its quality and timed in two rounds for a rough time. Quality is deterministic (a
-   render is), so one render decides which settings reach the target.
+1. screen: every point of each technique's grid (its declared search space: techniques declare the
+   knobs worth searching and their ranges, `hybridlab techniques --json`), rendered once for its
+   quality and timed in one round after a warm-up frame for a rough time. Quality is deterministic
+   (a render is), so one render decides which settings reach the target; two frames a setting let
+   the grid be fine (successive halving's first rung).
 2. race: the settings reaching the target whose rough time is fastest (a third of them, at least
-   two, at most `race_size`; successive halving's first cut, generous because two rounds are
-   noisy) are timed in full rounds; their fastest set (report/timing.py's rule: a confidence set for
+   two, at most `race_size`; generous, because one round is noisy) are timed in full rounds; their fastest set (report/timing.py's rule: a confidence set for
    the fastest, Bonferroni over its comparisons) keeps what the rounds cannot tell from the best.
 3. refine: the numeric knobs stepped towards the target's boundary, between a setting that reaches
    the target and the nearest tried value of one knob on either side that does not but is faster
@@ -45,6 +45,8 @@ RT_ONLY = "rt_only"
 # The fewest rounds of a full stage (the runner's `repeats`; it times at least the rounds the
 # verdict needs for the stage's settings, timing.rounds_for_decision).
 FULL_ROUNDS = 6
+# A full stage's warm-up frames a setting, at most (stages.py).
+WARMUP_FRAMES = 2
 
 
 class SearchError(Exception):
@@ -78,7 +80,7 @@ def names_text(settings, most=2):
     return " and ".join(names[:most]) + (" and %d more" % (len(names) - most) if len(names) > most else "")
 
 
-# A knob of a technique's search space: its coarse grid (`values`, in order), whether refinement may
+# A knob of a technique's search space: its grid (`values`, in order), whether refinement may
 # step between them (`scale`: "log", "linear" or None for a choice), and the parameter's type.
 Dimension = collections.namedtuple("Dimension", "parameter values scale integer")
 
@@ -99,7 +101,7 @@ def dimensions_of(technique_json, pixels):
 
 
 def grid(technique, dims):
-    """Every point of the coarse grid (the Cartesian product of the dimensions' values)."""
+    """Every point of the grid (the Cartesian product of the dimensions' values)."""
     names = [d.parameter for d in dims]
     return [setting(technique, dict(zip(names, combo))) for combo in itertools.product(*[d.values for d in dims])]
 
@@ -191,14 +193,15 @@ Stage = collections.namedtuple("Stage", "name settings outcomes seconds fastest"
 
 
 class Plan:
-    """How the search spends its renders: few settings a stage, each stage timed in the fewest
-    rounds its decision needs (the budget buys more stages, not more rounds), the final one in up to
-    `final_rounds` times that."""
+    """How the search spends its renders (successive halving): a fine grid screened cheaply, then few
+    settings a stage, each stage timed in the fewest rounds its decision needs (the budget buys
+    stages, not rounds), the final one in up to `final_rounds` times that."""
     screen_rounds = 1      # the screen's rounds after its warm-up frame: a rough time
     race_size = 4          # the most settings the race times in full
     refine_around = 1      # the fastest set's members whose neighbours are tried (besides the boundary)
-    refinements = 3        # refinement stages at most
+    refinements = 2        # refinement stages at most
     boundary_size = 3      # settings on the target's boundary tried in a refinement stage, at most
+    new_settings = 4       # new settings a refinement stage tries, at most (the boundary's first)
     margin = 1.25          # a stage's estimated cost times this must fit in the budget left
     front_size = 3         # front settings timed in the final stage, besides the fastest set
     carry = 2              # the fastest set's members carried into the next stage, at most (the fastest)
@@ -243,6 +246,7 @@ class Result:
         self.seconds = 0.0
         self.over_budget = False    # the stages a decision needs took longer than the budget
         self.rt_only_faster = False  # rt_only (not searched) reaches the target and is faster than the answer
+        self.rt_only_reaches = False  # rt_only (not searched) reaches a target no searched setting does
 
     def outcome(self, s):
         """The setting's outcome in the last stage that measured it."""
@@ -344,12 +348,15 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     reaching = [s for s in candidates if met(s)]
     result.front = front(candidates + [anchor], screen, target)
     if not reaching:
+        # The best of the searched settings, and how far it falls short (rt_only is said apart where
+        # it is not searched: it is the chart's end, not an answer).
         best = None
-        for s in candidates + [anchor]:
+        for s in candidates:
             q = quality.get(s)
             if q is not None and (best is None or target.better(q, quality[best])):
                 best = s
         result.best_quality_setting, result.best_quality = best, quality.get(best)
+        result.rt_only_reaches = anchor.technique not in spaces and met(anchor)
         progress("no setting reaches %s: the best is %s with %s = %s" % (target, setting_name(best) if best else "none", target.metric,
                                                                           "-" if best is None else "%.4g" % quality[best]))
         return result
@@ -370,14 +377,14 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     def estimate(settings, frames_only=False):
         """The stage's seconds; `frames_only`: its frames' alone (the runner's budget for its rounds)."""
         settings = list(dict.fromkeys(settings + [anchor]))
-        rounds = 1 + max(timing.rounds_for_decision(len(settings)), FULL_ROUNDS)
+        rounds = WARMUP_FRAMES + max(timing.rounds_for_decision(len(settings)), FULL_ROUNDS)
         return sum(rounds * guess(s) / 1000.0 + (0.0 if frames_only else overhead_s) for s in settings)
 
     reaching.sort(key=lambda s: time_of[s])
     race = reaching[:max(2, min(plan.race_size, math.ceil(len(reaching) / 3)))]
     final_front = [s for s in result.front if s != anchor][:plan.front_size]
     final_reserve = estimate(race[:plan.refine_around] + final_front)
-    outcomes, seconds = run("race", race, "full", estimate(race, frames_only=True))
+    outcomes, seconds = run("race", race, "full", 0.0)
     def carried(members, outcomes):
         """The fastest set's members the next stage times again: where the rounds cannot tell many
         apart (a flat stretch of the space), the fastest few by this stage's times."""
@@ -398,6 +405,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
                               quality.get, target, lambda q: time_of.get(q, math.inf), best_time)[:plan.boundary_size]
         for s in members[:plan.refine_around]:
             new += [n for n in neighbours(s, spaces.get(s.technique, []), tried) if n not in new]
+        new = new[:plan.new_settings]
         if not new:
             break
         stage_settings = carried(members, outcomes) + new
@@ -407,7 +415,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
                      % (budget_s - result.seconds, len(stage_settings) + 1, stage_cost))
             break
         name = "refine-%d" % (level + 1)
-        outcomes, seconds = run(name, stage_settings, "full", estimate(stage_settings, frames_only=True))
+        outcomes, seconds = run(name, stage_settings, "full", 0.0)
         members, decision = fastest_set(eligible(stage_settings), outcomes, tolerance)
         result.stages.append(Stage(name, list(dict.fromkeys(stage_settings + [anchor])), outcomes, seconds, members))
         progress("%s: fastest %s (%s)" % (name, names_text(members), decision))

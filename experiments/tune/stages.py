@@ -41,6 +41,10 @@ def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metri
              'name = "tune-%s"' % name,
              'description = "hybridlab tune: stage %s on %s at %dx%d"' % (name, scene, size[0], size[1]),
              "warmup_frames = 1",
+             # One frame compiles lavapipe's shaders and fills the caches; a search times every
+             # setting in several stages, so it does not wait for frames to agree (the runner's
+             # default goes on to 5).
+             "max_warmup_frames = %d" % (search.WARMUP_FRAMES if full else 1),
              "repeats = %d" % (search.FULL_ROUNDS if full else rounds),
              "precision = %s" % toml_value(float(tolerance)),
              "budget_s = %s" % toml_value(float(max(budget_s, 0.1))),

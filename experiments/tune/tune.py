@@ -3,7 +3,7 @@
     hybridlab tune --scene S --target "ssim>=0.97" [--region whole|refl] [--technique T ...]
                    [--size WxH] [--budget-s N] [--cache DIR] [--resume] --out DIR
 
-Searches the techniques' declared knobs (search.py: a coarse grid screened, the fastest reaching
+Searches the techniques' declared knobs (search.py: a grid screened, the fastest reaching
 the target raced, the target's boundary refined, a final timing) on the scene's camera, each stage
 rendered and timed by `hybridlab run` beside rt_only. Writes
 
@@ -123,6 +123,7 @@ def write_summary(out, result, target, args, size):
         doc["best_quality"] = result.best_quality
         doc["best_quality_setting"] = search.setting_name(result.best_quality_setting) if result.best_quality_setting else None
         doc["shortfall"] = target.shortfall(result.best_quality) if result.best_quality is not None else None
+        doc["rt_only_reaches"] = result.rt_only_reaches
     with open(os.path.join(out, "tune.json"), "w") as f:
         json.dump(doc, f, indent=1)
     if result.reached:
@@ -182,6 +183,8 @@ def main(argv):
         best = result.best_quality_setting
         print("tune: not reached: no setting reaches %s; the best is %s with %s = %.4f, %.4f short" % (
             target, search.setting_name(best), target.metric, result.best_quality, target.shortfall(result.best_quality)))
+        if result.rt_only_reaches:
+            print("tune: rt_only (not searched) reaches it")
         return 0
     final = result.stages[-1].outcomes
     kind = {timing.SINGLE: "the fastest", timing.TIED: "tied for the fastest",

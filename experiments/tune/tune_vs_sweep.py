@@ -13,9 +13,10 @@ not a test (it takes most of an hour on 2 cores):
    (the verdict's rule on the sweep's rounds: its fastest set's empirical best) and rt_only, in one
    group (DIR/check/...), and compares them by the verdict's rule: tune's answer faster, tied, not
    decided or slower.
-4. Runs tune `--repeats` times on the first scene (heuristic_rt at SSIM 0.97) and says whether
-   their answers are identical, tied, or contradict (share no setting, and one is decided slower
-   than another in a common timing).
+4. Runs tune `--repeats` times on one case (`--repeat SCENE TECHNIQUE SSIM`, default
+   sponza-spheres ssr_fallback 0.97) and says whether their answers are identical, or where two
+   share no setting, how their best settings compare timed together (a contradiction is one
+   decided faster than the other; tied or not decided is none).
 
 Prints a table: scene, technique, target, the sweep's best and tune's answer with their times, the
 comparison, and the frames each rendered (tune's over the sweep's, for that technique: its settings'
@@ -111,6 +112,8 @@ def main():
     ap.add_argument("--budget-s", type=float, default=60.0)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--scenes", nargs="*", default=list(SCENES))
+    ap.add_argument("--repeat", nargs=3, metavar=("SCENE", "TECHNIQUE", "SSIM"), default=["sponza-spheres", "ssr_fallback", "0.97"],
+                    help="the search run --repeats times (default: sponza-spheres ssr_fallback 0.97)")
     args = ap.parse_args()
     program = os.path.abspath(args.program)
     cache = os.path.abspath(os.path.join(args.out, "cache"))
@@ -147,15 +150,16 @@ def main():
                     final[doc["choice"][0]]["ms"], doc["decision"], order, doc["renders"], renders, doc["renders"] / renders))
     print("\n".join(lines))
 
-    scene = args.scenes[0]
+    scene, technique, threshold = args.repeat[0], args.repeat[1], float(args.repeat[2])
+    label = "%s-%s-%.2f" % (scene, technique, threshold)
     docs = []
     for k in range(args.repeats):
-        doc = tune(program, os.path.join(args.out, "repeat", "run-%d" % (k + 1)), scene, "heuristic_rt", 0.97, args.budget_s, cache)
+        doc = tune(program, os.path.join(args.out, "repeat", label, "run-%d" % (k + 1)), scene, technique, threshold, args.budget_s, cache)
         docs.append(doc)
         print("repeat %d: %s (%s)" % (k + 1, " and ".join(doc["choice"]), doc["decision"]))
     sets = [set(d["choice"]) for d in docs]
     if all(s == sets[0] for s in sets):
-        print("repeats on %s, heuristic_rt at SSIM 0.97: identical" % scene)
+        print("repeats of %s: identical" % label)
         return
     # Answers that differ: their best settings timed together, two by two (a contradiction is one
     # decided faster than another; tied or not decided is not one).
@@ -165,7 +169,7 @@ def main():
                 print("repeats %d and %d share a setting" % (i + 1, j + 1))
                 continue
             a, b = answer_settings(docs[i])[0], answer_settings(docs[j])[0]
-            order = check(program, os.path.join(args.out, "repeat", "check-%d-%d" % (i + 1, j + 1)), scene, a, b, cache)
+            order = check(program, os.path.join(args.out, "repeat", label, "check-%d-%d" % (i + 1, j + 1)), scene, a, b, cache)
             print("repeats %d and %d: %s is %s against %s%s" % (i + 1, j + 1, search.setting_name(a), order, search.setting_name(b),
                                                              "   <- contradicts" if order in (timing.FASTER, timing.SLOWER) else ""))
 

@@ -71,10 +71,11 @@ TechniqueInfo HeuristicRtTechnique::info() {
         "(Embree or the Vulkan device) for the selected objects' pixels, blending",
         std::move(parameters), [](const P& p) { return std::make_unique<HeuristicRtTechnique>(p); },
         /*relativeCost=*/0.4);  // 0.30-0.40 of the reference at 320x180 (whitted-classic, cornell-mirror-glass)
-    // The budget T (eq. 2, about rays) per pixel: Walewski 2019 Table 5's 1-3 M at 1280x720 are 1.1-3.3;
-    // and the selected pixels' ray-tree cut-off.
+    // The budget T (eq. 2, about rays) per pixel in steps of sqrt(2) (Walewski 2019 Table 5's 1-3 M
+    // at 1280x720 are 1.1-3.3; the quality need not grow with it monotonically: the selection
+    // changes object by object), and the selected pixels' ray-tree cut-off.
     using S = SearchDimension::Scale;
-    info.searchSpace = {{"budget", {0.125, 0.25, 0.5, 1.0, 2.0}, S::Log, /*perPixel=*/true},
+    info.searchSpace = {{"budget", {0.125, 0.177, 0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0}, S::Log, /*perPixel=*/true},
                         {"importance_cutoff", {0.0, 0.02, 0.05, 0.1}, S::Linear}};
     return info;
 }

@@ -122,8 +122,8 @@ TechniqueInfo SsrFallbackTechnique::info() {
     // SSR's march (steps and slab thickness, ssr_fallback_sweep.toml's ranges) and the fallback's
     // ray-tree cut-off.
     using S = SearchDimension::Scale;
-    info.searchSpace = {{"max_steps", {16LL, 64LL, 256LL}, S::Log},
-                        {"thickness", {0.005, 0.02, 0.08}, S::Log},
+    info.searchSpace = {{"max_steps", {16LL, 32LL, 64LL, 128LL, 256LL}, S::Log},
+                        {"thickness", {0.005, 0.01, 0.02, 0.04, 0.08}, S::Log},
                         {"importance_cutoff", {0.0, 0.05}, S::Linear}};
     return info;
 }

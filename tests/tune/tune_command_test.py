@@ -43,7 +43,7 @@ class TuneCommandTest(unittest.TestCase):
         self.assertEqual(doc["stages"][-1]["name"], "final")
         self.assertTrue(doc["choice"])
         # The progress lines name each stage and the answer.
-        self.assertIn("tune: stage screen: 19 settings (1 round each: a rough time)", got.stdout)
+        self.assertIn("tune: stage screen: 51 settings (1 round each: a rough time)", got.stdout)
         self.assertIn("reaching ssim>=0.95", got.stdout)
         # Every setting named reaches the target, on the final stage's own records.
         result = os.path.join(self.out, "result")

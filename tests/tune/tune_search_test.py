@@ -131,8 +131,10 @@ class SearchTest(unittest.TestCase):
         r = search.search(ALPHA, ev, target, budget_s=60.0)
         self.assertFalse(r.reached)
         self.assertEqual(r.choice, [])
-        self.assertEqual(r.best_quality_setting, search.setting(search.RT_ONLY))
-        self.assertAlmostEqual(target.shortfall(r.best_quality), 0.09)
+        # The best of the searched settings (x = 64, mode a or b: 0.5 + 0.1 log10 64), not rt_only.
+        self.assertEqual(dict(r.best_quality_setting.params)["x"], 64.0)
+        self.assertAlmostEqual(target.shortfall(r.best_quality), 0.99 - (0.5 + 0.1 * math.log10(64.0)))
+        self.assertFalse(r.rt_only_reaches)
         # Nothing is timed past the screen when nothing reaches the target.
         self.assertEqual([st[0] for st in ev.stages], ["screen"])
 
