@@ -205,7 +205,7 @@ class Plan:
     margin = 1.25          # a stage's estimated cost times this must fit in the budget left
     front_size = 3         # front settings timed in the final stage, besides the fastest set
     carry = 2              # the fastest set's members carried into the next stage, at most (the fastest)
-    final_rounds = 2.0     # the final stage's rounds, at most, in multiples of the fewest
+    final_rounds = 1.5     # the final stage's rounds, at most, in multiples of the fewest
 
 
 def rough_time(outcome):

@@ -34,8 +34,8 @@ def toml_value(v):
     return json.dumps(v)
 
 
-def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed):
-    """The TOML of one stage's experiment."""
+def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed, max_rounds=None):
+    """The TOML of one stage's experiment (`max_rounds`: the runner's cap, default 30)."""
     full = rounds == "full"
     lines = ["# A stage of `hybridlab tune`: %s." % name, "", "[experiment]",
              'name = "tune-%s"' % name,
@@ -48,6 +48,7 @@ def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metri
              "repeats = %d" % (search.FULL_ROUNDS if full else rounds),
              "precision = %s" % toml_value(float(tolerance)),
              "budget_s = %s" % toml_value(float(max(budget_s, 0.1))),
+             "max_rounds = %d" % max_rounds if max_rounds else "",
              "metrics = [%s]" % ", ".join(json.dumps(m) for m in metrics) if metrics else "",
              'keep = []', "", "[reference]", "params = { max_depth = 10 }",
              "timed = %s" % ("true" if reference_timed else "false"), "",
