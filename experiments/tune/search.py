@@ -39,6 +39,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "report"))
+import results as rs  # noqa: E402
 import timing  # noqa: E402
 
 RT_ONLY = "rt_only"
@@ -113,10 +114,24 @@ def between(a, b, dim):
         m = math.sqrt(a * b)
     else:
         m = 0.5 * (a + b)
+    return strictly_between(int(round(m)) if dim.integer else m, a, b, dim)
+
+
+def strictly_between(m, a, b, dim):
+    """`m` as the knob's type where it lies strictly between `a` and `b`, else None."""
     if dim.integer:
-        m = int(round(m))
         return m if min(a, b) < m < max(a, b) else None
     return float(m) if m not in (a, b) else None
+
+
+def sides(s, parameter, tried):
+    """The nearest values of `parameter` tried below and above the value `s` has, with every other
+    knob as in `s` (none, one or two)."""
+    v = dict(s.params)[parameter]
+    line = line_of(s, parameter, tried)
+    lower = [x for x in line if x < v]
+    upper = [x for x in line if x > v]
+    return ([lower[-1]] if lower else []) + ([upper[0]] if upper else [])
 
 
 def neighbours(s, dims, tried):
@@ -128,13 +143,7 @@ def neighbours(s, dims, tried):
         if d.scale is None or d.parameter not in params:
             continue
         v = params[d.parameter]
-        others = dict(params)
-        del others[d.parameter]
-        line = sorted({dict(t.params)[d.parameter] for t in tried
-                       if t.technique == s.technique and {k: x for k, x in t.params if k != d.parameter} == others})
-        lower = [x for x in line if x < v]
-        upper = [x for x in line if x > v]
-        for side in ([lower[-1]] if lower else []) + ([upper[0]] if upper else []):
+        for side in sides(s, d.parameter, tried):
             m = between(v, side, d)
             if m is not None:
                 n = setting(s.technique, dict(params, **{d.parameter: m}))
@@ -214,14 +223,10 @@ def rough_time(outcome):
 
 
 def front(settings, outcomes, target):
-    """The settings no other is both at least as fast (rough time) and at least as good, and
-    strictly one of them; fastest first."""
-    def dominates(a, b):
-        qa, qb, ta, tb = outcomes[a].quality, outcomes[b].quality, rough_time(outcomes[a]), rough_time(outcomes[b])
-        no_worse = ta <= tb and not target.better(qb, qa)
-        return no_worse and (ta < tb or target.better(qa, qb))
-    live = [s for s in settings if outcomes[s].quality is not None]
-    return sorted((s for s in live if not any(dominates(o, s) for o in live if o != s)), key=lambda s: rough_time(outcomes[s]))
+    """The settings that no faster one is at least as good as (by rough time and the target's
+    metric: results.pareto_front, the report's own front); fastest first."""
+    points = [(rough_time(outcomes[s]), outcomes[s].quality, s) for s in settings if outcomes[s].quality is not None]
+    return [s for _, _, s in rs.pareto_front(points, target.higher_is_better)]
 
 
 def fastest_set(candidates, outcomes, tolerance):
@@ -248,13 +253,6 @@ class Result:
         self.rt_only_faster = False  # rt_only (not searched) reaches the target and is faster than the answer
         self.rt_only_reaches = False  # rt_only (not searched) reaches a target no searched setting does
 
-    def outcome(self, s):
-        """The setting's outcome in the last stage that measured it."""
-        for st in reversed(self.stages):
-            if s in st.outcomes:
-                return st.outcomes[s]
-        return None
-
 
 def line_of(s, parameter, tried):
     """The values of `parameter` tried with every other knob of `s` as in `s`, sorted."""
@@ -273,8 +271,7 @@ def toward(a, b, t, dim):
         m = a + (b - a) * t
     if dim.integer:
         m = int(math.floor(m)) if b > a else int(math.ceil(m))
-        return m if min(a, b) < m < max(a, b) else None
-    return float(m) if m not in (a, b) else None
+    return strictly_between(m, a, b, dim)
 
 
 def boundary_points(reaching, dims_of, tried, quality_of, target, time_of, faster_than):
@@ -292,10 +289,7 @@ def boundary_points(reaching, dims_of, tried, quality_of, target, time_of, faste
             if d.scale is None or d.parameter not in params:
                 continue
             v = params[d.parameter]
-            line = line_of(p, d.parameter, tried)
-            lower = [x for x in line if x < v]
-            upper = [x for x in line if x > v]
-            for side in ([lower[-1]] if lower else []) + ([upper[0]] if upper else []):
+            for side in sides(p, d.parameter, tried):
                 q = setting(p.technique, dict(params, **{d.parameter: side}))
                 qp, qq = quality_of(p), quality_of(q)
                 if qq is None or target.met(qq) or time_of(q) >= faster_than:
@@ -330,6 +324,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         return target.met(quality.get(s))
 
     def run(name, settings, rounds, stage_budget):
+        """Renders and times a stage (rt_only added) and records it in the result; the Stage."""
         settings = list(dict.fromkeys(settings + [anchor]))
         how = "timed in full" if rounds == "full" else "%d round%s each: a rough time" % (rounds, "" if rounds == 1 else "s")
         progress("stage %s: %d settings (%s), %.0f s of the %.0f s budget spent" % (name, len(settings), how, result.seconds, budget_s))
@@ -340,21 +335,25 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
             quality[s] = o.quality
             time_of[s] = rough_time(o)
         tried.update(settings)
-        return measured.outcomes, measured.seconds
+        result.stages.append(Stage(name, settings, measured.outcomes, measured.seconds, None))
+        return result.stages[-1]
+
+    def decided(stage, candidates):
+        """The fastest set of a stage's candidates, recorded with the stage: (members, decision)."""
+        members, decision = fastest_set(candidates, stage.outcomes, tolerance)
+        result.stages[-1] = stage._replace(fastest=members)
+        progress("%s: fastest %s (%s)" % (stage.name, names_text(members), decision))
+        return members, decision
 
     candidates = [s for technique, dims in spaces.items() for s in grid(technique, dims)]
-    screen, screen_seconds = run("screen", candidates, plan.screen_rounds, 0.0)
-    result.stages.append(Stage("screen", list(dict.fromkeys(candidates + [anchor])), screen, screen_seconds, None))
+    screen = run("screen", candidates, plan.screen_rounds, 0.0)
     reaching = [s for s in candidates if met(s)]
-    result.front = front(candidates + [anchor], screen, target)
+    result.front = front(screen.settings, screen.outcomes, target)
     if not reaching:
         # The best of the searched settings, and how far it falls short (rt_only is said apart where
         # it is not searched: it is the chart's end, not an answer).
-        best = None
-        for s in candidates:
-            q = quality.get(s)
-            if q is not None and (best is None or target.better(q, quality[best])):
-                best = s
+        scored = [s for s in candidates if quality.get(s) is not None]
+        best = max(scored, key=lambda s: quality[s] if target.higher_is_better else -quality[s]) if scored else None
         result.best_quality_setting, result.best_quality = best, quality.get(best)
         result.rt_only_reaches = anchor.technique not in spaces and met(anchor)
         progress("no setting reaches %s: the best is %s with %s = %s" % (target, setting_name(best) if best else "none", target.metric,
@@ -371,9 +370,8 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     def guess(s):
         times = sorted(screen_times.get(s.technique, [0.0]))
         return time_of.get(s, times[len(times) // 2])
-    screen_settings = result.stages[0].settings
-    screen_frames_s = (1 + plan.screen_rounds) * sum(guess(s) for s in screen_settings) / 1000.0
-    overhead_s = max(0.0, screen_seconds - screen_frames_s) / len(screen_settings)
+    screen_frames_s = (1 + plan.screen_rounds) * sum(guess(s) for s in screen.settings) / 1000.0
+    overhead_s = max(0.0, screen.seconds - screen_frames_s) / len(screen.settings)
     def estimate(settings, frames_only=False):
         """The stage's seconds; `frames_only`: its frames' alone (the runner's budget for its rounds)."""
         settings = list(dict.fromkeys(settings + [anchor]))
@@ -384,18 +382,15 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     race = reaching[:max(2, min(plan.race_size, math.ceil(len(reaching) / 3)))]
     final_front = [s for s in result.front if s != anchor][:plan.front_size]
     final_reserve = estimate(race[:plan.refine_around] + final_front)
-    outcomes, seconds = run("race", race, "full", 0.0)
-    def carried(members, outcomes):
+    def carried(members):
         """The fastest set's members the next stage times again: where the rounds cannot tell many
-        apart (a flat stretch of the space), the fastest few by this stage's times."""
-        return sorted(members, key=lambda s: rough_time(outcomes[s]))[:plan.carry] if len(members) > plan.carry else members
+        apart (a flat stretch of the space), the fastest few by their last stage's times."""
+        return sorted(members, key=lambda s: time_of[s])[:plan.carry] if len(members) > plan.carry else members
 
     # The candidates: the searched techniques' settings that reach the target (rt_only, timed in
     # every stage, among them where it is searched).
     eligible = lambda settings: [s for s in dict.fromkeys(settings + [anchor]) if s.technique in spaces and met(s)]  # noqa: E731
-    members, decision = fastest_set(eligible(race), outcomes, tolerance)
-    result.stages.append(Stage("race", list(dict.fromkeys(race + [anchor])), outcomes, seconds, members))
-    progress("race: fastest %s (%s)" % (names_text(members), decision))
+    members, decision = decided(run("race", race, "full", 0.0), eligible(race))
 
     for level in range(plan.refinements):
         # Only where a setting past the boundary is faster than the best by more than the tolerance
@@ -408,27 +403,22 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         new = new[:plan.new_settings]
         if not new:
             break
-        stage_settings = carried(members, outcomes) + new
+        stage_settings = carried(members) + new
         stage_cost = estimate(stage_settings)
         if result.seconds + plan.margin * (stage_cost + final_reserve) > budget_s:
             progress("refine: stopped; the %.0f s of the budget left hold no stage of %d settings (about %.0f s) and the final one"
                      % (budget_s - result.seconds, len(stage_settings) + 1, stage_cost))
             break
-        name = "refine-%d" % (level + 1)
-        outcomes, seconds = run(name, stage_settings, "full", 0.0)
-        members, decision = fastest_set(eligible(stage_settings), outcomes, tolerance)
-        result.stages.append(Stage(name, list(dict.fromkeys(stage_settings + [anchor])), outcomes, seconds, members))
-        progress("%s: fastest %s (%s)" % (name, names_text(members), decision))
+        members, decision = decided(run("refine-%d" % (level + 1), stage_settings, "full", 0.0), eligible(stage_settings))
 
-    final = list(dict.fromkeys(carried(members, outcomes) + final_front))
+    final = list(dict.fromkeys(carried(members) + final_front))
     least = estimate(final, frames_only=True)
-    outcomes, seconds = run("final", final, "full", max(least, min(budget_s - result.seconds - (estimate(final) - least), plan.final_rounds * least)))
-    result.choice, result.decision = fastest_set(eligible(final), outcomes, tolerance)
-    result.stages.append(Stage("final", list(dict.fromkeys(final + [anchor])), outcomes, seconds, result.choice))
+    last = run("final", final, "full", max(least, min(budget_s - result.seconds - (estimate(final) - least), plan.final_rounds * least)))
+    result.choice, result.decision = decided(last, eligible(final))
     result.reached = True
     # rt_only not searched but reaching the target faster than the answer: worth saying.
     if anchor.technique not in spaces and met(anchor) and result.choice:
+        outcomes = last.outcomes
         result.rt_only_faster = timing.compare_rounds(outcomes[anchor].rounds, outcomes[result.choice[0]].rounds, tolerance) == timing.FASTER
     result.over_budget = result.seconds > budget_s
-    progress("final: %s (%s)" % (names_text(result.choice), result.decision))
     return result

@@ -72,6 +72,37 @@ def normalised(params):
     return tuple(sorted((k, norm(v)) for k, v in params))
 
 
+def setting_key(s):
+    """What a search.Setting matches a record by (record_key)."""
+    return s.technique, normalised(s.params)
+
+
+def record_key(r):
+    return r["technique"], normalised(r["parameters"].items())
+
+
+def frames_rendered(records):
+    """Every frame a result set's runs rendered: each run's warm-up and rounds, and the reference's
+    rounds where it was timed (once a group)."""
+    frames = sum(r.get("warmup_frames", 0) + (r.get("timing") or {}).get("rounds", 0) for r in records)
+    return frames + sum(len((r.get("timing") or {}).get("reference_ms_rounds") or [])
+                        for r in {(r.get("timing") or {}).get("timing_id"): r for r in records}.values())
+
+
+def run_experiment(program, config_file, out, cache=None, quiet=True, log=None):
+    """`hybridlab run CONFIG --out OUT`, resuming OUT where an interrupted run left it; nothing
+    where OUT is complete (it has its results.json). The runner's own lines go to `log` (a file
+    object) where one is given; its errors to the terminal. Raises RunFailed."""
+    if os.path.exists(os.path.join(out, "results.json")):
+        return
+    command = [program, "run", config_file, "--out", out] + (["--resume"] if os.path.exists(out) else [])
+    command += ["--cache", cache] if cache else []
+    command += ["--quiet"] if quiet else []
+    status = subprocess.run(command, stdout=log).returncode
+    if status != 0:
+        raise RunFailed(status, out)
+
+
 class RunnerEvaluator:
     """search.search's evaluator: renders each stage with `hybridlab run` (see the module's text)."""
 
@@ -92,28 +123,24 @@ class RunnerEvaluator:
         config_file = os.path.join(self.out_dir, "stages", name + ".toml")
         os.makedirs(os.path.dirname(config_file), exist_ok=True)
         if not os.path.exists(os.path.join(d, "results.json")):
-            if os.path.exists(config_file) and open(config_file).read() != config and os.path.exists(d):
-                raise search.SearchError("%s: holds stage %s of another search (its config differs); choose another --out" % (d, name))
+            if os.path.exists(config_file) and os.path.exists(d):
+                with open(config_file) as f:
+                    if f.read() != config:
+                        raise search.SearchError("%s: holds stage %s of another search (its config differs); choose another --out" % (d, name))
             with open(config_file, "w") as f:
                 f.write(config)
-            command = [self.program, "run", config_file, "--out", d] + (["--resume"] if os.path.exists(d) else [])
-            command += ["--cache", self.cache] if self.cache else []
-            command += ["--quiet"] if self.quiet else []
-            # The runner's own lines go to the stage's log; its errors to the terminal.
             with open(os.path.join(self.out_dir, "stages", name + ".log"), "a") as log:
-                status = subprocess.run(command, stdout=log).returncode
-            if status != 0:
-                raise RunFailed(status, d)
+                run_experiment(self.program, config_file, d, self.cache, self.quiet, log)
         return self.read(d, settings)
 
     def read(self, d, settings):
         records = rs.load(d)
         by_key = {}
         for r in records:
-            by_key.setdefault((r["technique"], normalised(r["parameters"].items())), []).append(r)
+            by_key.setdefault(record_key(r), []).append(r)
         outcomes = {}
         for s in settings:
-            runs = by_key.get((s.technique, normalised(s.params)), [])
+            runs = by_key.get(setting_key(s), [])
             if not runs:
                 raise search.SearchError("%s: no record of %s" % (d, search.setting_name(s)))
             q = [rs.metric(r, self.region, self.target.metric) for r in runs]
@@ -121,12 +148,7 @@ class RunnerEvaluator:
             # Over several runs (views), the worst: the target holds on every one.
             worst = (min(q) if self.target.higher_is_better else max(q)) if q else None
             outcomes[s] = search.Outcome(worst, timing.setting_rounds(runs))
-        # Every frame rendered: each run's warm-up and rounds, and the reference's rounds where it
-        # was timed (once a group).
-        renders = sum(r.get("warmup_frames", 0) + (r.get("timing") or {}).get("rounds", 0) for r in records)
-        renders += sum(len((r.get("timing") or {}).get("reference_ms_rounds") or [])
-                       for r in {(r.get("timing") or {}).get("timing_id"): r for r in records}.values())
         # The runner's own account of each run's time (its share of the group's, then its scoring):
         # read back alike from a stage rendered now and one resumed.
         seconds = sum(r.get("run_seconds") or 0.0 for r in records)
-        return search.Measured(outcomes, seconds, renders)
+        return search.Measured(outcomes, seconds, frames_rendered(records))

@@ -58,10 +58,6 @@ def sweep_rows(sweep_dir):
     return by
 
 
-def setting_of(r):
-    return search.setting(r["technique"], dict(r["parameters"]))
-
-
 def best_reaching(records, threshold):
     """The sweep's best setting of these records reaching SSIM `threshold` on the whole image, by
     the verdict's rule (the fastest set's empirical best), with its fastest set's size."""
@@ -70,10 +66,6 @@ def best_reaching(records, threshold):
         return None, 0
     fs = timing.fastest(ok, lambda r: [r])
     return fs.best, len(fs.settings)
-
-
-def sweep_renders(records):
-    return sum(r.get("warmup_frames", 0) + (r.get("timing") or {}).get("rounds", 0) for r in records)
 
 
 def check(program, out, scene, tuned, best, cache):
@@ -90,11 +82,9 @@ def check(program, out, scene, tuned, best, cache):
     os.makedirs(os.path.dirname(out), exist_ok=True)
     with open(out + ".toml", "w") as f:
         f.write(config)
-    if not os.path.exists(os.path.join(out, "results.json")):
-        run([program, "run", out + ".toml", "--out", out, "--quiet", "--cache", cache] + (["--resume"] if os.path.exists(out) else []))
-    records = rs.load(out)
-    rounds = {setting_of(r): timing.setting_rounds([r]) for r in records}
-    return timing.compare_rounds(rounds[tuned], rounds[best], timing.DEFAULT_TOLERANCE)
+    stages.run_experiment(program, out + ".toml", out, cache)
+    rounds = {stages.record_key(r): timing.setting_rounds([r]) for r in rs.load(out)}
+    return timing.compare_rounds(rounds[stages.setting_key(tuned)], rounds[stages.setting_key(best)], timing.DEFAULT_TOLERANCE)
 
 
 def tune(program, out, scene, technique, threshold, budget, cache):
@@ -124,8 +114,7 @@ def main():
     program = os.path.abspath(args.program)
     cache = os.path.abspath(os.path.join(args.out, "cache"))
     sweep_dir = os.path.join(args.out, "sweep")
-    if not os.path.exists(os.path.join(sweep_dir, "results.json")):
-        run([program, "run", args.sweep_config, "--out", sweep_dir, "--cache", cache] + (["--resume"] if os.path.exists(sweep_dir) else []))
+    stages.run_experiment(program, args.sweep_config, sweep_dir, cache, quiet=False)
     sweep = sweep_rows(sweep_dir)
 
     lines = ["| scene | technique | target | sweep's best (ms) | tune's answer (ms) | tune vs sweep | frames: tune / sweep |",
@@ -136,7 +125,7 @@ def main():
             records = sweep.get((scene, technique), [])
             # The sweep's frames for this technique: its settings' and rt_only's share of the group.
             share = len(records) / max(1, sum(len(v) for (s, _), v in sweep.items() if s == scene) - len(rt_only))
-            renders = sweep_renders(records) + share * sweep_renders(rt_only)
+            renders = stages.frames_rendered(records) + share * stages.frames_rendered(rt_only)
             for threshold in TARGETS:
                 best, best_set = best_reaching(records, threshold)
                 doc = tune(program, os.path.join(args.out, "tune", "%s-%s-%.2f" % (scene, technique, threshold)), scene, technique, threshold,
@@ -149,7 +138,7 @@ def main():
                     continue
                 answer = answer_settings(doc)
                 order = check(program, os.path.join(args.out, "check", "%s-%s-%.2f" % (scene, technique, threshold)), scene, answer[0],
-                              setting_of(best), cache)
+                              search.setting(best["technique"], dict(best["parameters"])), cache)
                 final = {s["setting"]: s for s in doc["stages"][-1]["settings"]}
                 lines.append("| %s | %s | %.2f | %s (%.2f; a set of %d) | %s (%.2f; %s) | %s | %d / %.0f = %.2f |" % (
                     scene, technique, threshold, rs.variant(best), best["frame_ms"]["median"], best_set, " and ".join(doc["choice"]),
