@@ -9,12 +9,6 @@ namespace hybridlab {
 
 namespace {
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 bool insideBand(const MedianInterval& ratio, double tolerance) {
     return ratio.low >= 1.0 - tolerance && ratio.high <= 1.0 / (1.0 - tolerance);
 }

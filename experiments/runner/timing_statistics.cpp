@@ -9,23 +9,18 @@ namespace hybridlab {
 
 namespace {
 
-// P(X <= k) for X ~ binomial(n, 1/2), each term C(n, i) / 2^n formed in log space (report/timing.py
-// sums the same terms the same way, so both sides choose the same ranks).
-double binomialHalfCdf(std::size_t n, std::size_t k) {
-    double sum = 0.0, logTerm = -static_cast<double>(n) * std::log(2.0);  // log(C(n, 0) / 2^n)
-    for (std::size_t i = 0; i <= k && i <= n; ++i) {
-        sum += std::exp(logTerm);
-        logTerm += std::log(static_cast<double>(n - i)) - std::log(static_cast<double>(i + 1));
-    }
-    return sum;
-}
-
 double medianOfSorted(const std::vector<double>& v) {
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace
+
+double median(std::vector<double> values) {
+    if (values.empty()) throw std::invalid_argument("median of no values");
+    std::sort(values.begin(), values.end());
+    return medianOfSorted(values);
+}
 
 double MedianInterval::relativeHalfWidth() const {
     if (!hasInterval || median <= 0.0) return INFINITY;
@@ -49,8 +44,10 @@ MedianInterval medianInterval(std::vector<double> values, double confidence) {
 }
 
 std::size_t intervalRank(std::size_t n, double confidence) {
-    // [x_(l), x_(n+1-l)] covers the median with probability 1 - 2 P(X <= l - 1): the largest l
-    // that keeps the coverage at the confidence.
+    // [x_(l), x_(n+1-l)] covers the median with probability 1 - 2 P(X <= l - 1), X ~ binomial(n,
+    // 1/2): the largest l that keeps the coverage at the confidence. Each term C(n, i) / 2^n is
+    // formed in log space (report/timing.py sums the same terms the same way, so both sides choose
+    // the same ranks).
     std::size_t l = 0;
     double below = 0.0;  // P(X <= k - 1), accumulated as k grows
     double logTerm = -static_cast<double>(n) * std::log(2.0);
@@ -65,7 +62,7 @@ std::size_t intervalRank(std::size_t n, double confidence) {
 
 std::size_t minimumSamplesForInterval(double confidence) {
     std::size_t n = 1;
-    while (1.0 - 2.0 * binomialHalfCdf(n, 0) < confidence) ++n;
+    while (intervalRank(n, confidence) == 0) ++n;
     return n;
 }
 

@@ -24,6 +24,9 @@ struct MedianInterval {
 };
 MedianInterval medianInterval(std::vector<double> values, double confidence = 0.95);
 
+// The median alone (of at least one value).
+double median(std::vector<double> values);
+
 // The rank l (1-based) of the interval's lower end among n sorted values, the upper end being
 // n + 1 - l; 0 where no pair reaches `confidence`. The binomial tail is summed in log space, so
 // that it holds for any n (2^-n underflows a double from n = 1075).
