@@ -4,11 +4,13 @@ namespace hybridlab {
 
 namespace {
 
-// The types among `typeBits` with all of `flags`, in the device's order, appended to `out` (each once).
+// The types among `typeBits` with all of `flags` and none of `without`, in the device's order,
+// appended to `out` (each once).
 void appendTypesWith(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits, VkMemoryPropertyFlags flags,
-                     std::vector<std::uint32_t>& out) {
+                     std::vector<std::uint32_t>& out, VkMemoryPropertyFlags without = 0) {
     for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-        if (!(typeBits & (1u << i)) || (memory.memoryTypes[i].propertyFlags & flags) != flags) continue;
+        const VkMemoryPropertyFlags has = memory.memoryTypes[i].propertyFlags;
+        if (!(typeBits & (1u << i)) || (has & flags) != flags || (has & without)) continue;
         bool listed = false;
         for (std::uint32_t t : out) listed |= t == i;
         if (!listed) out.push_back(i);
@@ -23,10 +25,7 @@ std::vector<std::uint32_t> memoryTypeCandidates(const VkPhysicalDeviceMemoryProp
     switch (use) {
     case MemoryUse::DeviceLocal:
         // Not host-visible first: the BAR heap is small and kept for what the host rewrites.
-        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-            if (!(memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT))
-                appendTypesWith(memory, typeBits & (1u << i), VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, types);
-        }
+        appendTypesWith(memory, typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, types, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
         appendTypesWith(memory, typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, types);
         break;
     case MemoryUse::HostVisible:
@@ -37,11 +36,7 @@ std::vector<std::uint32_t> memoryTypeCandidates(const VkPhysicalDeviceMemoryProp
     case MemoryUse::DeviceLocalHostVisible:
         // Then system memory: uncached (write-combined) before cached, as the host only writes it.
         appendTypesWith(memory, typeBits, coherent | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, types);
-        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
-            if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & coherent) == coherent &&
-                !(memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT))
-                appendTypesWith(memory, typeBits & (1u << i), coherent, types);
-        }
+        appendTypesWith(memory, typeBits, coherent, types, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
         appendTypesWith(memory, typeBits, coherent, types);
         break;
     }
