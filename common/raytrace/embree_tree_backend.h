@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "common/raytrace/first_hit_shadows.h"
 #include "common/raytrace/medium_stack.h"
 #include "common/raytrace/ray_scene.h"
 #include "common/raytrace/ray_stats.h"
@@ -46,12 +47,18 @@ public:
         if (hit) current_ = hit;
     }
 
+    // The first hit's shadow rays, where a caller's packets traced them (first_hit_shadows.h).
+    void giveFirstHitShadows(const FirstHitShadows* shadows) { firstHitShadows_ = shadows; }
+
     float traceRay(glm::vec3 origin, glm::vec3 direction) {
         if (given_ != Given::None) {
             const bool found = given_ == Given::Hit;
             given_ = Given::None;
+            shadowsGiven_ = found ? firstHitShadows_ : nullptr;
+            nextShadow_ = 0;
             return found ? current_->t : -1.0f;
         }
+        shadowsGiven_ = nullptr;
         current_ = &hit_;
         return rays_.intersect({origin, direction}, 0.0f, std::numeric_limits<float>::infinity(), hit_) ? hit_.t : -1.0f;
     }
@@ -71,6 +78,8 @@ public:
     LightSample lightSample(int i, glm::vec3 p) const { return sampleLight(scene_.lights[i], cones_[i], p); }
     bool lightCastsShadows(int i) const { return scene_.lights[i].castsShadows; }
     glm::vec3 shadowTransmittance(glm::vec3 origin, glm::vec3 direction, float distance, glm::vec3 startAbsorption) const {
+        if (shadowsGiven_)
+            if (const glm::vec3* traced = shadowsGiven_->find(origin, direction, distance, startAbsorption, nextShadow_)) return *traced;
         return rays_.transmittance(origin, direction, distance, startAbsorption);
     }
     glm::vec3 skyRadiance(glm::vec3 direction) const { return hybridlab::skyRadiance(scene_, direction); }
@@ -98,6 +107,9 @@ private:
     Given given_ = Given::None;
     SurfaceHit hit_;
     const SurfaceHit* current_ = &hit_;  // the last traceRay()'s hit: hit_, or the one given
+    const FirstHitShadows* firstHitShadows_ = nullptr;  // given for the first hit
+    const FirstHitShadows* shadowsGiven_ = nullptr;     // while the first hit is shaded
+    mutable int nextShadow_ = 0;                        // where shadowsGiven_'s search goes on
 };
 
 }  // namespace hybridlab

@@ -24,34 +24,45 @@ void checkDevice(RTCDevice device, const char* what) {
 // Any-hit program of shadow rays (Walewski 2019 Listing 8b): attached only to geometry whose
 // material lets light through or casts no shadow, so opaque casters end the ray at once.
 void shadowFilter(const RTCFilterFunctionNArguments* args) {
-    if (!args->valid[0]) return;
     auto* ctx = reinterpret_cast<ShadowRayContext*>(args->context);
-    const unsigned geom = RTCHitN_geomID(args->hit, args->N, 0), inst = RTCHitN_instID(args->hit, args->N, 0, 0);
-    const float t = RTCRayN_tfar(args->ray, args->N, 0);
-    for (int i = 0; i < ctx->crossings; ++i) {
-        if (ctx->geometry[i] == geom && ctx->instance[i] == inst && std::abs(ctx->distance[i] - t) <= 1e-5f * t) {
-            args->valid[0] = 0;  // the same surface crossing, seen through its other triangle
-            return;
+    for (unsigned k = 0; k < args->N; ++k) {
+        if (!args->valid[k]) continue;
+        ShadowLane& lane = ctx->lanes[RTCRayN_id(args->ray, args->N, k)];
+        const unsigned geom = RTCHitN_geomID(args->hit, args->N, k), inst = RTCHitN_instID(args->hit, args->N, k, 0);
+        const float t = RTCRayN_tfar(args->ray, args->N, k);
+        bool counted = false;
+        for (int i = 0; i < lane.crossings && !counted; ++i)
+            counted = lane.geometry[i] == geom && lane.instance[i] == inst && std::abs(lane.distance[i] - t) <= 1e-5f * t;
+        if (counted) {
+            args->valid[k] = 0;  // the same surface crossing, seen through its other triangle
+            continue;
         }
+        if (lane.crossings < ShadowLane::kMaxCrossings) {
+            lane.geometry[lane.crossings] = geom;
+            lane.instance[lane.crossings] = inst;
+            lane.distance[lane.crossings] = t;
+            ++lane.crossings;
+        }
+        const Material& m = *static_cast<const Material*>(args->geometryUserPtr);
+        if (m.absorption != glm::vec3(0.0f)) {
+            // Ray and normal are in the same (instance) space; the normal follows the winding as
+            // SurfaceHit::geometricNormal does, so a negative cosine is a front face: entering.
+            const float cosine = RTCRayN_dir_x(args->ray, args->N, k) * RTCHitN_Ng_x(args->hit, args->N, k) +
+                                 RTCRayN_dir_y(args->ray, args->N, k) * RTCHitN_Ng_y(args->hit, args->N, k) +
+                                 RTCRayN_dir_z(args->ray, args->N, k) * RTCHitN_Ng_z(args->hit, args->N, k);
+            const bool entering = cosine < 0.0f;
+            lane.opticalDepth += crossingOpticalDepth(m.absorption, entering, t, std::isfinite(lane.tmax) ? lane.tmax : -1.0f);
+        }
+        lane.transmittance *= occluderTransmittance(m);
+        if (lane.transmittance.r > 0.0f || lane.transmittance.g > 0.0f || lane.transmittance.b > 0.0f) args->valid[k] = 0;
     }
-    if (ctx->crossings < ShadowRayContext::kMaxCrossings) {
-        ctx->geometry[ctx->crossings] = geom;
-        ctx->instance[ctx->crossings] = inst;
-        ctx->distance[ctx->crossings] = t;
-        ++ctx->crossings;
-    }
-    const Material& m = *static_cast<const Material*>(args->geometryUserPtr);
-    if (m.absorption != glm::vec3(0.0f)) {
-        // Ray and normal are in the same (instance) space; the normal follows the winding as
-        // SurfaceHit::geometricNormal does, so a negative cosine is a front face: entering.
-        const float cosine = RTCRayN_dir_x(args->ray, args->N, 0) * RTCHitN_Ng_x(args->hit, args->N, 0) +
-                             RTCRayN_dir_y(args->ray, args->N, 0) * RTCHitN_Ng_y(args->hit, args->N, 0) +
-                             RTCRayN_dir_z(args->ray, args->N, 0) * RTCHitN_Ng_z(args->hit, args->N, 0);
-        const bool entering = cosine < 0.0f;
-        ctx->opticalDepth += crossingOpticalDepth(m.absorption, entering, t, std::isfinite(ctx->tmax) ? ctx->tmax : -1.0f);
-    }
-    ctx->transmittance *= occluderTransmittance(m);
-    if (ctx->transmittance.r > 0.0f || ctx->transmittance.g > 0.0f || ctx->transmittance.b > 0.0f) args->valid[0] = 0;
+}
+
+// A traced shadow ray's transmittance from its lane's state: 0 where Embree accepted a hit (tfar
+// -inf: an opaque caster, or the transmittance used up).
+glm::vec3 laneTransmittance(const ShadowLane& lane, float tfar, const glm::vec3& startAbsorption) {
+    if (tfar == -std::numeric_limits<float>::infinity()) return glm::vec3(0.0f);
+    return shadowRayTransmittance(lane.transmittance, lane.opticalDepth, startAbsorption, std::isfinite(lane.tmax) ? lane.tmax : -1.0f);
 }
 
 // What depends on a triangle alone (world-space vertices p0, p1, p2): its unit geometric normal by
@@ -316,9 +327,9 @@ void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, b
 
 glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax, const glm::vec3& startAbsorption) const {
     if (log_) log_->record({origin, dir, 0.0f, tmax, true});
-    ShadowRayContext ctx;
-    rtcInitIntersectContext(&ctx.base);
-    ctx.tmax = tmax;
+    ShadowLane lane;
+    lane.tmax = tmax;
+    ShadowRayContext ctx(&lane);
     RTCRay r;
     r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
     r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
@@ -329,9 +340,45 @@ glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir,
     r.id = 0;
     r.flags = 0;
     timedEmbreeCall(callClock_, [&] { rtcOccluded1(top_, &ctx.base, &r); });
-    // Embree sets tfar to -inf when a hit was accepted: an opaque caster, or transmittance gone.
-    if (r.tfar == -std::numeric_limits<float>::infinity()) return glm::vec3(0.0f);
-    return shadowRayTransmittance(ctx.transmittance, ctx.opticalDepth, startAbsorption, std::isfinite(tmax) ? tmax : -1.0f);
+    return laneTransmittance(lane, r.tfar, startAbsorption);
+}
+
+void RayScene::traceShadowPacket(RTCScene scene, const ShadowQuery* rays, int count, ShadowRayContext& context, RTCRay8& packet) {
+    if (count < 1 || count > kCoherentRays) throw std::logic_error("RayScene: a coherent packet holds 1 to kCoherentRays rays");
+    alignas(32) int valid[kCoherentRays];
+    for (int k = 0; k < kCoherentRays; ++k) {
+        const ShadowQuery& ray = rays[std::min(k, count - 1)];  // idle lanes repeat the last ray, masked off
+        valid[k] = k < count ? -1 : 0;
+        packet.org_x[k] = ray.origin.x, packet.org_y[k] = ray.origin.y, packet.org_z[k] = ray.origin.z;
+        packet.dir_x[k] = ray.direction.x, packet.dir_y[k] = ray.direction.y, packet.dir_z[k] = ray.direction.z;
+        packet.tnear[k] = 0.0f;
+        packet.tfar[k] = ray.tmax;
+        packet.time[k] = 0.0f;
+        packet.mask[k] = 0xFFFFFFFFu;
+        packet.id[k] = static_cast<unsigned>(k);  // its lane in the context
+        packet.flags[k] = 0;
+        ShadowLane& lane = context.lanes[k];  // its crossings' records are written before they are read
+        lane.transmittance = glm::vec3(1.0f);
+        lane.opticalDepth = glm::vec3(0.0f);
+        lane.crossings = 0;
+        lane.tmax = ray.tmax;
+    }
+    context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded8(valid, scene, &context.base, &packet);
+}
+
+void RayScene::transmittanceCoherent(const ShadowQuery* rays, int count, glm::vec3* transmittances) const {
+    ShadowLane lanes[kCoherentRays];
+    ShadowRayContext ctx(lanes);
+    alignas(32) RTCRay8 packet;
+    timedEmbreeCall(callClock_, [&] { traceShadowPacket(top_, rays, count, ctx, packet); });
+    for (int k = 0; k < count; ++k) {
+        if (log_) {
+            log_->record({rays[k].origin, rays[k].direction, 0.0f, rays[k].tmax, true, static_cast<std::uint8_t>(count),
+                          static_cast<std::uint8_t>(k)});
+        }
+        transmittances[k] = laneTransmittance(lanes[k], packet.tfar[k], rays[k].startAbsorption);
+    }
 }
 
 void RayScene::resolveHit(const RTCRayHit& rh, SurfaceHit& hit) const {

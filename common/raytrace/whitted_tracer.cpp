@@ -9,6 +9,7 @@
 
 #include "common/raytrace/embree_tree_backend.h"
 #include "common/raytrace/ray_offset.h"
+#include "common/shading/ray_geometry.h"
 
 namespace hybridlab {
 
@@ -43,10 +44,53 @@ glm::vec3 WhittedTracer::radiance(const Ray& ray, int depth, float importance, R
 }
 
 glm::vec3 WhittedTracer::radianceFrom(const Ray& ray, const SurfaceHit* hit, int depth, float importance, RayStats& stats, RayCone cone,
-                                      const MediumStack& media) const {
+                                      const MediumStack& media, const FirstHitShadows* shadows) const {
     EmbreeTreeBackend backend(*this, stats, cone.spread);
     backend.giveFirstHit(hit);
+    backend.giveFirstHitShadows(shadows);
     return sl::traceTree(backend, pendingRay(ray, depth, importance, cone.width, media), glm::bvec3(true));
+}
+
+void WhittedTracer::traceFirstHitShadows(const Ray* rays, const SurfaceHit* hits, const bool* found, int count,
+                                         FirstHitShadows* shadows) const {
+    const Scene& scene = rays_.scene();
+    const int lights = std::min(static_cast<int>(scene.lights.size()), FirstHitShadows::kMaxLights);
+    glm::vec3 origin[RayScene::kCoherentRays], normal[RayScene::kCoherentRays];
+    bool shaded[RayScene::kCoherentRays];
+    for (int k = 0; k < count; ++k) {
+        shadows[k].count = 0;
+        // The local colour is shaded, with shadow rays, unless the composition gives it no weight:
+        // a clear surface, or a perfect mirror (composition.h localWeighs; at depth 0 a ray is cut
+        // off by nothing). Where it is, on the side the camera ray arrives from (shadeHit()).
+        const Material* m = found[k] ? hits[k].material : nullptr;
+        shaded[k] = settings_.shadows && m && m->opacity > 0.0f && (m->fresnel || m->reflectivity < 1.0f);
+        if (!shaded[k]) continue;
+        const sl::ArrivalSide side = sl::arrivalSide(rays[k].direction, hits[k].geometricNormal, hits[k].shadingNormal, m->ior,
+                                                     scene.ambientIor);
+        origin[k] = sl::offsetRayOrigin(hits[k].position, side.geometricNormal);
+        normal[k] = side.shadingNormal;
+    }
+    for (int i = 0; i < lights; ++i) {
+        if (!scene.lights[i].castsShadows) continue;
+        // The pixels whose surface faces the light and lies in its cone (hitLocalColor()'s rays).
+        ShadowQuery queries[RayScene::kCoherentRays];
+        int pixel[RayScene::kCoherentRays], n = 0;
+        for (int k = 0; k < count; ++k) {
+            if (!shaded[k]) continue;
+            const LightSample light = sampleLight(scene.lights[i], cones_[i], hits[k].position);
+            if (glm::dot(normal[k], light.toLight) <= 0.0f || light.radiance == glm::vec3(0.0f)) continue;
+            queries[n] = {origin[k], light.toLight, light.distance, kAmbientMedium.absorption};
+            pixel[n++] = k;
+        }
+        if (n == 0) continue;
+        glm::vec3 transmittance[RayScene::kCoherentRays];
+        if (n == 1) transmittance[0] = rays_.transmittance(queries[0].origin, queries[0].direction, queries[0].tmax, queries[0].startAbsorption);
+        else rays_.transmittanceCoherent(queries, n, transmittance);
+        for (int j = 0; j < n; ++j) {
+            FirstHitShadows& s = shadows[pixel[j]];
+            s.rays[s.count++] = {queries[j], transmittance[j]};
+        }
+    }
 }
 
 glm::vec3 WhittedTracer::radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats,

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/raytrace/first_hit_shadows.h"
 #include "common/raytrace/medium_stack.h"
 #include "common/raytrace/ray_cone.h"
 #include "common/raytrace/ray_scene.h"
@@ -63,9 +64,15 @@ public:
     // in (medium_stack.h; camera rays: none), which absorb along it up to its hit.
     glm::vec3 radiance(const Ray& ray, int depth, float importance, RayStats& stats, RayCone cone = {},
                        const MediumStack& media = kAmbientMedium) const;
-    // radiance() for a ray whose first hit the caller has already found: `hit`, or none (null).
+    // radiance() for a ray whose first hit the caller has already found: `hit`, or none (null);
+    // with `shadows`, the shadow rays of that hit that traceFirstHitShadows() traced.
     glm::vec3 radianceFrom(const Ray& ray, const SurfaceHit* hit, int depth, float importance, RayStats& stats, RayCone cone = {},
-                           const MediumStack& media = kAmbientMedium) const;
+                           const MediumStack& media = kAmbientMedium, const FirstHitShadows* shadows = nullptr) const;
+    // The shadow rays that camera rays' first hits will trace (rays[k] hit hits[k] where found[k]),
+    // traced light by light as coherent packets into shadows[k], for radianceFrom(). A ray that
+    // the walk may not ask for is traced too (a light the surface faces, where the local colour
+    // is shaded), but not counted: the walk counts what it uses.
+    void traceFirstHitShadows(const Ray* rays, const SurfaceHit* hits, const bool* found, int count, FirstHitShadows* shadows) const;
     // radiance() for a ray whose first hit the caller has already found.
     glm::vec3 radianceAtHit(const Ray& ray, const SurfaceHit& hit, int depth, float importance, RayStats& stats, RayCone cone = {},
                             const MediumStack& media = kAmbientMedium) const;

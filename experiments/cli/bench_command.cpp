@@ -70,9 +70,9 @@ double milliseconds(F&& f) {
 }
 
 // Traces every logged ray as the reference traced it, through `trace` (BareEmbree, ResolvedHits): a
-// packet where the reference traced the camera rays as coherent packets (a packet whose first lane
-// is in a task's range is that task's, whole), else one ray at a time. Returns the number of hits
-// so that the work cannot be optimised away.
+// packet where the reference traced camera rays or first-hit shadow rays as coherent packets (a
+// packet whose first lane is in a task's range is that task's, whole), else one ray at a time.
+// Returns the number of hits so that the work cannot be optimised away.
 template <class Trace>
 std::size_t replay(const std::vector<LoggedRay>& rays, const Trace& trace) {
     std::atomic<std::size_t> hits{0};
@@ -82,7 +82,12 @@ std::size_t replay(const std::vector<LoggedRay>& rays, const Trace& trace) {
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
             const LoggedRay& lr = rays[i];
             if (lr.packetLane != 0) continue;  // traced with its packet's first lane
-            if (lr.packetSize > 1) {
+            if (lr.packetSize > 1 && lr.shadow) {
+                ShadowQuery packetRays[RayScene::kCoherentRays];
+                const int count = std::min<int>(lr.packetSize, static_cast<int>(rays.size() - i));
+                for (int k = 0; k < count; ++k) packetRays[k] = {rays[i + k].origin, rays[i + k].direction, rays[i + k].tmax};
+                local += trace.shadowPacket(packetRays, count);
+            } else if (lr.packetSize > 1) {
                 Ray packetRays[RayScene::kCoherentRays];
                 const int count = std::min<int>(lr.packetSize, static_cast<int>(rays.size() - i));
                 for (int k = 0; k < count; ++k) packetRays[k] = {rays[i + k].origin, rays[i + k].direction};
@@ -96,7 +101,7 @@ std::size_t replay(const std::vector<LoggedRay>& rays, const Trace& trace) {
     return hits;
 }
 
-// Bare rtcIntersect8 / rtcIntersect1 / rtcOccluded1: the traversal alone.
+// Bare rtcIntersect8 / rtcOccluded8 / rtcIntersect1 / rtcOccluded1: the traversal alone.
 struct BareEmbree {
     RTCScene scene;
     int packet(const Ray* rays, int count) const {
@@ -106,9 +111,19 @@ struct BareEmbree {
         for (int k = 0; k < count; ++k) hits += packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
         return hits;
     }
+    int shadowPacket(const ShadowQuery* rays, int count) const {
+        ShadowLane lanes[RayScene::kCoherentRays];
+        ShadowRayContext ctx(lanes);
+        alignas(32) RTCRay8 packet;
+        RayScene::traceShadowPacket(scene, rays, count, ctx, packet);
+        int stopped = 0;
+        for (int k = 0; k < count; ++k) stopped += packet.tfar[k] < 0.0f;
+        return stopped;
+    }
     int shadow(const LoggedRay& lr) const {
-        ShadowRayContext ctx;
-        rtcInitIntersectContext(&ctx.base);
+        ShadowLane lane;
+        lane.tmax = lr.tmax;
+        ShadowRayContext ctx(&lane);
         RTCRay ray{lr.origin.x, lr.origin.y, lr.origin.z, lr.tmin, lr.direction.x, lr.direction.y, lr.direction.z,
                    0.0f, lr.tmax, 0xFFFFFFFFu, 0, 0};
         rtcOccluded1(scene, &ctx.base, &ray);
@@ -139,6 +154,13 @@ struct ResolvedHits {
         int n = 0;
         for (int k = 0; k < count; ++k) n += found[k] && hits[k].material;
         return n;
+    }
+    int shadowPacket(const ShadowQuery* rays, int count) const {
+        glm::vec3 transmittances[RayScene::kCoherentRays];
+        scene.transmittanceCoherent(rays, count, transmittances);
+        int stopped = 0;
+        for (int k = 0; k < count; ++k) stopped += transmittances[k] == glm::vec3(0.0f);
+        return stopped;
     }
     int shadow(const LoggedRay& lr) const { return scene.transmittance(lr.origin, lr.direction, lr.tmax) == glm::vec3(0.0f); }
     int single(const LoggedRay& lr) const {

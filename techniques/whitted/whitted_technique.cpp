@@ -71,11 +71,16 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     // With a lens model: the pixels it shaded and the rays spent on them (the paper's comparison).
     std::atomic<std::uint64_t> lensPixels{0}, lensRays{0};
     // One sample per pixel without a lens model: the camera rays of a block of pixels in one
-    // coherent packet, then each pixel's ray tree from its first hit.
+    // coherent packet, and their first hits' shadow rays a packet per light, then each pixel's
+    // ray tree from its first hit.
     const RayStats total = n == 1 && !lensModel_ ? forEachPixelBlockInParallel(frame.width, frame.height, [&](const PixelBlock& block, RayStats& stats) {
         const CameraRayPacket packet(rays, cameraRays, block, frame.width, frame.height, stats);
+        // Their first hits' shadow rays too, a packet per light.
+        FirstHitShadows shadows[CameraRayPacket::kSize];
+        tracer.traceFirstHitShadows(packet.rays, packet.hits, packet.found, block.count, shadows);
         for (int k = 0; k < block.count; ++k)
-            result.image.at(block.x[k], block.y[k]) = glm::vec4(tracer.radianceFrom(packet.rays[k], packet.hit(k), 0, 1.0f, stats, cone), 1.0f);
+            result.image.at(block.x[k], block.y[k]) =
+                glm::vec4(tracer.radianceFrom(packet.rays[k], packet.hit(k), 0, 1.0f, stats, cone, kAmbientMedium, &shadows[k]), 1.0f);
     }) : forEachPixelInParallel(frame.width, frame.height, [&](int x, int y, RayStats& stats) {
         glm::vec3 sum(0.0f);
         const std::uint64_t raysBefore = stats.total();

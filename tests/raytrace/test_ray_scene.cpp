@@ -8,6 +8,7 @@
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
 #include "techniques/technique.h"
+#include "tests/support/lens_test_scenes.h"
 #include "tests/support/scene_fixtures.h"
 
 namespace hybridlab {
@@ -140,6 +141,74 @@ TEST(RayScene, CoherentPacketsFindTheHitsOfSingleRays) {
     bool found[RayScene::kCoherentRays + 1];
     EXPECT_THROW(rays.intersectCoherent(all.data(), 0, unused, found), std::logic_error);
     EXPECT_THROW(rays.intersectCoherent(all.data(), RayScene::kCoherentRays + 1, unused, found), std::logic_error);
+}
+
+// Shadow rays from a grid of points on a floor towards a point light and a light at infinity,
+// past an opaque box, a caster that casts no shadow, tinted glass spheres (two crossings each,
+// touching one another) and an absorbing slab: traced in packets of 1 to kCoherentRays, each
+// lane's transmittance is the single ray's (to the last bits, where the packet meets a ray's
+// transparent surfaces in another order), and the packet's rays are logged as one.
+TEST(RayScene, CoherentShadowPacketsLetThroughWhatSingleRaysDo) {
+    SceneBuilder b;
+    b.object("floor", makePlane(), b.material(matte({1, 1, 1})), placed({0, 0, 0}, {20, 1, 20}));
+    b.object("box", makeCube(), b.material(matte({1, 0, 0})), placed({-1.5f, 2.0f, 0}, glm::vec3(0.8f)));
+    Material ghost = matte({1, 1, 1});
+    ghost.castsShadows = false;
+    b.object("ghost", makeCube(), b.material(ghost), placed({1.5f, 2.0f, 1.0f}, glm::vec3(1.0f)));
+    Material tinted = matte({0.9f, 0.6f, 0.3f});
+    tinted.opacity = 0.2f;
+    const std::uint32_t glass = b.material(tinted);
+    for (int i = 0; i < 3; ++i) b.object("glass" + std::to_string(i), makeSphere(24, 12), glass, placed({-0.5f + 0.6f * i, 2.5f, -0.5f}, glm::vec3(0.3f)));
+    b.object("slab", makeCube(), b.material(test::absorbingGlass({0.4f, 1.2f, 3.0f})), placed({0.5f, 3.5f, 0.5f}, {2.0f, 0.3f, 2.0f}));
+    RayScene rays(b.scene());
+    std::vector<ShadowQuery> all;
+    const glm::vec3 light(0.0f, 6.0f, 0.0f), sun = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f));
+    for (int infinite = 0; infinite < 2; ++infinite) {
+        for (int z = 0; z < 24; ++z) {
+            for (int x = 0; x < 24; ++x) {
+                const glm::vec3 p(-3.0f + 0.25f * x, 0.001f, -3.0f + 0.25f * z);
+                if (infinite) all.push_back({p, sun, kInf});
+                else all.push_back({p, glm::normalize(light - p), glm::length(light - p)});
+            }
+        }
+    }
+    int lit = 0, dark = 0, tintedOrAbsorbed = 0;
+    for (int size = 1; size <= RayScene::kCoherentRays; ++size) {
+        for (std::size_t first = 0; first < all.size(); first += static_cast<std::size_t>(size)) {
+            const int count = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(size), all.size() - first));
+            glm::vec3 packet[RayScene::kCoherentRays];
+            rays.transmittanceCoherent(&all[first], count, packet);
+            for (int k = 0; k < count; ++k) {
+                const ShadowQuery& q = all[first + k];
+                const glm::vec3 single = rays.transmittance(q.origin, q.direction, q.tmax, q.startAbsorption);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(packet[k][c], single[c], 1e-6f * single[c]) << "ray " << first + k << " in packets of " << size;
+                if (size != RayScene::kCoherentRays) continue;
+                lit += single == glm::vec3(1.0f);
+                dark += single == glm::vec3(0.0f);
+                tintedOrAbsorbed += single != glm::vec3(1.0f) && single != glm::vec3(0.0f);
+            }
+        }
+    }
+    // The test sees every kind of ray.
+    EXPECT_GT(lit, 50);
+    EXPECT_GT(dark, 20);
+    EXPECT_GT(tintedOrAbsorbed, 20);
+
+    RayLog log;
+    rays.setRayLog(&log);
+    glm::vec3 three[3];
+    rays.transmittanceCoherent(all.data(), 3, three);
+    const std::vector<LoggedRay> logged = log.collect();
+    ASSERT_EQ(logged.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(logged[k].shadow);
+        EXPECT_EQ(logged[k].tmax, all[k].tmax);
+        EXPECT_EQ(logged[k].packetSize, 3);
+        EXPECT_EQ(logged[k].packetLane, k);
+    }
+    glm::vec3 unused[RayScene::kCoherentRays + 1];
+    EXPECT_THROW(rays.transmittanceCoherent(all.data(), 0, unused), std::logic_error);
+    EXPECT_THROW(rays.transmittanceCoherent(all.data(), RayScene::kCoherentRays + 1, unused), std::logic_error);
 }
 
 // Three parallel camera-like rays towards the moving sphere, a packet of them.

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "common/core/input_error.h"
+#include "common/raytrace/ray_log.h"
 #include "common/raytrace/ray_offset.h"
 #include "common/raytrace/whitted_tracer.h"
 #include "common/shading/whitted_tree.h"
@@ -353,14 +354,22 @@ TEST(Whitted, RendersAreByteIdenticalWhateverTheThreadCount) {
     }
 }
 
-// The technique's pixel loop traces camera rays in coherent packets; a pixel is still what
-// WhittedTracer::radiance gives for its camera ray alone, bit for bit, edges of odd-sized images
-// (partial packets) included.
-TEST(Whitted, PacketsOfCameraRaysShadeAsSingleRays) {
-    for (const char* name : {"whitted-classic", "teapot-lens"}) {
+// The technique's pixel loop traces camera rays in coherent packets, and their first hits' shadow
+// rays a packet per light; a pixel is still what WhittedTracer::radiance gives for its camera ray
+// alone, bit for bit, edges of odd-sized images (partial packets) included. The packets' shadow
+// rays are the walk's: it traces no first-hit shadow ray again, and few of theirs go unused.
+TEST(Whitted, PacketsOfCameraAndShadowRaysShadeAsSingleRays) {
+    for (const char* name : {"whitted-classic", "teapot-lens", "cornell-mirror-glass"}) {
         Scene scene = loadSceneFile(findSceneFile(name));
         const int w = 61, h = 35;
-        const Image image = test::renderImage(scene, "whitted", {}, w, h);
+        SceneContext context(scene);
+        auto whitted = createTechnique("whitted", {});
+        whitted->prepare(context);
+        RayLog log;
+        context.rayScene(0.0).setRayLog(&log);
+        const FrameResult frame = whitted->render(context, {scene.camera, 0.0, w, h});
+        context.rayScene(0.0).setRayLog(nullptr);
+        const Image& image = frame.image;
         RayScene rays(scene);
         const WhittedTracer tracer(rays, WhittedSettings{});
         const CameraRays camera(scene.camera, static_cast<float>(w) / h);
@@ -374,6 +383,14 @@ TEST(Whitted, PacketsOfCameraRaysShadeAsSingleRays) {
             }
         }
         EXPECT_EQ(differing, 0) << name;
+        double inPackets = 0, alone = 0;
+        for (const LoggedRay& r : log.collect()) {
+            if (!r.shadow) continue;
+            (r.packetSize > 1 ? inPackets : alone) += 1;
+        }
+        const double counted = frame.counters.at("rays_shadow");
+        EXPECT_GT(inPackets, 0.25 * counted) << name;
+        EXPECT_LE(inPackets + alone, 1.02 * counted) << name;  // traced once, few in vain
     }
 }
 
