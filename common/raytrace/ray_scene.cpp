@@ -178,6 +178,9 @@ RayScene::RayScene(const Scene& scene, double time, DeformedMeshCache* deformedM
                                        worldTriangles(m, toWorld_[o], normalToWorld_[o])});
         }
     }
+    // Spatial splits: built once per scene (about 120 ms for sponza-spheres, twice the default's),
+    // traced in every frame (its bare traversal 0.89-0.93 of the default's time).
+    rtcSetSceneBuildQuality(static_, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(static_);
 
     if (!anyAnimated) {
