@@ -9,7 +9,6 @@
 
 #include "common/raytrace/embree_tree_backend.h"
 #include "common/raytrace/ray_offset.h"
-#include "common/shading/ray_geometry.h"
 
 namespace hybridlab {
 
@@ -67,7 +66,7 @@ void WhittedTracer::traceFirstHitShadows(const Ray* rays, const SurfaceHit* hits
         if (!shaded[k]) continue;
         const sl::ArrivalSide side = sl::arrivalSide(rays[k].direction, hits[k].geometricNormal, hits[k].shadingNormal, m->ior,
                                                      scene.ambientIor);
-        origin[k] = sl::offsetRayOrigin(hits[k].position, side.geometricNormal);
+        origin[k] = sl::shadowRayOrigin(hits[k].position, side.geometricNormal);
         normal[k] = side.shadingNormal;
     }
     for (int i = 0; i < lights; ++i) {

@@ -75,6 +75,13 @@ SHARED_FUNCTION vec3 compositionWeights(float om, float orr, bool walewski) {
     return 0.5f * (design + other);
 }
 
+// Where a hit's shadow rays start: just off the surface at `position`, on the side of its
+// geometric normal `ng` that the ray arrives from (ArrivalSide). The Embree backend traces a
+// block of first hits' shadow rays ahead, in packets, from here (first_hit_shadows.h).
+SHARED_FUNCTION vec3 shadowRayOrigin(vec3 position, vec3 ng) {
+    return offsetRayOrigin(position, ng);
+}
+
 // A light's unshadowed term `direct` at a hit, times the transmittance of its shadow ray where
 // `shadowRays` and the light casts shadows (hard shadows, from `shadowOrigin` just off the surface
 // on the viewer's side, in media of absorption `mediumAbsorption`).
@@ -92,7 +99,7 @@ BACKEND_FUNCTION TREE_INLINE vec3 shadowedLightTerm(BACKEND_PARAM vec3 direct, L
 BACKEND_FUNCTION TREE_INLINE vec3 hitLocalColor(BACKEND_PARAM BACKEND_TYPE(Surface) s, SurfaceMaterial m, vec3 n, vec3 ng, vec3 toViewer,
                                     bool shadowRays, vec3 tex, vec3 mediumAbsorption) {
     vec3 c = unlitTerm(m.emission, m.ambient, BACKEND_CALL(treeSettings)().sceneAmbient, tex);
-    vec3 shadowOrigin = offsetRayOrigin(s.position, ng);
+    vec3 shadowOrigin = shadowRayOrigin(s.position, ng);
     vec3 diffuse = m.diffuse * tex;
     int lights = BACKEND_CALL(lightCount)();
 #if SHARED_LIGHT_BATCH > 1
