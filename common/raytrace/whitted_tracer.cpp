@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
@@ -52,6 +53,8 @@ glm::vec3 WhittedTracer::radianceFrom(const Ray& ray, const SurfaceHit* hit, int
 
 void WhittedTracer::traceFirstHitShadows(const Ray* rays, const SurfaceHit* hits, const bool* found, int count,
                                          FirstHitShadows* shadows) const {
+    if (count < 0 || count > RayScene::kCoherentRays)
+        throw std::logic_error("WhittedTracer: first hits come in packets of at most kCoherentRays");
     const Scene& scene = rays_.scene();
     const int lights = std::min(static_cast<int>(scene.lights.size()), FirstHitShadows::kMaxLights);
     glm::vec3 origin[RayScene::kCoherentRays], normal[RayScene::kCoherentRays];
@@ -83,7 +86,8 @@ void WhittedTracer::traceFirstHitShadows(const Ray* rays, const SurfaceHit* hits
         }
         if (n == 0) continue;
         glm::vec3 transmittance[RayScene::kCoherentRays];
-        if (n == 1) transmittance[0] = rays_.transmittance(queries[0].origin, queries[0].direction, queries[0].tmax, queries[0].startAbsorption);
+        const ShadowQuery& q = queries[0];
+        if (n == 1) transmittance[0] = rays_.transmittance(q.origin, q.direction, q.tmax, q.startAbsorption);
         else rays_.transmittanceCoherent(queries, n, transmittance);
         for (int j = 0; j < n; ++j) {
             FirstHitShadows& s = shadows[pixel[j]];

@@ -75,7 +75,6 @@ FrameResult WhittedTechnique::render(SceneContext& context, const FrameRequest& 
     // ray tree from its first hit.
     const RayStats total = n == 1 && !lensModel_ ? forEachPixelBlockInParallel(frame.width, frame.height, [&](const PixelBlock& block, RayStats& stats) {
         const CameraRayPacket packet(rays, cameraRays, block, frame.width, frame.height, stats);
-        // Their first hits' shadow rays too, a packet per light.
         FirstHitShadows shadows[CameraRayPacket::kSize];
         tracer.traceFirstHitShadows(packet.rays, packet.hits, packet.found, block.count, shadows);
         for (int k = 0; k < block.count; ++k)

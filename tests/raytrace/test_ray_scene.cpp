@@ -158,7 +158,8 @@ TEST(RayScene, CoherentShadowPacketsLetThroughWhatSingleRaysDo) {
     Material tinted = matte({0.9f, 0.6f, 0.3f});
     tinted.opacity = 0.2f;
     const std::uint32_t glass = b.material(tinted);
-    for (int i = 0; i < 3; ++i) b.object("glass" + std::to_string(i), makeSphere(24, 12), glass, placed({-0.5f + 0.6f * i, 2.5f, -0.5f}, glm::vec3(0.3f)));
+    for (int i = 0; i < 3; ++i)
+        b.object("glass" + std::to_string(i), makeSphere(24, 12), glass, placed({-0.5f + 0.6f * i, 2.5f, -0.5f}, glm::vec3(0.3f)));
     b.object("slab", makeCube(), b.material(test::absorbingGlass({0.4f, 1.2f, 3.0f})), placed({0.5f, 3.5f, 0.5f}, {2.0f, 0.3f, 2.0f}));
     RayScene rays(b.scene());
     std::vector<ShadowQuery> all;
@@ -181,7 +182,8 @@ TEST(RayScene, CoherentShadowPacketsLetThroughWhatSingleRaysDo) {
             for (int k = 0; k < count; ++k) {
                 const ShadowQuery& q = all[first + k];
                 const glm::vec3 single = rays.transmittance(q.origin, q.direction, q.tmax, q.startAbsorption);
-                for (int c = 0; c < 3; ++c) EXPECT_NEAR(packet[k][c], single[c], 1e-6f * single[c]) << "ray " << first + k << " in packets of " << size;
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(packet[k][c], single[c], 1e-6f * single[c]) << "ray " << first + k << " in packets of " << size;
                 if (size != RayScene::kCoherentRays) continue;
                 lit += single == glm::vec3(1.0f);
                 dark += single == glm::vec3(0.0f);
