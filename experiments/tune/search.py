@@ -25,7 +25,7 @@ protocol, so that every comparison is a paired interval within one timing):
    stage's rounds. Repeated while the budget allows, up to `refinements` times, or until no new
    setting is left.
 4. final: the fastest set with the front (the settings no other is both faster and better than,
-   from the screen), `final_size` settings in all, and rt_only, timed once more: the result set `report` reads, and the config that
+   from the screen) and rt_only, timed once more: the result set `report` reads, and the config that
    reproduces it. Its fastest set of the settings reaching the target is tune's answer.
 
 The answer is among the searched techniques' settings (rt_only's too where it is searched, as it
@@ -213,9 +213,8 @@ class Plan:
     new_settings = 4       # new settings a refinement stage tries, at most (the boundary's first)
     margin = 1.25          # a stage's estimated cost times this must fit in the budget left
     front_size = 3         # front settings timed in the final stage, besides the fastest set
-    final_size = 3         # settings the final stage times besides rt_only, at most (the fastest set's first)
     carry = 2              # the fastest set's members carried into the next stage, at most (the fastest)
-    final_rounds = 1.25    # the final stage's rounds, at most, in multiples of the fewest
+    final_rounds = 1.5     # the final stage's rounds, at most, in multiples of the fewest
 
 
 def rough_time(outcome):
@@ -412,9 +411,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
             break
         members, decision = decided(run("refine-%d" % (level + 1), stage_settings, "full", 0.0), eligible(stage_settings))
 
-    # Bounded, so that a fast scene (whose budget binds nothing) renders at most about 0.32 of a
-    # 60-setting sweep's frames: the screen, the race and two refinements take most of that.
-    final = list(dict.fromkeys(carried(members) + final_front))[:plan.final_size]
+    final = list(dict.fromkeys(carried(members) + final_front))
     least = estimate(final, frames_only=True)
     last = run("final", final, "full", max(least, min(budget_s - result.seconds - (estimate(final) - least), plan.final_rounds * least)))
     result.choice, result.decision = decided(last, eligible(final))
