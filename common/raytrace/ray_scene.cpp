@@ -58,6 +58,18 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// Lane k of a packet: a ray from tnear 0 to `tfar`, with `id`.
+void setPacketLane(RTCRay8& packet, int k, const glm::vec3& origin, const glm::vec3& direction, float tfar, unsigned id) {
+    packet.org_x[k] = origin.x, packet.org_y[k] = origin.y, packet.org_z[k] = origin.z;
+    packet.dir_x[k] = direction.x, packet.dir_y[k] = direction.y, packet.dir_z[k] = direction.z;
+    packet.tnear[k] = 0.0f;
+    packet.tfar[k] = tfar;
+    packet.time[k] = 0.0f;
+    packet.mask[k] = 0xFFFFFFFFu;
+    packet.id[k] = id;
+    packet.flags[k] = 0;
+}
+
 // A traced shadow ray's transmittance from its lane's state: 0 where Embree accepted a hit (tfar
 // -inf: an opaque caster, or the transmittance used up).
 glm::vec3 laneTransmittance(const ShadowLane& lane, float tfar, const glm::vec3& startAbsorption) {
@@ -292,14 +304,7 @@ void RayScene::traceCoherentPacket(RTCScene scene, const Ray* rays, int count, R
     for (int k = 0; k < kCoherentRays; ++k) {
         const Ray& ray = rays[std::min(k, count - 1)];  // idle lanes repeat the last ray, masked off
         valid[k] = k < count ? -1 : 0;
-        packet.ray.org_x[k] = ray.origin.x, packet.ray.org_y[k] = ray.origin.y, packet.ray.org_z[k] = ray.origin.z;
-        packet.ray.dir_x[k] = ray.direction.x, packet.ray.dir_y[k] = ray.direction.y, packet.ray.dir_z[k] = ray.direction.z;
-        packet.ray.tnear[k] = 0.0f;
-        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
-        packet.ray.time[k] = 0.0f;
-        packet.ray.mask[k] = 0xFFFFFFFFu;
-        packet.ray.id[k] = 0;
-        packet.ray.flags[k] = 0;
+        setPacketLane(packet.ray, k, ray.origin, ray.direction, std::numeric_limits<float>::infinity(), 0);
         packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -331,7 +336,7 @@ void RayScene::intersectCoherent(const Ray* rays, int count, SurfaceHit* hits, b
 glm::vec3 RayScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tmax, const glm::vec3& startAbsorption) const {
     if (log_) log_->record({origin, dir, 0.0f, tmax, true});
     ShadowLane lane;
-    lane.tmax = tmax;
+    lane.start(tmax);
     ShadowRayContext ctx(&lane);
     RTCRay r;
     r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
@@ -352,19 +357,8 @@ void RayScene::traceShadowPacket(RTCScene scene, const ShadowQuery* rays, int co
     for (int k = 0; k < kCoherentRays; ++k) {
         const ShadowQuery& ray = rays[std::min(k, count - 1)];  // idle lanes repeat the last ray, masked off
         valid[k] = k < count ? -1 : 0;
-        packet.org_x[k] = ray.origin.x, packet.org_y[k] = ray.origin.y, packet.org_z[k] = ray.origin.z;
-        packet.dir_x[k] = ray.direction.x, packet.dir_y[k] = ray.direction.y, packet.dir_z[k] = ray.direction.z;
-        packet.tnear[k] = 0.0f;
-        packet.tfar[k] = ray.tmax;
-        packet.time[k] = 0.0f;
-        packet.mask[k] = 0xFFFFFFFFu;
-        packet.id[k] = static_cast<unsigned>(k);  // its lane in the context
-        packet.flags[k] = 0;
-        ShadowLane& lane = context.lanes[k];  // its crossings' records are written before they are read
-        lane.transmittance = glm::vec3(1.0f);
-        lane.opticalDepth = glm::vec3(0.0f);
-        lane.crossings = 0;
-        lane.tmax = ray.tmax;
+        setPacketLane(packet, k, ray.origin, ray.direction, ray.tmax, static_cast<unsigned>(k));  // id: its lane in the context
+        context.lanes[k].start(ray.tmax);
     }
     context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded8(valid, scene, &context.base, &packet);

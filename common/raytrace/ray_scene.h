@@ -41,19 +41,27 @@ struct SurfaceHit {
 // A shadow ray's running state while Embree traces it: its transmittance, which the occlusion
 // filter of transparent geometry multiplies.
 struct ShadowLane {
-    glm::vec3 transmittance{1.0f};
+    glm::vec3 transmittance;
     // Beer-Lambert absorption (medium_stack.h): the ray's length, and the optical depth that the
     // absorbing surfaces it crosses add (entering ones +a (tmax - t), leaving ones -a (tmax - t);
     // towards a light at infinity -a t and +a t).
-    float tmax = 0.0f;
-    glm::vec3 opticalDepth{0.0f};
+    float tmax;
+    glm::vec3 opticalDepth;
     // Surfaces already counted, so that a ray through an edge shared by two triangles (which a
     // watertight intersector reports twice) is attenuated once.
     static constexpr int kMaxCrossings = 16;
-    int crossings = 0;
+    int crossings;
     unsigned geometry[kMaxCrossings];
     unsigned instance[kMaxCrossings];
     float distance[kMaxCrossings];
+
+    // Before a ray of length `rayTmax` is traced (the crossings' records are written before they are read).
+    void start(float rayTmax) {
+        transmittance = glm::vec3(1.0f);
+        tmax = rayTmax;
+        opticalDepth = glm::vec3(0.0f);
+        crossings = 0;
+    }
 };
 
 // Embree's intersection context extended with the shadow rays' states; shadow rays must be traced
@@ -126,7 +134,7 @@ public:
     void transmittanceCoherent(const ShadowQuery* rays, int count, glm::vec3* transmittances) const;
     // The Embree call under transmittanceCoherent, for benchmarks that time Embree alone: rays[0,
     // count) into `packet` (idle lanes masked off), traced in `scene` with `context`, whose lanes
-    // it starts (a lane's tfar is -inf where it was stopped: an opaque caster, or its light used up).
+    // it starts (ShadowLane::start; a lane's tfar is -inf where it was stopped: an opaque caster, or its light used up).
     static void traceShadowPacket(RTCScene scene, const ShadowQuery* rays, int count, ShadowRayContext& context, RTCRay8& packet);
 
     // For benchmarks that trace the same rays with bare rtcIntersect1 / rtcOccluded1: the

@@ -122,7 +122,7 @@ struct BareEmbree {
     }
     int shadow(const LoggedRay& lr) const {
         ShadowLane lane;
-        lane.tmax = lr.tmax;
+        lane.start(lr.tmax);
         ShadowRayContext ctx(&lane);
         RTCRay ray{lr.origin.x, lr.origin.y, lr.origin.z, lr.tmin, lr.direction.x, lr.direction.y, lr.direction.z,
                    0.0f, lr.tmax, 0xFFFFFFFFu, 0, 0};
