@@ -46,8 +46,16 @@ RT_ONLY = "rt_only"
 # The fewest rounds of a full stage (the runner's `repeats`; it times at least the rounds the
 # verdict needs for the stage's settings, timing.rounds_for_decision).
 FULL_ROUNDS = 6
-# A full stage's warm-up frames a setting, at most (stages.py).
-WARMUP_FRAMES = 2
+# A full stage's warm-up frames a setting (stages.py): one for the race and the refinements, whose
+# fastest sets only steer the search (the median of their rounds absorbs a slow first round), two
+# for the final stage, whose rounds give the answer.
+WARMUP_FRAMES = 1
+FINAL_WARMUP_FRAMES = 2
+
+
+def fewest_rounds(settings):
+    """The rounds a full stage of `settings` settings times at least (the runner's rule)."""
+    return max(timing.rounds_for_decision(settings), FULL_ROUNDS)
 
 
 class SearchError(Exception):
@@ -212,9 +220,28 @@ class Plan:
     boundary_size = 3      # settings on the target's boundary tried in a refinement stage, at most
     new_settings = 4       # new settings a refinement stage tries, at most (the boundary's first)
     margin = 1.25          # a stage's estimated cost times this must fit in the budget left
-    front_size = 3         # front settings timed in the final stage, besides the fastest set
+    front_size = 2         # front settings timed in the final stage, besides the fastest set
     carry = 2              # the fastest set's members carried into the next stage, at most (the fastest)
     final_rounds = 1.5     # the final stage's rounds, at most, in multiples of the fewest
+
+    def final_round_cap(self, settings):
+        """The final stage's rounds at most, with `settings` settings (rt_only among them): a cap in
+        rounds, not only in seconds, because the times a stage's seconds are estimated from (the
+        screen's single rounds) run slow, and a budget in seconds would buy more rounds than planned."""
+        return math.ceil(self.final_rounds * fewest_rounds(settings))
+
+    def most_frames(self, grid_settings):
+        """The most frames a search of a grid of `grid_settings` settings renders: the screen's, then
+        every later stage at its largest (rt_only in each), the final one at its cap with the
+        reference timed in its rounds. Successive halving: the screen's frames and a fixed number
+        besides, whatever the budget."""
+        screen = (grid_settings + 1) * (1 + self.screen_rounds)
+        full = lambda n: n * (WARMUP_FRAMES + fewest_rounds(n))  # noqa: E731
+        race = full(self.race_size + 1)
+        refine = self.refinements * full(self.carry + self.new_settings + 1)
+        n = self.carry + self.front_size + 1
+        final = n * FINAL_WARMUP_FRAMES + (n + 1) * self.final_round_cap(n)
+        return screen + race + refine + final
 
 
 def rough_time(outcome):
@@ -310,10 +337,11 @@ def boundary_points(reaching, dims_of, tried, quality_of, target, time_of, faste
 
 def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERANCE, plan=Plan(), progress=lambda line: None):
     """Runs the stages (see the module's text). `spaces`: {technique: [Dimension]}, each with at
-    least one dimension; `evaluator.stage(name, settings, rounds, budget_s)` renders and times the
-    settings (rt_only among them) in one group, `rounds` a number (exactly that many rounds after a
-    warm-up frame, no interval: the screen) or "full" (the runner's protocol within `budget_s`),
-    and returns a Measured. Returns a Result."""
+    least one dimension; `evaluator.stage(name, settings, rounds, budget_s, max_rounds)` renders
+    and times the settings (rt_only among them) in one group, `rounds` a number (exactly that many
+    rounds after a warm-up frame, no interval: the screen) or "full" (the runner's protocol within
+    `budget_s`, and at most `max_rounds` rounds where that is not None), and returns a Measured.
+    Returns a Result."""
     result = Result()
     anchor = setting(RT_ONLY)
     tried = set()
@@ -323,12 +351,12 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     def met(s):
         return target.met(quality.get(s))
 
-    def run(name, settings, rounds, stage_budget):
+    def run(name, settings, rounds, stage_budget, max_rounds=None):
         """Renders and times a stage (rt_only added) and records it in the result; the Stage."""
         settings = list(dict.fromkeys(settings + [anchor]))
         how = "timed in full" if rounds == "full" else "%d round%s each: a rough time" % (rounds, "" if rounds == 1 else "s")
         progress("stage %s: %d settings (%s), %.0f s of the %.0f s budget spent" % (name, len(settings), how, result.seconds, budget_s))
-        measured = evaluator.stage(name, settings, rounds, stage_budget)
+        measured = evaluator.stage(name, settings, rounds, stage_budget, max_rounds)
         result.seconds += measured.seconds
         result.renders += measured.renders
         for s, o in measured.outcomes.items():
@@ -372,16 +400,16 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         return time_of.get(s, times[len(times) // 2])
     screen_frames_s = (1 + plan.screen_rounds) * sum(guess(s) for s in screen.settings) / 1000.0
     overhead_s = max(0.0, screen.seconds - screen_frames_s) / len(screen.settings)
-    def estimate(settings, frames_only=False):
+    def estimate(settings, frames_only=False, warmup=WARMUP_FRAMES):
         """The stage's seconds; `frames_only`: its frames' alone (the runner's budget for its rounds)."""
         settings = list(dict.fromkeys(settings + [anchor]))
-        rounds = WARMUP_FRAMES + max(timing.rounds_for_decision(len(settings)), FULL_ROUNDS)
+        rounds = warmup + fewest_rounds(len(settings))
         return sum(rounds * guess(s) / 1000.0 + (0.0 if frames_only else overhead_s) for s in settings)
 
     reaching.sort(key=lambda s: time_of[s])
     race = reaching[:max(2, min(plan.race_size, math.ceil(len(reaching) / 3)))]
     final_front = [s for s in result.front if s != anchor][:plan.front_size]
-    final_reserve = estimate(race[:plan.refine_around] + final_front)
+    final_reserve = estimate(race[:plan.refine_around] + final_front, warmup=FINAL_WARMUP_FRAMES)
     def carried(members):
         """The fastest set's members the next stage times again: where the rounds cannot tell many
         apart (a flat stretch of the space), the fastest few by their last stage's times."""
@@ -412,8 +440,10 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
         members, decision = decided(run("refine-%d" % (level + 1), stage_settings, "full", 0.0), eligible(stage_settings))
 
     final = list(dict.fromkeys(carried(members) + final_front))
-    least = estimate(final, frames_only=True)
-    last = run("final", final, "full", max(least, min(budget_s - result.seconds - (estimate(final) - least), plan.final_rounds * least)))
+    least = estimate(final, frames_only=True, warmup=FINAL_WARMUP_FRAMES)
+    overhead = estimate(final, warmup=FINAL_WARMUP_FRAMES) - least
+    last = run("final", final, "full", max(least, min(budget_s - result.seconds - overhead, plan.final_rounds * least)),
+               max_rounds=plan.final_round_cap(len(dict.fromkeys(final + [anchor]))))
     result.choice, result.decision = decided(last, eligible(final))
     result.reached = True
     # rt_only not searched but reaching the target faster than the answer: worth saying.

@@ -34,8 +34,10 @@ def toml_value(v):
     return json.dumps(v)
 
 
-def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed, max_rounds=None):
-    """The TOML of one stage's experiment (`max_rounds`: the runner's cap, default 30)."""
+def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metrics, reference_timed, max_rounds=None,
+                 warmup_frames=1):
+    """The TOML of one stage's experiment (`max_rounds`: the runner's cap, default 30;
+    `warmup_frames`: a full stage's warm-up frames a setting, at most)."""
     full = rounds == "full"
     lines = ["# A stage of `hybridlab tune`: %s." % name, "", "[experiment]",
              'name = "tune-%s"' % name,
@@ -44,7 +46,7 @@ def stage_config(name, scene, size, settings, rounds, budget_s, tolerance, metri
              # One frame compiles lavapipe's shaders and fills the caches; a search times every
              # setting in several stages, so it does not wait for frames to agree (the runner's
              # default goes on to 5).
-             "max_warmup_frames = %d" % (search.WARMUP_FRAMES if full else 1),
+             "max_warmup_frames = %d" % (warmup_frames if full else 1),
              "repeats = %d" % (search.FULL_ROUNDS if full else rounds),
              "precision = %s" % toml_value(float(tolerance)),
              "budget_s = %s" % toml_value(float(max(budget_s, 0.1))),
@@ -114,12 +116,13 @@ class RunnerEvaluator:
     def stage_dir(self, name):
         return os.path.join(self.out_dir, "result" if name == "final" else os.path.join("stages", name))
 
-    def stage(self, name, settings, rounds, budget_s):
+    def stage(self, name, settings, rounds, budget_s, max_rounds=None):
         d = self.stage_dir(name)
         final = name == "final"
         metrics = None if final else sorted({self.target.metric, "ssim"})
         config = stage_config(name, self.scene, self.size, settings, rounds, budget_s, self.tolerance, metrics,
-                              reference_timed=final)
+                              reference_timed=final, max_rounds=max_rounds,
+                              warmup_frames=search.FINAL_WARMUP_FRAMES if final else search.WARMUP_FRAMES)
         config_file = os.path.join(self.out_dir, "stages", name + ".toml")
         os.makedirs(os.path.dirname(config_file), exist_ok=True)
         if not os.path.exists(os.path.join(d, "results.json")):

@@ -172,7 +172,8 @@ def main(argv):
         fail(str(e))
     write_summary(args.out, result, target, args, size)
 
-    print("tune: %d frames rendered in %.0f s%s" % (result.renders, result.seconds,
+    most = search.Plan().most_frames(sum(len(search.grid(t, d)) for t, d in spaces.items()))
+    print("tune: %d frames rendered (the plan's most: %d) in %.0f s%s" % (result.renders, most, result.seconds,
                                                     " (over the %.0f s budget: the stages a decision needs took longer)" % args.budget_s
                                                     if result.over_budget else ""))
     if not result.reached and result.best_quality_setting is None:

@@ -30,14 +30,14 @@ class Synthetic:
         self.tolerance = tolerance
         self.stages = []
 
-    def stage(self, name, settings, rounds, budget_s):
+    def stage(self, name, settings, rounds, budget_s, max_rounds=None):
         self.stages.append((name, list(settings), rounds, budget_s))
         frame = lambda s, f: self.cost(s) * f * math.exp(self.rng.gauss(0.0, self.noise))  # noqa: E731
         warm = {s: self.cost(s) for s in settings}
         spent = sum(warm.values()) / 1000.0
         times = {s: [] for s in settings}
         least = rounds if rounds != "full" else max(search.FULL_ROUNDS, timing.rounds_for_decision(len(settings)))
-        most = least if rounds != "full" else 30
+        most = least if rounds != "full" else min(30, max_rounds or 30)
         for k in range(most):
             round_s = sum(self.cost(s) for s in settings) / 1000.0
             if k >= least and (spent + round_s > budget_s or self.precise(times)):
@@ -48,7 +48,9 @@ class Synthetic:
                 times[s].append(t)
                 spent += t / 1000.0
         tid = "synthetic-%s" % name
-        self.renders = sum(1 + len(v) for v in times.values())
+        warmup = 1 if rounds != "full" else search.FINAL_WARMUP_FRAMES if name == "final" else search.WARMUP_FRAMES
+        self.renders = sum(warmup + len(v) for v in times.values())
+        self.rounds = max(len(v) for v in times.values())
         outcomes = {s: search.Outcome(self.quality(s), {tid: times[s]}) for s in settings}
         return search.Measured(outcomes, spent, self.renders)
 
@@ -152,6 +154,17 @@ class SearchTest(unittest.TestCase):
         self.assertTrue(r.over_budget)
         self.assertGreater(r.seconds, 1.0)
         self.assertEqual([st.name for st in r.stages], ["screen", "race", "final"])
+
+    def test_renders_at_most_its_plans_frames(self):
+        # Successive halving: however large the budget, the screen's frames and a fixed number
+        # besides; the final stage's rounds are capped in rounds, not only in seconds.
+        for budget in (30.0, 300.0, 3000.0):
+            ev = Synthetic(alpha_cost, alpha_quality, noise=0.1, drift=0.1, seed=int(budget))
+            r = search.search(ALPHA, ev, search.Target("ssim>=0.97", METRICS), budget_s=budget)
+            self.assertTrue(r.reached)
+            self.assertLessEqual(r.renders, search.Plan().most_frames(len(search.grid("alpha", ALPHA["alpha"]))), budget)
+            final = ev.stages[-1]
+            self.assertLessEqual(ev.rounds, search.Plan().final_round_cap(len(final[1])), budget)
 
     def test_renders_a_third_of_a_dense_sweep(self):
         # A dense sweep: 64 values of x (1 to 64, geometric) x 2 modes and rt_only, timed in its
