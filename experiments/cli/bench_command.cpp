@@ -10,7 +10,9 @@
 // stages (heuristic_rt, ssr_fallback; on both G-buffers) with rays = "vulkan", interleaved round by
 // round, their invocations and GPU time per ray beside rt_only's.
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <vector>
@@ -48,6 +50,7 @@ struct BenchOptions {
     double budget = 0.0;              // heuristic_rt's in the device traces; 0: 1e6 scaled to the image's area
     bool deviceTracesOnly = false;
     bool embreeOnly = false;
+    int wavefrontBlocks = 0;          // > 0: also the shadow rays regrouped by light over this many blocks (shadowsByLight)
     std::string launch = "both";      // the hybrids' launches in the device traces: full, compact or both
 };
 
@@ -99,6 +102,69 @@ std::size_t replay(const std::vector<LoggedRay>& rays, const Trace& trace) {
         hits += local;
     }, context);
     return hits;
+}
+
+// The logged rays with the shadow rays that were traced alone (those of hits past the first)
+// regrouped, over each run of `blocks` pixel blocks, into packets by the light they go to, in the
+// order of their origins along a Morton curve: what a walk advancing those blocks' trees together
+// (a wavefront, tracing its shadow rays a packet a light) could trace as packets, at most, since it
+// also groups across depths and ignores what sorting costs. A block starts at its camera packet,
+// and a thread's blocks lie in its log in order (32 blocks: a pixel loop's 16 x 16 tile). The light:
+// the ray's end (origin + tmax direction) to a millimetre, or its direction where tmax is infinite
+// (a light at infinity).
+std::vector<LoggedRay> shadowsByLight(const std::vector<LoggedRay>& rays, int blocks) {
+    std::vector<LoggedRay> out, block;
+    out.reserve(rays.size());
+    const auto light = [](const LoggedRay& r) {
+        const bool infinite = std::isinf(r.tmax);
+        const glm::vec3 p = infinite ? r.direction * 1e4f : r.origin + r.direction * r.tmax;
+        return std::array<long, 4>{infinite, std::lround(p.x * 1e3f), std::lround(p.y * 1e3f), std::lround(p.z * 1e3f)};
+    };
+    // Within a light's rays, by their origins along a Morton curve over the block's origins' bounds:
+    // neighbouring origins in one packet.
+    const auto morton = [](glm::vec3 unit) {
+        std::uint64_t code = 0;
+        const std::uint32_t q[3] = {static_cast<std::uint32_t>(std::clamp(unit.x, 0.0f, 1.0f) * 1023.0f),
+                                    static_cast<std::uint32_t>(std::clamp(unit.y, 0.0f, 1.0f) * 1023.0f),
+                                    static_cast<std::uint32_t>(std::clamp(unit.z, 0.0f, 1.0f) * 1023.0f)};
+        for (int bit = 9; bit >= 0; --bit)
+            for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1u);
+        return code;
+    };
+    const auto flush = [&] {
+        if (block.empty()) return;
+        glm::vec3 lo(block[0].origin), hi(block[0].origin);
+        for (const LoggedRay& r : block) {
+            lo = glm::min(lo, r.origin);
+            hi = glm::max(hi, r.origin);
+        }
+        const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-20f));
+        std::stable_sort(block.begin(), block.end(), [&](const LoggedRay& a, const LoggedRay& b) {
+            const auto la = light(a), lb = light(b);
+            if (la != lb) return la < lb;
+            return morton((a.origin - lo) / extent) < morton((b.origin - lo) / extent);
+        });
+        for (std::size_t i = 0; i < block.size();) {
+            std::size_t n = 1;
+            while (n < static_cast<std::size_t>(RayScene::kCoherentRays) && i + n < block.size() && light(block[i + n]) == light(block[i])) ++n;
+            for (std::size_t k = 0; k < n; ++k) {
+                LoggedRay r = block[i + k];
+                r.packetSize = static_cast<std::uint8_t>(n);
+                r.packetLane = static_cast<std::uint8_t>(k);
+                out.push_back(r);
+            }
+            i += n;
+        }
+        block.clear();
+    };
+    int blocksSeen = 0;
+    for (const LoggedRay& r : rays) {
+        if (r.packetSize > 1 && !r.shadow && r.packetLane == 0 && blocksSeen++ % blocks == 0) flush();
+        if (r.shadow && r.packetSize == 1) block.push_back(r);
+        else out.push_back(r);
+    }
+    flush();
+    return out;
 }
 
 // Bare rtcIntersect8 / rtcOccluded8 / rtcIntersect1 / rtcOccluded1: the traversal alone.
@@ -448,12 +514,15 @@ void run(const BenchOptions& o) {
     const std::vector<LoggedRay> logged = log.collect();
     const double rayCount = first.counters.at("rays_total");
 
-    std::vector<double> referenceMs, embreeMs, resolvedMs;
+    const bool wavefront = o.wavefrontBlocks > 0;
+    const std::vector<LoggedRay> regrouped = wavefront ? shadowsByLight(logged, o.wavefrontBlocks) : std::vector<LoggedRay>{};
+    std::vector<double> referenceMs, embreeMs, resolvedMs, regroupedMs;
     for (int i = 0; i < o.repeats; ++i) {
-        // Interleaved, so that all three see the same machine load.
+        // Interleaved, so that all see the same machine load.
         referenceMs.push_back(whitted->render(context, request).totalMilliseconds());
         embreeMs.push_back(milliseconds([&] { replay(logged, BareEmbree{rays.embreeScene()}); }));
         resolvedMs.push_back(milliseconds([&] { replay(logged, ResolvedHits{rays}); }));
+        if (wavefront) regroupedMs.push_back(milliseconds([&] { replay(regrouped, BareEmbree{rays.embreeScene()}); }));
     }
     Summary ref = summarize(referenceMs), raw = summarize(embreeMs), resolved = summarize(resolvedMs);
     const double refRate = rayCount / (ref.median * 1e3), rawRate = static_cast<double>(logged.size()) / (raw.median * 1e3);
@@ -468,6 +537,20 @@ void run(const BenchOptions& o) {
     std::printf("bare Embree, same rays   %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", raw.median, raw.min, raw.max, rawRate);
     std::printf("hits resolved, unshaded  %10.2f ms median (min %.2f, max %.2f)   %8.3f Mrays/s\n", resolved.median, resolved.min,
                 resolved.max, resolvedRate);
+    if (wavefront) {
+        const Summary g = summarize(regroupedMs);
+        std::size_t packets = 0, inPackets = 0;
+        for (const LoggedRay& r : regrouped)
+            if (r.shadow && r.packetSize > 1) {
+                packets += r.packetLane == 0;
+                ++inPackets;
+            }
+        // The same rays, only grouped otherwise: as many, with as many hits and stopped shadow rays.
+        const BareEmbree bare{rays.embreeScene()};
+        std::printf("bare Embree, wavefront   %10.2f ms median (min %.2f, max %.2f)   shadow rays a packet a light over %d blocks: "
+                    "%zu in %zu packets; %zu rays, %zu hits and stops (alone: %zu, %zu)\n", g.median, g.min, g.max, o.wavefrontBlocks,
+                    inPackets, packets, regrouped.size(), replay(regrouped, bare), logged.size(), replay(logged, bare));
+    }
     std::printf("reference / bare Embree  %10.1f %%\n", 100.0 * refRate / rawRate);
     // A shader that cost nothing would still resolve every hit: the reference's ceiling.
     std::printf("resolved / bare Embree   %10.1f %% (the reference's ceiling: every hit resolved, nothing shaded)\n",
@@ -493,6 +576,10 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
     cmd->add_option("--budget", o->budget, "heuristic_rt's budget in the device traces (default: 1e6 scaled to the image's area)")
         ->check(CLI::Range(1.0, 1e18));
+    cmd->add_option("--wavefront-bound", o->wavefrontBlocks,
+                    "Also bare Embree with the shadow rays in packets by light over runs of this many 4x2 pixel blocks (32: a 16x16 "
+                    "tile): what a wavefront walk could save, at most")
+        ->check(CLI::Range(1, 1 << 30));
     auto* deviceTracesOnly =
         cmd->add_flag("--device-traces-only", o->deviceTracesOnly, "Only the device traces per ray (no Embree measurements)");
     // For a drift check between commits (experiments/drift_check.py): minutes of lavapipe spared.

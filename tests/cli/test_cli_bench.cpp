@@ -73,5 +73,29 @@ TEST(CliBench, EmbreeOnlyStopsAfterTheCeiling) {
     EXPECT_CONTAINS(refused.err, "--embree-only");
 }
 
+// --wavefront-bound: the shadow rays traced alone, regrouped into packets by light over runs of
+// blocks, replayed bare: the same rays (as many, as many hits and stops), in packets of 2 to 8.
+TEST(CliBench, WavefrontBoundReplaysTheSameRaysInPackets) {
+    const test::CliResult r = test::runHybridlab({"bench", "--scene", "cornell-mirror-glass", "--width", "48", "--height", "27", "--repeats",
+                                                  "2", "--threads", "2", "--embree-only", "--wavefront-bound", "32"},
+                                                 {{"VK_ICD_FILENAMES", "/nonexistent"}});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(rays per frame +\d+ \(primary \d+, shadow (\d+),)"))) << r.out;
+    const double shadow = std::stod(m[1]);
+    ASSERT_TRUE(std::regex_search(
+        r.out, m,
+        std::regex(R"(bare Embree, wavefront +[0-9.]+ ms median .* over 32 blocks: (\d+) in (\d+) packets; (\d+) rays, (\d+) hits and stops \(alone: (\d+), (\d+)\))")))
+        << r.out;
+    const double inPackets = std::stod(m[1]), packets = std::stod(m[2]);
+    EXPECT_EQ(m[3], m[5]);
+    EXPECT_EQ(m[4], m[6]);
+    EXPECT_GT(inPackets, 0.5 * shadow);  // cornell-mirror-glass: most shadow rays find a partner
+    EXPECT_LE(inPackets, shadow);
+    EXPECT_GE(packets * 8, inPackets);
+    EXPECT_LE(packets * 2, inPackets);
+    EXPECT_EQ(test::runHybridlab({"bench", "--scene", "whitted-classic", "--wavefront-bound", "0"}).exitStatus, 2);
+}
+
 }  // namespace
 }  // namespace hybridlab
