@@ -113,15 +113,18 @@ std::size_t replay(const std::vector<LoggedRay>& rays, const Trace& trace) {
 // the ray's end (origin + tmax direction) to a millimetre, or its direction where tmax is infinite
 // (a light at infinity).
 std::vector<LoggedRay> shadowsByLight(const std::vector<LoggedRay>& rays, int blocks) {
-    std::vector<LoggedRay> out, block;
-    out.reserve(rays.size());
+    // A shadow ray with its sort key, computed once: its light, then its origin's Morton code over
+    // the run's origins' bounds (neighbouring origins in one packet).
+    struct Keyed {
+        std::array<long, 4> light;
+        std::uint64_t morton;
+        LoggedRay ray;
+    };
     const auto light = [](const LoggedRay& r) {
         const bool infinite = std::isinf(r.tmax);
         const glm::vec3 p = infinite ? r.direction * 1e4f : r.origin + r.direction * r.tmax;
         return std::array<long, 4>{infinite, std::lround(p.x * 1e3f), std::lround(p.y * 1e3f), std::lround(p.z * 1e3f)};
     };
-    // Within a light's rays, by their origins along a Morton curve over the block's origins' bounds:
-    // neighbouring origins in one packet.
     const auto morton = [](glm::vec3 unit) {
         std::uint64_t code = 0;
         const std::uint32_t q[3] = {static_cast<std::uint32_t>(std::clamp(unit.x, 0.0f, 1.0f) * 1023.0f),
@@ -131,36 +134,38 @@ std::vector<LoggedRay> shadowsByLight(const std::vector<LoggedRay>& rays, int bl
             for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1u);
         return code;
     };
+    std::vector<LoggedRay> out, run;
+    out.reserve(rays.size());
+    std::vector<Keyed> keyed;
     const auto flush = [&] {
-        if (block.empty()) return;
-        glm::vec3 lo(block[0].origin), hi(block[0].origin);
-        for (const LoggedRay& r : block) {
+        if (run.empty()) return;
+        glm::vec3 lo(run[0].origin), hi(run[0].origin);
+        for (const LoggedRay& r : run) {
             lo = glm::min(lo, r.origin);
             hi = glm::max(hi, r.origin);
         }
         const glm::vec3 extent = glm::max(hi - lo, glm::vec3(1e-20f));
-        std::stable_sort(block.begin(), block.end(), [&](const LoggedRay& a, const LoggedRay& b) {
-            const auto la = light(a), lb = light(b);
-            if (la != lb) return la < lb;
-            return morton((a.origin - lo) / extent) < morton((b.origin - lo) / extent);
-        });
-        for (std::size_t i = 0; i < block.size();) {
+        keyed.clear();
+        for (const LoggedRay& r : run) keyed.push_back({light(r), morton((r.origin - lo) / extent), r});
+        std::stable_sort(keyed.begin(), keyed.end(),
+                         [](const Keyed& a, const Keyed& b) { return a.light != b.light ? a.light < b.light : a.morton < b.morton; });
+        for (std::size_t i = 0; i < keyed.size();) {
             std::size_t n = 1;
-            while (n < static_cast<std::size_t>(RayScene::kCoherentRays) && i + n < block.size() && light(block[i + n]) == light(block[i])) ++n;
+            while (n < static_cast<std::size_t>(RayScene::kCoherentRays) && i + n < keyed.size() && keyed[i + n].light == keyed[i].light) ++n;
             for (std::size_t k = 0; k < n; ++k) {
-                LoggedRay r = block[i + k];
+                LoggedRay r = keyed[i + k].ray;
                 r.packetSize = static_cast<std::uint8_t>(n);
                 r.packetLane = static_cast<std::uint8_t>(k);
                 out.push_back(r);
             }
             i += n;
         }
-        block.clear();
+        run.clear();
     };
     int blocksSeen = 0;
     for (const LoggedRay& r : rays) {
         if (r.packetSize > 1 && !r.shadow && r.packetLane == 0 && blocksSeen++ % blocks == 0) flush();
-        if (r.shadow && r.packetSize == 1) block.push_back(r);
+        if (r.shadow && r.packetSize == 1) run.push_back(r);
         else out.push_back(r);
     }
     flush();

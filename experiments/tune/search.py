@@ -51,6 +51,12 @@ FULL_ROUNDS = 6
 # for the final stage, whose rounds give the answer.
 WARMUP_FRAMES = 1
 FINAL_WARMUP_FRAMES = 2
+FINAL = "final"
+
+
+def warmup_frames(stage_name):
+    """A full stage's warm-up frames a setting."""
+    return FINAL_WARMUP_FRAMES if stage_name == FINAL else WARMUP_FRAMES
 
 
 def fewest_rounds(settings):
@@ -442,7 +448,7 @@ def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERAN
     final = list(dict.fromkeys(carried(members) + final_front))
     least = estimate(final, frames_only=True, warmup=FINAL_WARMUP_FRAMES)
     overhead = estimate(final, warmup=FINAL_WARMUP_FRAMES) - least
-    last = run("final", final, "full", max(least, min(budget_s - result.seconds - overhead, plan.final_rounds * least)),
+    last = run(FINAL, final, "full", max(least, min(budget_s - result.seconds - overhead, plan.final_rounds * least)),
                max_rounds=plan.final_round_cap(len(dict.fromkeys(final + [anchor]))))
     result.choice, result.decision = decided(last, eligible(final))
     result.reached = True

@@ -114,15 +114,15 @@ class RunnerEvaluator:
         self.quiet = quiet
 
     def stage_dir(self, name):
-        return os.path.join(self.out_dir, "result" if name == "final" else os.path.join("stages", name))
+        return os.path.join(self.out_dir, "result" if name == search.FINAL else os.path.join("stages", name))
 
     def stage(self, name, settings, rounds, budget_s, max_rounds=None):
         d = self.stage_dir(name)
-        final = name == "final"
+        final = name == search.FINAL
         metrics = None if final else sorted({self.target.metric, "ssim"})
         config = stage_config(name, self.scene, self.size, settings, rounds, budget_s, self.tolerance, metrics,
                               reference_timed=final, max_rounds=max_rounds,
-                              warmup_frames=search.FINAL_WARMUP_FRAMES if final else search.WARMUP_FRAMES)
+                              warmup_frames=search.warmup_frames(name))
         config_file = os.path.join(self.out_dir, "stages", name + ".toml")
         os.makedirs(os.path.dirname(config_file), exist_ok=True)
         if not os.path.exists(os.path.join(d, "results.json")):

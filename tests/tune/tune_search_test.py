@@ -48,7 +48,7 @@ class Synthetic:
                 times[s].append(t)
                 spent += t / 1000.0
         tid = "synthetic-%s" % name
-        warmup = 1 if rounds != "full" else search.FINAL_WARMUP_FRAMES if name == "final" else search.WARMUP_FRAMES
+        warmup = 1 if rounds != "full" else search.warmup_frames(name)
         self.renders = sum(warmup + len(v) for v in times.values())
         self.rounds = max(len(v) for v in times.values())
         outcomes = {s: search.Outcome(self.quality(s), {tid: times[s]}) for s in settings}
