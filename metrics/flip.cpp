@@ -303,7 +303,8 @@ cv::Mat1f featureDifference(const cv::Mat& testY, const cv::Mat& referenceY, dou
 
 cv::Mat1f flipMap(const cv::Mat3f& test, const cv::Mat3f& reference, double pixelsPerDegree) {
     if (test.size() != reference.size()) throw std::invalid_argument("flipMap: the images differ in size");
-    if (!(pixelsPerDegree > 0.0)) throw std::invalid_argument("flipMap: pixels per degree must be positive");
+    if (!(pixelsPerDegree >= kSmallestPixelsPerDegree && pixelsPerDegree <= kLargestPixelsPerDegree))
+        throw std::invalid_argument("flipMap: pixels per degree outside [kSmallestPixelsPerDegree, kLargestPixelsPerDegree]");
     const Planes t = ycxczPlanes(test), r = ycxczPlanes(reference);
     const cv::Mat1f color = colorError(t, r, pixelsPerDegree);
     const cv::Mat1f feature = featureDifference(t[0], r[0], pixelsPerDegree);

@@ -15,6 +15,11 @@ namespace hybridlab {
 // The testbed's default viewing condition (the paper's, a 0.7 m wide 4K monitor seen from 0.7 m,
 // is 67.02 pixels per degree).
 constexpr double kDefaultPixelsPerDegree = 67.0;
+// The viewing conditions flipMap takes. Its filters' radii grow with the pixels per degree (3 sigma
+// of the widest, in pixels), so 10^5 already spends seconds on a 32 x 18 image and 10^10 more memory
+// than a filter can have; 1000 is a 0.7 m wide 16K display seen from 1.5 m, beyond any real one.
+constexpr double kSmallestPixelsPerDegree = 0.001;
+constexpr double kLargestPixelsPerDegree = 1000.0;
 
 // The FLIP map of `test` against `reference`, both display sRGB in [0, 1] (R, G, B order).
 cv::Mat1f flipMap(const cv::Mat3f& test, const cv::Mat3f& reference, double pixelsPerDegree = kDefaultPixelsPerDegree);

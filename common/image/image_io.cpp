@@ -93,9 +93,11 @@ ImageHeader readHeader(ImageFormat format, const unsigned char* bytes, std::size
 }
 
 // Reads the header of an image of `format` and checks it against the limits.
-void checkReadableHeader(ImageFormat format, const unsigned char* bytes, std::size_t size, const std::string& name) {
+ImageHeader checkReadableHeader(ImageFormat format, const unsigned char* bytes, std::size_t size, const std::string& name) {
     try {
-        checkHeader(readHeader(format, bytes, size), name);
+        const ImageHeader header = readHeader(format, bytes, size);
+        checkHeader(header, name);
+        return header;
     } catch (const ImageCodecError& e) {
         throw InputError(name + ": cannot read image (" + e.what() + ")");
     }
@@ -139,12 +141,13 @@ Image readImage(const fs::path& path, ColorEncoding decode, std::string* assumed
     return hybridlab::decode(unsignedBytes(bytes), bytes.size(), path.string(), decode, assumed);
 }
 
-void checkImageFile(const fs::path& path, bool requireFinite) {
+ImageSize checkImageFile(const fs::path& path, bool requireFinite) {
     const std::string bytes = readImageBytes(path);
     const ImageFormat format = imageFormatOf(unsignedBytes(bytes), bytes.size());
-    checkReadableHeader(format, unsignedBytes(bytes), bytes.size(), path.string());
+    const ImageHeader header = checkReadableHeader(format, unsignedBytes(bytes), bytes.size(), path.string());
     if (requireFinite && format == ImageFormat::Exr)
         requireFiniteTexels(hybridlab::decode(unsignedBytes(bytes), bytes.size(), path.string(), ColorEncoding::Linear, nullptr), path.string());
+    return {header.width, header.height};
 }
 
 Image readImageFromMemory(const unsigned char* bytes, std::size_t size, const std::string& name, ColorEncoding decode) {

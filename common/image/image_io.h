@@ -28,8 +28,12 @@ Image readImage(const std::filesystem::path& path, ColorEncoding decode = ColorE
 // here, with pixels, within the size limit and no larger than its file can hold. With
 // `requireFinite`, an image of floating-point samples (EXR: the format here that can hold NaN or
 // infinities) is also decoded and refused as requireFiniteTexels (non_finite_pixels.h) refuses it. For commands that
-// check a scene without rendering it.
-void checkImageFile(const std::filesystem::path& path, bool requireFinite = false);
+// check a scene without rendering it. Returns the size its header states.
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+ImageSize checkImageFile(const std::filesystem::path& path, bool requireFinite = false);
 
 // Every writer writes the complete file or nothing (common/core/atomic_file.h; failures throw
 // IoError), with no write time in it, so that the same pixels give the same bytes.

@@ -1,6 +1,12 @@
 #include "common/scene/camera_path.h"
 
 #include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "common/core/input_error.h"
+#include "common/core/number_check.h"
 
 namespace hybridlab {
 
@@ -12,11 +18,21 @@ int CameraPath::frameCount() const {
 Camera CameraPath::evaluate(double t, const Camera& lens) const {
     Camera cam = lens;
     cam.position = interpolate(times, positions, t, interpolation);
+    const std::string at = "camera path '" + name + "' at " + formatNumber(t) + " s";
     if (keysLookAt) {
-        cam.orientation = Camera::lookAtOrientation(cam.position, interpolate(times, targets, t, interpolation), up);
+        const glm::vec3 target = interpolate(times, targets, t, interpolation);
+        // Keys apart from their look_at points can still pass through them between keys.
+        if (!(glm::length(target - cam.position) > 0.0f))
+            throw InputError(at + ": the camera is at the point it looks at, so it looks nowhere (expected the path's positions "
+                                  "and look_at points apart at every time)");
+        cam.orientation = Camera::lookAtOrientation(cam.position, target, up);
     } else {
         cam.orientation = interpolate(times, orientations, t);
     }
+    const auto finite = [](float v) { return std::isfinite(v); };
+    if (!finite(cam.position.x) || !finite(cam.position.y) || !finite(cam.position.z) || !finite(cam.orientation.x) ||
+        !finite(cam.orientation.y) || !finite(cam.orientation.z) || !finite(cam.orientation.w))
+        throw InputError(at + ": the interpolated camera is not finite");
     return cam;
 }
 

@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -11,6 +12,7 @@
 
 #include "common/core/input_error.h"
 #include "common/core/input_file.h"
+#include "common/core/number_check.h"
 #include "common/core/log.h"
 #include "common/image/image_io.h"
 #include "common/image/non_finite_pixels.h"
@@ -268,20 +270,35 @@ private:
     void addCamera(const tinygltf::Node& node, const glm::mat4& world) {
         if (node.camera >= static_cast<int>(model_.cameras.size())) reader_.fail("node '" + node.name + "': camera index out of range");
         const auto& gc = model_.cameras[node.camera];
+        const std::string what = "camera node '" + node.name + "'";
+        // Its placement: axes neither zero nor non-finite (a scale of 0 leaves no view direction).
+        for (int axis = 0; axis < 3; ++axis) {
+            const float length = glm::length(glm::vec3(world[axis]));
+            if (!(length > 0.0f) || !std::isfinite(length)) reader_.fail(what + ": its transform scales an axis to 0 or to infinity");
+        }
         Camera cam;
         cam.position = glm::vec3(world[3]);
         glm::mat3 rot(glm::normalize(glm::vec3(world[0])), glm::normalize(glm::vec3(world[1])), glm::normalize(glm::vec3(world[2])));
         cam.orientation = glm::normalize(glm::quat_cast(rot));
+        // The glTF 2.0 camera's properties, in the ranges a scene file's [camera] takes.
+        const auto within = [&](const std::string& key, double v, double lo, double hi) {
+            if (!(v >= lo && v <= hi))
+                reader_.fail(what + ": " + key + " " + formatNumber(v) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
+            return static_cast<float>(v);
+        };
         if (gc.type == "orthographic") {
             cam.projection = Camera::Projection::Orthographic;
-            cam.orthoHeight = static_cast<float>(2.0 * gc.orthographic.ymag);
-            cam.nearPlane = static_cast<float>(gc.orthographic.znear);
-            cam.farPlane = static_cast<float>(gc.orthographic.zfar);
+            within("orthographic.xmag", gc.orthographic.xmag, 5e-7, 5e8);
+            cam.orthoHeight = 2.0f * within("orthographic.ymag", gc.orthographic.ymag, 5e-7, 5e8);
+            // glTF allows an orthographic near plane at 0; a scene's camera takes at least 1e-6.
+            cam.nearPlane = std::max(within("orthographic.znear", gc.orthographic.znear, 0.0, 1e9), 1e-6f);
+            cam.farPlane = within("orthographic.zfar", gc.orthographic.zfar, 1e-6, 1e12);
         } else {
-            cam.fovYDegrees = static_cast<float>(glm::degrees(gc.perspective.yfov));
-            cam.nearPlane = static_cast<float>(gc.perspective.znear);
-            if (gc.perspective.zfar > 0.0) cam.farPlane = static_cast<float>(gc.perspective.zfar);
+            cam.fovYDegrees = within("perspective.yfov (in degrees)", glm::degrees(gc.perspective.yfov), 1e-3, 179.0);
+            cam.nearPlane = within("perspective.znear", gc.perspective.znear, 1e-6, 1e9);
+            if (gc.perspective.zfar > 0.0) cam.farPlane = within("perspective.zfar", gc.perspective.zfar, 1e-6, 1e12);
         }
+        if (cam.farPlane <= cam.nearPlane) reader_.fail(what + ": expected zfar > znear");
         out_.cameras.push_back({node.name, cam});
     }
 

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "common/core/input_error.h"
 #include "common/core/input_file.h"
@@ -52,6 +53,27 @@ public:
     }
 
 private:
+    static bool finiteVec3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+    static bool finiteQuat(glm::quat q) { return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w); }
+    static bool withinReach(glm::vec3 p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(limits::kSceneCoordinate))); }
+
+    // A point the camera is at or looks at: within limits::kSceneCoordinate of the origin, as every
+    // vertex is (farther, its view's basis and its rays lose every digit and come out NaN).
+    static glm::vec3 pointInReach(const TomlTable& t, const std::string& key) {
+        const glm::vec3 p = t.requiredVec3(key);
+        if (!withinReach(p))
+            t.fail(key, "expected each coordinate within " + formatNumber(limits::kSceneCoordinate) + " of the origin, got [" +
+                            formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) + "]");
+        return p;
+    }
+
+    // A direction that must not be zero (an up vector).
+    static glm::vec3 nonZeroVec3(const TomlTable& t, const std::string& key, glm::vec3 fallback) {
+        const glm::vec3 v = t.vec3(key, fallback);
+        if (!(glm::length(v) > 0.0f)) t.fail(key, "expected a non-zero vector");
+        return v;
+    }
+
     // Checks that a file named in the scene exists, with the asset explanation when not.
     fs::path existingPath(const TomlTable& t, const std::string& key, const std::string& written) const {
         fs::path p = resolveScenePath(written, doc_.file());
@@ -85,6 +107,15 @@ private:
         if (!faces.empty()) {
             if (faces.size() != 6) s->fail("cube_map", "expected 6 images (+X, -X, +Y, -Y, +Z, -Z), got " + std::to_string(faces.size()));
             for (int i = 0; i < 6; ++i) scene_.sky.cubeFaces[i] = texture(*s, "cube_map", faces[i], true);
+            // One cube image: six square faces of one size (what a Vulkan cube image is).
+            const ImageSize first = textureSize(scene_.sky.cubeFaces[0]);
+            for (int i = 0; i < 6; ++i) {
+                const ImageSize face = textureSize(scene_.sky.cubeFaces[i]);
+                if (face.width != face.height || face.width != first.width)
+                    s->fail("cube_map", "expected six square faces of one size, got " + faces[i] + " at " + std::to_string(face.width) +
+                                            " x " + std::to_string(face.height) + " beside " + faces[0] + " at " +
+                                            std::to_string(first.width) + " x " + std::to_string(first.height));
+            }
         }
         s->rejectUnknownKeys();
     }
@@ -109,7 +140,7 @@ private:
             } else {
                 // Not decoded, but checked: a scene that passes scene-info also renders.
                 try {
-                    checkImageFile(p, true);
+                    headerSizes_[static_cast<std::int32_t>(scene_.textures.size())] = checkImageFile(p, true);
                 } catch (const InputError& e) {
                     t.fail(key, e.what());
                 }
@@ -120,6 +151,13 @@ private:
         scene_.textures.push_back(std::move(tex));
         textureIds_[id] = idx;
         return idx;
+    }
+
+    // A texture's size: its image's, or where it was not decoded its header's.
+    ImageSize textureSize(std::int32_t index) const {
+        if (const auto it = headerSizes_.find(index); it != headerSizes_.end()) return it->second;
+        const Image& image = scene_.textures[static_cast<std::size_t>(index)].image;
+        return {image.width(), image.height()};
     }
 
     void readMaterials(const TomlTable& root) {
@@ -167,7 +205,12 @@ private:
         tr.position = t.vec3("position", fallback.position);
         tr.rotation = t.has("rotation") ? eulerDegreesToQuat(t.vec3("rotation", glm::vec3(0.0f))) : fallback.rotation;
         tr.scale = t.scalarOrVec3("scale", fallback.scale);
-        if (tr.scale.x == 0 || tr.scale.y == 0 || tr.scale.z == 0) t.fail("scale", "expected non-zero scale factors");
+        // Factors of 1e-30 leave extents whose products underflow, and Embree's spatial splits
+        // abort on such triangles; 1e-9 of a kilometre is still a micrometre.
+        constexpr float kSmallestScale = 1e-9f;
+        if (glm::any(glm::lessThan(glm::abs(tr.scale), glm::vec3(kSmallestScale))))
+            t.fail("scale", "expected non-zero scale factors, each at least " + formatNumber(kSmallestScale) + " in magnitude, got [" +
+                                formatNumber(tr.scale.x) + ", " + formatNumber(tr.scale.y) + ", " + formatNumber(tr.scale.z) + "]");
         return tr;
     }
 
@@ -356,13 +399,18 @@ private:
         return copies;
     }
 
-    // Key times must increase strictly; at least two keys.
+    // Key times must increase, by at least kKeySpacing; at least two keys. Keys closer than that
+    // make the interpolation's tangents (differences over the keys' interval) overflow.
+    static constexpr double kKeySpacing = 1e-6;
     std::vector<TomlTable> readKeys(const TomlTable& t, const std::string& what, std::vector<double>& times) const {
         auto keys = t.tableArray("keys");
         if (keys.size() < 2) t.fail("keys", what + " needs at least two keyframes, got " + std::to_string(keys.size()));
         for (const auto& k : keys) {
             double time = k.requiredNumber("time", {0.0, 1e6});
             if (!times.empty() && time <= times.back()) k.fail("time", "keyframe times must increase (previous key is at " + std::to_string(times.back()) + ")");
+            if (!times.empty() && time < times.back() + kKeySpacing)
+                k.fail("time", "keyframe times must be at least " + formatNumber(kKeySpacing) + " s apart (previous key is at " +
+                                   formatNumber(times.back()) + ", this one at " + formatNumber(time) + ")");
             times.push_back(time);
         }
         return keys;
@@ -395,11 +443,7 @@ private:
         d.wavelength = static_cast<float>(t.requiredNumber("wavelength", {1e-6, 1e9}));
         d.speed = static_cast<float>(t.number("speed", 0.0, {-1e9, 1e9}));
         d.phaseRadians = glm::radians(static_cast<float>(t.number("phase", 0.0, {-1e6, 1e6})));
-        auto unit = [&](const std::string& key, glm::vec3 fallback) {
-            const glm::vec3 v = t.vec3(key, fallback);
-            if (glm::length(v) == 0.0f) t.fail(key, "expected a non-zero vector");
-            return glm::normalize(v);
-        };
+        auto unit = [&](const std::string& key, glm::vec3 fallback) { return glm::normalize(nonZeroVec3(t, key, fallback)); };
         d.direction = unit("direction", d.direction);
         d.axis = unit("axis", d.axis);
         if (std::abs(glm::dot(d.direction, d.axis)) > 1e-4f)
@@ -472,9 +516,13 @@ private:
             c.position = glm::vec3(m * glm::vec4(c.position, 1.0f));
             glm::mat3 r(m);
             c.orientation = glm::normalize(glm::quat_cast(glm::mat3(glm::normalize(r[0]), glm::normalize(r[1]), glm::normalize(r[2])))) * c.orientation;
+            if (!finiteVec3(c.position) || !withinReach(c.position) || !finiteQuat(c.orientation))
+                t->fail("gltf_object", "object '" + obj + "' places its glTF camera '" + found->nodeName +
+                                           "' at a degenerate or far placement (a scale of 0, or beyond " +
+                                           formatNumber(limits::kSceneCoordinate) + " from the origin)");
         } else {
-            c.position = t->requiredVec3("position");
-            c.orientation = readOrientation(*t, c.position, t->vec3("up", glm::vec3(0, 1, 0)));
+            c.position = pointInReach(*t, "position");
+            c.orientation = readOrientation(*t, c.position, nonZeroVec3(*t, "up", glm::vec3(0, 1, 0)));
         }
         readLens(*t, c);
         t->rejectUnknownKeys();
@@ -483,7 +531,7 @@ private:
     glm::quat readOrientation(const TomlTable& t, glm::vec3 position, glm::vec3 up) const {
         if (t.has("look_at") == t.has("orientation")) t.failHere("expected exactly one of 'look_at' or 'orientation'");
         if (t.has("orientation")) return eulerDegreesToQuat(t.vec3("orientation", {}));
-        glm::vec3 target = t.vec3("look_at", {});
+        glm::vec3 target = pointInReach(t, "look_at");
         if (glm::length(target - position) == 0.0f) t.fail("look_at", "look_at equals the camera position");
         return Camera::lookAtOrientation(position, target, up);
     }
@@ -494,7 +542,7 @@ private:
             p.name = name;
             p.interpolation = toInterpolation(t.choice("interpolation", "catmull-rom", kInterpolations));
             p.framesPerSecond = t.number("fps", 30.0, {1e-3, 1e4});
-            p.up = t.vec3("up", p.up);
+            p.up = nonZeroVec3(t, "up", p.up);
             auto keys = readKeys(t, "a camera path", p.times);
             // Frame numbers are ints; a path's frame count must fit one with room to spare.
             if (p.duration() * p.framesPerSecond >= limits::kFrame)
@@ -502,11 +550,11 @@ private:
                                   " fps make more frames than the limit of " + std::to_string(limits::kFrame));
             p.keysLookAt = keys[0].has("look_at");
             for (const auto& k : keys) {
-                glm::vec3 pos = k.requiredVec3("position");
+                glm::vec3 pos = pointInReach(k, "position");
                 p.positions.push_back(pos);
                 if (k.has("look_at") != p.keysLookAt) k.failHere("all keys of a path must use 'look_at', or all 'orientation'");
                 if (p.keysLookAt) {
-                    p.targets.push_back(k.vec3("look_at", {}));
+                    p.targets.push_back(pointInReach(k, "look_at"));
                     if (glm::length(p.targets.back() - pos) == 0.0f) k.fail("look_at", "look_at equals the key's position");
                 } else {
                     p.orientations.push_back(readOrientation(k, pos, p.up));
@@ -523,6 +571,7 @@ private:
     Scene scene_;
     std::map<std::string, std::uint32_t> materialIds_;
     std::map<std::string, std::int32_t> textureIds_;
+    std::map<std::int32_t, ImageSize> headerSizes_;  // of the textures not decoded
     std::map<std::string, std::size_t> objectIds_;
     std::map<std::string, std::vector<GltfCamera>> gltfCameras_;
 };

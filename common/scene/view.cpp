@@ -32,7 +32,11 @@ View resolveView(const Scene& scene, const std::string& cameraPath, std::optiona
         v.time = time.value_or(path->startTime());
         v.label = cameraPath + "@t=" + std::to_string(v.time);
     }
-    v.camera = path->evaluate(v.time, scene.camera);
+    try {
+        v.camera = path->evaluate(v.time, scene.camera);
+    } catch (const InputError& e) {
+        throw InputError(scene.file.string() + ": " + e.what());
+    }
     return v;
 }
 

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/core/cli_number_validators.h"
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
 #include "common/image/image_io.h"
@@ -207,13 +208,14 @@ void printTiming(const Image& test, const Image& reference, const MetricOptions&
                 medianMilliseconds(kRepeats, [&] { computeMetrics(test, reference, options); }).c_str());
 }
 
-// Names that tell the tests apart: the file names without extension, or, where two share one,
-// the paths as given.
+// Names that tell the tests apart, each also a folder name inside --out: the file names without
+// extension, or, where two share one (a/t.exr and b/t.exr, or one test given twice), that name
+// and the test's place on the command line (t-1, t-2).
 void nameTests(std::vector<Compared>& tests) {
     std::map<std::string, int> count;
     for (Compared& c : tests) ++count[c.name = fs::path(c.path).stem().string()];
-    for (Compared& c : tests)
-        if (count[c.name] > 1) c.name = c.path;
+    for (std::size_t i = 0; i < tests.size(); ++i)
+        if (count[tests[i].name] > 1) tests[i].name += "-" + std::to_string(i + 1);
 }
 
 void run(const CompareOptions& o) {
@@ -318,15 +320,16 @@ void addCompareCommand(CLI::App& app) {
                     "Folder for diff.png, ssim.png, flip.png, flip_hdr.png (heat maps with legends) and metrics.json; with several "
                     "tests, a folder a test inside it, named as the test's file");
     cmd->add_option("--range", o->range, "The difference map's scale, 0 to R (default: the largest difference of all the tests)")
-        ->check(CLI::PositiveNumber);
+        ->check(numberIn(1e-12, 1e12));
     cmd->add_option("--fail-above", o->failAbove,
                     "METRIC=VALUE (repeatable; METRIC ssim, rmse, psnr, flip or flip_hdr, on the whole image): exit status 1 when a "
                     "test's score is worse than VALUE (above it for rmse, flip and flip_hdr; below it for ssim and psnr)");
     cmd->add_flag("--json", o->json, "Print {reference, tests: [metrics.json's fields, name, taken_as], difference_range, failed} as JSON");
     cmd->add_flag("--linear", o->linear, "RMSE, PSNR and the difference map on linear HDR values instead of display values");
     cmd->add_flag("--channels", o->perChannel, "SSIM of R, G and B separately (averaged) instead of luma");
-    cmd->add_option("--ppd", o->pixelsPerDegree, "FLIP viewing condition, pixels per degree of visual angle")
-        ->check(CLI::PositiveNumber)
+    cmd->add_option("--ppd", o->pixelsPerDegree, "FLIP viewing condition, pixels per degree of visual angle (FLIP's filters grow with it: a desktop display "
+                    "is about 67, a phone held close 200-300)")
+        ->check(numberIn(kSmallestPixelsPerDegree, kLargestPixelsPerDegree))
         ->capture_default_str();
     cmd->add_flag("--timing", o->timing, "Also time each metric on the first test (median of 5 runs)");
     cmd->add_flag("--ignore-nonfinite", o->ignoreNonFinite,

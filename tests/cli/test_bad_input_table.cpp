@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -106,6 +107,38 @@ void writeHardeningInputs(const fs::path& d) {
     writeTextFile(d / "loop-scene.toml", "[[scenes]]\nscene = \"loop-a.toml\"\nresolutions = [[32, 32]]\n\n[[techniques]]\nname = \"whitted\"\n");
 }
 
+// The third round, inputs that crashed in Embree or in FLIP: cameras whose view comes out NaN
+// (an up vector of 0, a position beyond every coordinate bound, a path through its own look_at
+// point, keys closer than the interpolation's differences can divide, a glTF camera node scaled
+// to 0 or with no field of view), an object scaled to 1e-30, and a sky of faces of two sizes.
+void writeThirdRoundInputs(const fs::path& d) {
+    using test::writeTextFile;
+    const std::string box = sceneText("", "primitive = \"cube\"\n");
+    writeTextFile(d / "camera-up-zero.toml", box + "up = [0.0, 0.0, 0.0]\n");
+    std::string far = box;
+    far.replace(far.find("position = [0.0, 1.0, 5.0]"), 26, "position = [1e30, 1.0, 5.0]");
+    writeTextFile(d / "camera-far.toml", far);
+    const auto path = [&](const std::string& name, const std::string& keys) { return box + "\n[camera_paths." + name + "]\n" + keys; };
+    writeTextFile(d / "key-spacing.toml", path("close", "keys = [\n"
+                                                        "  { time = 0.0, position = [0.0, 1.0, 5.0], look_at = [0.0, 0.0, 0.0] },\n"
+                                                        "  { time = 1e-9, position = [1.0, 1.0, 5.0], look_at = [0.0, 0.0, 0.0] },\n]\n"));
+    writeTextFile(d / "through-look-at.toml", path("through", "interpolation = \"linear\"\nfps = 10.0\nkeys = [\n"
+                                                              "  { time = 0.0, position = [0.0, 1.0, -5.0], look_at = [0.0, 1.0, 0.0] },\n"
+                                                              "  { time = 2.0, position = [0.0, 1.0, 5.0], look_at = [0.0, 1.0, 0.0] },\n]\n"));
+    writeTextFile(d / "tiny-scale.toml", sceneText("", "primitive = \"sphere\"\nscale = [1e-30, 1.0, 1.0]\n"));
+    writeExr(d / "small.exr", Image(2, 2, glm::vec4(0.5f)));
+    writeTextFile(d / "sky-sizes.toml", box + "\n[sky]\ncube_map = [\"finite.exr\", \"finite.exr\", \"small.exr\", \"finite.exr\", "
+                                              "\"finite.exr\", \"finite.exr\"]\n");
+    for (const auto& [name, yfov, scale] : {std::tuple{"camera-scale-zero", 0.8, 0.0}, std::tuple{"camera-no-fov", 0.0, 1.0}}) {
+        test::GltfBuilder b;
+        const int quad = b.addNode({{"mesh", b.addMesh("quad", b.addFloats(test::kTrianglePositions, "VEC3"))}});
+        const int eye = b.addNode({{"name", "eye"}, {"camera", b.addPerspectiveCamera(yfov, 0.1, 100.0, 1.5)}, {"scale", {scale, scale, scale}}});
+        b.setRoots({quad, eye});
+        b.writeGltf(d / (std::string(name) + ".gltf"));
+        writeTextFile(d / (std::string(name) + ".toml"), sceneText("", "model = \"" + std::string(name) + ".gltf\"\n"));
+    }
+}
+
 // Writes every input the cases name into `d`.
 void writeInputs(const fs::path& d) {
     using test::writeTextFile;
@@ -160,6 +193,7 @@ void writeInputs(const fs::path& d) {
     shard("shard-a1", "a", 'a', 1);
     shard("shard-b1", "b", 'b', 1);
     writeHardeningInputs(d);
+    writeThirdRoundInputs(d);
 }
 
 struct BadInputCase {
@@ -267,6 +301,27 @@ const std::vector<BadInputCase> kCases = {
      "%d/scene-twice.toml:4:1: scenes[1]: scene whitted-classic at 32x32, the scene's camera, is listed again (first in scenes[0])"},
     {{"run", "%d/sets-twice.toml", "--out", "%o"}, 2,
      "techniques[0].param_sets[1]: the settings max_depth=2 are, with the defaults filled in, those of techniques[0].param_sets[0] (max_depth=2)"},
+    // The third round: cameras that would look along NaN, a scale that underflows, a sky's faces.
+    {{"scene-info", "%d/camera-up-zero.toml"}, 2, "%d/camera-up-zero.toml:14:6: camera.up: expected a non-zero vector"},
+    {{"render", "--scene", "%d/camera-far.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "%d/camera-far.toml:12:12: camera.position: expected each coordinate within 1e+12 of the origin, got [1e+30, 1, 5]"},
+    {{"scene-info", "%d/key-spacing.toml"}, 2,
+     "camera_paths.close.keys[1].time: keyframe times must be at least 1e-06 s apart (previous key is at 0, this one at 1e-09)"},
+    {{"render", "--scene", "%d/through-look-at.toml", "--camera-path", "through", "--frame", "10", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "%d/through-look-at.toml: camera path 'through' at 1 s: the camera is at the point it looks at, so it looks nowhere"},
+    {{"render", "--scene", "%d/tiny-scale.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "%d/tiny-scale.toml:9:9: objects[0].scale: expected non-zero scale factors, each at least 1e-09 in magnitude, got [1e-30, 1, 1]"},
+    {{"render", "--scene", "%d/sky-sizes.toml", "--technique", "raster", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "sky.cube_map: expected six square faces of one size, got small.exr at 2 x 2 beside finite.exr at 4 x 4"},
+    {{"scene-info", "%d/sky-sizes.toml"}, 2, "sky.cube_map: expected six square faces of one size, got small.exr at 2 x 2"},
+    {{"render", "--scene", "%d/camera-scale-zero.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+     "objects[0].model: %d/camera-scale-zero.gltf: camera node 'eye': its transform scales an axis to 0 or to infinity"},
+    {{"scene-info", "%d/camera-no-fov.toml"}, 2,
+     "objects[0].model: %d/camera-no-fov.gltf: camera node 'eye': perspective.yfov (in degrees) 0 is outside [0.001, 179]"},
+    // FLIP's viewing condition: its filters grow with it (10^10 asked for more memory than exists).
+    {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "nan", "--out", "%o"}, 2, "--ppd: expected a finite number in [0.001, 1000], got nan"},
+    {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "1e10", "--out", "%o"}, 2, "--ppd: expected a number in [0.001, 1000], got 1e10"},
+    {{"compare", "%d/finite.exr", "%d/finite.exr", "--range", "nan", "--out", "%o"}, 2, "--range: expected a finite number in [1e-12, 1e+12], got nan"},
     // Arguments: one line, with the pointer to --help on it.
     {{"scene-info", "whitted-classic", "--frobnicate"}, 2, "The following argument was not expected: --frobnicate (hybridlab --help for usage)"},
     {{"frobnicate"}, 2, "unknown command 'frobnicate' (commands: "},

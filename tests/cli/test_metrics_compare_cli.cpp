@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::CliResult;
 using test::CliRun;
+using test::runHybridlab;
 using test::runHybridlabAll;
 using test::TempDir;
 
@@ -253,6 +254,27 @@ TEST(CompareCommand, SeveralTestsAgainstOneReferenceOnOneScale) {
     EXPECT_CONTAINS(failed.at(1).get<std::string>(), "is worse than 0.999999 (below)");
     EXPECT_EQ(r[5].exitStatus, 2);
     EXPECT_CONTAINS(r[5].err, "--fail-above sharpness=1: expected METRIC=VALUE with METRIC one of ssim, rmse, psnr, flip, flip_hdr");
+}
+
+TEST(CompareCommand, TestsSharingAFileNameGetAFolderEachInsideOut) {
+    Files f;
+    const fs::path other = f.dir / "other", out = f.dir / "maps";
+    fs::create_directories(other);
+    const fs::path twin = other / f.test.filename();
+    fs::copy_file(f.test, twin);
+    // Absolute paths, one of them twice: every folder lies inside --out, named by place.
+    const CliResult r = runHybridlab({"compare", f.test.string(), twin.string(), f.test.string(), f.reference.string(), "--out", out.string()});
+    ASSERT_EQ(r.exitStatus, 0) << r.err;
+    const std::string stem = f.test.stem().string();
+    for (const std::string& name : {stem + "-1", stem + "-2", stem + "-3"}) {
+        SCOPED_TRACE(name);
+        EXPECT_TRUE(fs::exists(out / name / "metrics.json"));
+        EXPECT_CONTAINS(r.out, name);
+    }
+    std::size_t folders = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++folders;
+    EXPECT_EQ(folders, 3u);
+    EXPECT_TRUE(fs::is_regular_file(f.test));  // not taken for a folder
 }
 
 }  // namespace
