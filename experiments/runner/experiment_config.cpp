@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <set>
@@ -130,6 +131,18 @@ std::string safeName(const std::string& s) {
     return out;
 }
 
+// The names a run's file names are made of (scene, camera path, technique label; RunSpec::id) are
+// at most this long, so that the longest file a run writes stays within a file system's 255 bytes.
+constexpr std::size_t kLongestNameInFiles = 64;
+
+// `name`, read from `key`, as a part of run file names: refused, at `key`, when too long for one.
+void checkNameInFiles(const TomlTable& t, const std::string& key, const std::string& what, const std::string& name) {
+    if (name.empty() || name.size() > kLongestNameInFiles)
+        t.fail(key, what + " '" + (name.size() > kLongestNameInFiles ? name.substr(0, 24) + "..." : name) + "' is " +
+                        std::to_string(name.size()) + " characters long; run file names take 1 to " +
+                        std::to_string(kLongestNameInFiles));
+}
+
 // A scene path (not a scenes/ name) relative to the config file's folder, as paths in a scene file
 // are relative to the scene file's: the config means the same from any working folder.
 std::string sceneFileAsWritten(const std::string& written, const fs::path& configFile) {
@@ -142,6 +155,7 @@ std::string sceneFileAsWritten(const std::string& written, const fs::path& confi
 ViewSpec readView(const TomlTable& v, const Scene& scene, const std::string& sceneName) {
     ViewSpec view;
     view.cameraPath = v.string("path", "");
+    if (v.has("path")) checkNameInFiles(v, "path", "camera path", view.cameraPath);
     if (view.cameraPath.empty()) {
         if (v.has("frames") || v.has("stride")) v.failHere("frames and stride need a camera path ('path')");
     } else {
@@ -190,6 +204,7 @@ SceneSpec readSceneSpec(const TomlTable& t, const fs::path& configFile) {
         t.fail("scene", e.what());
     }
     s.label = scene.name;
+    checkNameInFiles(t, "scene", "the scene's name", s.label);
     const toml::node* res = t.has("resolutions") ? &t.node("resolutions") : nullptr;
     if (!res) t.fail("resolutions", "missing (expected a list of [width, height] pairs)");
     auto arr = res->as_array();
@@ -266,6 +281,7 @@ TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& label
     }
     const ParameterChecker checker(s.name);
     s.label = t.string("label", s.name);
+    checkNameInFiles(t, "label", "label", s.label);
     if (!labels.insert(s.label).second) t.fail("label", "two techniques are labelled '" + s.label + "' (give each entry its own label)");
     auto params = t.table("params");
     auto sets = t.tableArray("param_sets");
@@ -317,6 +333,12 @@ ExperimentConfig loadExperimentConfig(const fs::path& file) {
 
     if (auto e = root.table("experiment")) {
         c.name = e->string("name", c.name);
+        // The result set's folder, results/<name>: one folder name, inside results/.
+        const bool folderName = !c.name.empty() && c.name.size() <= 100 && c.name != "." && c.name != ".." &&
+                                std::none_of(c.name.begin(), c.name.end(), [](char ch) { return ch == '/' || ch == '\\' || std::iscntrl(static_cast<unsigned char>(ch)); });
+        if (!folderName)
+            e->fail("name", "expected a folder name for results/<name> (1 to 100 characters, no '/', '\\' or control characters, "
+                            "not '.' or '..'), got '" + c.name.substr(0, 100) + "'");
         c.description = e->string("description", "");
         readTimingProtocol(*e, c.timing);
         readMetricsAndKeep(*e, c);

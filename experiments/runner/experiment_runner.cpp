@@ -565,15 +565,11 @@ void checkOptions(const RunnerOptions& o) {
 
 }  // namespace
 
-RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
-    checkOptions(o);
-    const std::vector<RunSpec> all = planRuns(config);
-    const ShardPartition partition = partitionRuns(config, all, o.shardCount);
-    const std::vector<const RunSpec*> mine = partition.runsOf(all, o.shardIndex);
-    RunnerSummary summary;
-    std::optional<MixedDevices> mixed;
-    const auto lock = prepareOutputFolder(config, o, all.size(), mine.size(), partition.estimatedCost.at(o.shardIndex), summary, mixed);
+namespace {
 
+// Renders, times, scores and records `mine` into the prepared folder o.outDir.
+void renderRuns(const ExperimentConfig& config, const RunnerOptions& o, const std::vector<const RunSpec*>& mine,
+                const std::optional<MixedDevices>& mixed, RunnerSummary& summary) {
     const ResultsStore store(o.outDir);
     const ReferenceCache cache(o.cacheDir);
     summary.runsPlanned = mine.size();
@@ -615,8 +611,40 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     for (const RunSpec* run : mine) summary.complete &= store.hasRecord(run->id);
     // Once, now that the records are final (results_store.h).
     store.writeResults(store.finalRecords(readJson(o.outDir / "experiment.json")));
+}
+
+}  // namespace
+
+RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
+    checkOptions(o);
+    const std::vector<RunSpec> all = planRuns(config);
+    const ShardPartition partition = partitionRuns(config, all, o.shardCount);
+    const std::vector<const RunSpec*> mine = partition.runsOf(all, o.shardIndex);
+    RunnerSummary summary;
+    std::optional<MixedDevices> mixed;
+    // Bad input found once rendering has begun (a texture that does not decode: the config's check
+    // reads scenes without decoding them) leaves no folder behind where this runner made it and
+    // recorded nothing in it.
+    std::error_code error;
+    const bool existed = fs::exists(o.outDir, error);
+    const bool madeHere = !existed || (fs::is_directory(o.outDir, error) && fs::is_empty(o.outDir, error));
+    auto lock = prepareOutputFolder(config, o, all.size(), mine.size(), partition.estimatedCost.at(o.shardIndex), summary, mixed);
+    try {
+        renderRuns(config, o, mine, mixed, summary);
+    } catch (const InputError&) {
+        if (madeHere && summary.runsRendered == 0 && ResultsStore(o.outDir).loadRecords().empty()) {
+            lock.reset();
+            if (existed) {
+                for (const fs::directory_entry& e : fs::directory_iterator(o.outDir, error)) fs::remove_all(e.path(), error);
+            } else {
+                fs::remove_all(o.outDir, error);
+            }
+        }
+        throw;
+    }
     return summary;
 }
+
 
 ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
     checkOptions(o);

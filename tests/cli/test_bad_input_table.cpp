@@ -137,6 +137,17 @@ void writeThirdRoundInputs(const fs::path& d) {
         b.writeGltf(d / (std::string(name) + ".gltf"));
         writeTextFile(d / (std::string(name) + ".toml"), sceneText("", "model = \"" + std::string(name) + ".gltf\"\n"));
     }
+    // A PNG whose header reads well and whose pixels end early: the config's check reads scenes
+    // without decoding textures, so `run` meets it only once it renders, in a folder it made.
+    writePng(d / "whole.png", Image(64, 64, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)));
+    const std::string whole = test::readTextFile(d / "whole.png");
+    writeTextFile(d / "truncated.png", whole.substr(0, whole.size() / 2));
+    writeTextFile(d / "truncated-texture.toml", sceneText("diffuse_texture = \"truncated.png\"\n", "primitive = \"cube\"\n"));
+    writeTextFile(d / "run-truncated.toml", "[[scenes]]\nscene = \"truncated-texture.toml\"\nresolutions = [[32, 32]]\n\n[[techniques]]\nname = \"raster\"\n");
+    // Names that would make file names too long for a file system, or a folder outside results/.
+    const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 32]]\n";
+    writeTextFile(d / "long-label.toml", scene + "\n[[techniques]]\nname = \"whitted\"\nlabel = \"" + std::string(300, 'a') + "\"\n");
+    writeTextFile(d / "name-up.toml", "[experiment]\nname = \"../../up\"\n\n" + scene + "\n[[techniques]]\nname = \"whitted\"\n");
 }
 
 // Writes every input the cases name into `d`.
@@ -318,6 +329,14 @@ const std::vector<BadInputCase> kCases = {
      "objects[0].model: %d/camera-scale-zero.gltf: camera node 'eye': its transform scales an axis to 0 or to infinity"},
     {{"scene-info", "%d/camera-no-fov.toml"}, 2,
      "objects[0].model: %d/camera-no-fov.gltf: camera node 'eye': perspective.yfov (in degrees) 0 is outside [0.001, 179]"},
+    // A run that meets bad input before recording anything leaves no folder behind.
+    {{"run", "%d/run-truncated.toml", "--out", "%o", "--quiet"}, 2,
+     "%d/truncated-texture.toml:5:19: materials.grey.diffuse_texture: %d/truncated.png: cannot decode image ("},
+    {{"run", "%d/long-label.toml", "--out", "%o"}, 2,
+     "%d/long-label.toml:7:9: techniques[0].label: label 'aaaaaaaaaaaaaaaaaaaaaaaa...' is 300 characters long; run file names take 1 to 64"},
+    {{"run", "%d/name-up.toml", "--dry-run"}, 2,
+     "%d/name-up.toml:2:8: experiment.name: expected a folder name for results/<name> (1 to 100 characters, no '/', '\\' or control "
+     "characters, not '.' or '..'), got '../../up'"},
     // FLIP's viewing condition: its filters grow with it (10^10 asked for more memory than exists).
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "nan", "--out", "%o"}, 2, "--ppd: expected a finite number in [0.001, 1000], got nan"},
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "1e10", "--out", "%o"}, 2, "--ppd: expected a number in [0.001, 1000], got 1e10"},
