@@ -465,6 +465,7 @@ private:
             }
             l.name = t.string("name", type + std::to_string(count - 1));
             l.color = t.vec3("color", l.color);
+            if (glm::any(glm::lessThan(l.color, glm::vec3(0.0f)))) t.fail("color", "colours must not be negative");
             l.intensity = static_cast<float>(t.number("intensity", 1.0, {0.0, 1e12}));
             l.castsShadows = t.boolean("casts_shadows", true);
             if (l.type != Light::Type::Directional) l.position = t.requiredVec3("position");

@@ -127,7 +127,12 @@ void run(const RenderOptions& o) {
     // Everything that can be wrong with the input is checked before rendering starts.
     auto [exrPath, pngPath] = outputPaths(o.out);
     std::vector<std::pair<std::string, ParamValue>> params;
-    for (const auto& p : o.params) params.push_back(parseParamAssignment(p));
+    for (const auto& p : o.params) {
+        params.push_back(parseParamAssignment(p));
+        for (std::size_t i = 0; i + 1 < params.size(); ++i)
+            if (params[i].first == params.back().first)
+                throw InputError("--param " + params.back().first + " is given twice (" + o.params[i] + ", then " + p + "); give it once");
+    }
     auto technique = createTechnique(o.technique, params);
     Scene scene = loadSceneFile(findSceneFile(o.view.scene));
     View view = o.view.resolve(scene);

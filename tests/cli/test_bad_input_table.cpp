@@ -147,6 +147,7 @@ void writeThirdRoundInputs(const fs::path& d) {
     // Names that would make file names too long for a file system, or a folder outside results/.
     const std::string scene = "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 32]]\n";
     writeTextFile(d / "long-label.toml", scene + "\n[[techniques]]\nname = \"whitted\"\nlabel = \"" + std::string(300, 'a') + "\"\n");
+    writeTextFile(d / "negative-light.toml", box + "\n[[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, 0.0]\ncolor = [-1.0, 1.0, 1.0]\n");
     writeTextFile(d / "name-up.toml", "[experiment]\nname = \"../../up\"\n\n" + scene + "\n[[techniques]]\nname = \"whitted\"\n");
 }
 
@@ -329,6 +330,10 @@ const std::vector<BadInputCase> kCases = {
      "objects[0].model: %d/camera-scale-zero.gltf: camera node 'eye': its transform scales an axis to 0 or to infinity"},
     {{"scene-info", "%d/camera-no-fov.toml"}, 2,
      "objects[0].model: %d/camera-no-fov.gltf: camera node 'eye': perspective.yfov (in degrees) 0 is outside [0.001, 179]"},
+    {{"scene-info", "%d/negative-light.toml"}, 2, "lights[0].color: colours must not be negative"},
+    {render({"--camera-path", "", "--out", "%o/x.exr"}), 2, "--camera-path: expected a camera path's name, got ''"},
+    {render({"--param", "max_depth=2", "--param", "max_depth=3", "--out", "%o/x.exr"}), 2,
+     "--param max_depth is given twice (max_depth=2, then max_depth=3); give it once"},
     // A run that meets bad input before recording anything leaves no folder behind.
     {{"run", "%d/run-truncated.toml", "--out", "%o", "--quiet"}, 2,
      "%d/truncated-texture.toml:5:19: materials.grey.diffuse_texture: %d/truncated.png: cannot decode image ("},
