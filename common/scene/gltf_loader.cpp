@@ -204,6 +204,16 @@ private:
         if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model_.nodes.size())) reader_.fail("node index out of range");
         if (++depth_ > 256) reader_.fail("node hierarchy deeper than 256 (a cycle?)");
         const auto& node = model_.nodes[nodeIndex];
+        // glTF 2.0's node properties, whole: a short matrix would be passed over as if absent.
+        const auto whole = [&](const std::vector<double>& values, std::size_t count, const char* key) {
+            if (!values.empty() && values.size() != count)
+                reader_.fail("node '" + node.name + "': " + key + " has " + std::to_string(values.size()) + " numbers, expected " +
+                             std::to_string(count));
+        };
+        whole(node.matrix, 16, "matrix");
+        whole(node.translation, 3, "translation");
+        whole(node.rotation, 4, "rotation");
+        whole(node.scale, 3, "scale");
         glm::mat4 world = parent * nodeLocalMatrix(node);
         if (node.mesh >= 0) addMesh(node.mesh, world);
         if (node.camera >= 0) addCamera(node, world);

@@ -137,6 +137,11 @@ void writeThirdRoundInputs(const fs::path& d) {
         b.writeGltf(d / (std::string(name) + ".gltf"));
         writeTextFile(d / (std::string(name) + ".toml"), sceneText("", "model = \"" + std::string(name) + ".gltf\"\n"));
     }
+    test::GltfBuilder shortMatrix;
+    shortMatrix.setRoots({shortMatrix.addNode({{"name", "tri"}, {"matrix", {1.0, 0.0, 0.0}},
+                                               {"mesh", shortMatrix.addMesh("tri", shortMatrix.addFloats(test::kTrianglePositions, "VEC3"))}})});
+    shortMatrix.writeGltf(d / "short-matrix.gltf");
+    writeTextFile(d / "short-matrix.toml", sceneText("", "model = \"short-matrix.gltf\"\n"));
     // A PNG whose header reads well and whose pixels end early: the config's check reads scenes
     // without decoding textures, so `run` meets it only once it renders, in a folder it made.
     writePng(d / "whole.png", Image(64, 64, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)));
@@ -330,6 +335,7 @@ const std::vector<BadInputCase> kCases = {
      "objects[0].model: %d/camera-scale-zero.gltf: camera node 'eye': its transform scales an axis to 0 or to infinity"},
     {{"scene-info", "%d/camera-no-fov.toml"}, 2,
      "objects[0].model: %d/camera-no-fov.gltf: camera node 'eye': perspective.yfov (in degrees) 0 is outside [0.001, 179]"},
+    {{"scene-info", "%d/short-matrix.toml"}, 2, "objects[0].model: %d/short-matrix.gltf: node 'tri': matrix has 3 numbers, expected 16"},
     {{"scene-info", "%d/negative-light.toml"}, 2, "lights[0].color: colours must not be negative"},
     {render({"--camera-path", "", "--out", "%o/x.exr"}), 2, "--camera-path: expected a camera path's name, got ''"},
     {render({"--param", "max_depth=2", "--param", "max_depth=3", "--out", "%o/x.exr"}), 2,
