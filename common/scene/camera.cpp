@@ -4,6 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "common/core/number_check.h"
+
 namespace hybridlab {
 
 glm::quat Camera::lookAtOrientation(glm::vec3 position, glm::vec3 target, glm::vec3 up) {
@@ -14,6 +16,12 @@ glm::quat Camera::lookAtOrientation(glm::vec3 position, glm::vec3 target, glm::v
     glm::vec3 u = glm::cross(r, f);
     glm::mat3 basis(r, u, -f);  // columns: camera x, y, z in world space
     return glm::normalize(glm::quat_cast(basis));
+}
+
+bool Camera::placementUsable() const {
+    for (int i = 0; i < 3; ++i)
+        if (!(std::abs(position[i]) <= limits::kSceneCoordinate)) return false;  // also NaN
+    return std::isfinite(orientation.x) && std::isfinite(orientation.y) && std::isfinite(orientation.z) && std::isfinite(orientation.w);
 }
 
 glm::mat4 Camera::view() const {

@@ -31,6 +31,9 @@ struct Camera {
     float farPlane = 1000.0f;
 
     static glm::quat lookAtOrientation(glm::vec3 position, glm::vec3 target, glm::vec3 up = {0, 1, 0});
+    // Whether rays can leave it: its position finite and within limits::kSceneCoordinate of the
+    // origin (as every vertex is), its orientation finite. Past that, its rays come out NaN.
+    bool placementUsable() const;
 
     glm::vec3 forward() const { return orientation * glm::vec3(0, 0, -1); }
     glm::vec3 up() const { return orientation * glm::vec3(0, 1, 0); }

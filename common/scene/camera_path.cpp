@@ -29,10 +29,9 @@ Camera CameraPath::evaluate(double t, const Camera& lens) const {
     } else {
         cam.orientation = interpolate(times, orientations, t);
     }
-    const auto finite = [](float v) { return std::isfinite(v); };
-    if (!finite(cam.position.x) || !finite(cam.position.y) || !finite(cam.position.z) || !finite(cam.orientation.x) ||
-        !finite(cam.orientation.y) || !finite(cam.orientation.z) || !finite(cam.orientation.w))
-        throw InputError(at + ": the interpolated camera is not finite");
+    if (!cam.placementUsable())
+        throw InputError(at + ": the interpolated camera is not finite, or beyond " + formatNumber(limits::kSceneCoordinate) +
+                         " from the origin");
     return cam;
 }
 

@@ -53,15 +53,11 @@ public:
     }
 
 private:
-    static bool finiteVec3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-    static bool finiteQuat(glm::quat q) { return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w); }
-    static bool withinReach(glm::vec3 p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(limits::kSceneCoordinate))); }
-
     // A point the camera is at or looks at: within limits::kSceneCoordinate of the origin, as every
     // vertex is (farther, its view's basis and its rays lose every digit and come out NaN).
     static glm::vec3 pointInReach(const TomlTable& t, const std::string& key) {
         const glm::vec3 p = t.requiredVec3(key);
-        if (!withinReach(p))
+        if (!glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(limits::kSceneCoordinate))))
             t.fail(key, "expected each coordinate within " + formatNumber(limits::kSceneCoordinate) + " of the origin, got [" +
                             formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) + "]");
         return p;
@@ -517,7 +513,7 @@ private:
             c.position = glm::vec3(m * glm::vec4(c.position, 1.0f));
             glm::mat3 r(m);
             c.orientation = glm::normalize(glm::quat_cast(glm::mat3(glm::normalize(r[0]), glm::normalize(r[1]), glm::normalize(r[2])))) * c.orientation;
-            if (!finiteVec3(c.position) || !withinReach(c.position) || !finiteQuat(c.orientation))
+            if (!c.placementUsable())
                 t->fail("gltf_object", "object '" + obj + "' places its glTF camera '" + found->nodeName +
                                            "' at a degenerate or far placement (a scale of 0, or beyond " +
                                            formatNumber(limits::kSceneCoordinate) + " from the origin)");
