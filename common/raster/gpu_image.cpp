@@ -1,5 +1,7 @@
 #include "common/raster/gpu_image.h"
 
+#include <string>
+
 #include "common/raster/vulkan_error.h"
 
 namespace hybridlab {
@@ -33,8 +35,16 @@ GpuImage::GpuImage(const VulkanDevice& device, const ImageDesc& desc)
     image_ = UniqueImage(device_, img);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, img, &req);
-    memory_ = device.allocate(req, VulkanDevice::MemoryUse::DeviceLocal, "image");
-    checkVk(vkBindImageMemory(device_, img, memory_, 0), "binding image memory");
+    try {
+        memory_ = device.allocate(req, VulkanDevice::MemoryUse::DeviceLocal, "image");
+        checkVk(vkBindImageMemory(device_, img, memory_, 0), "binding image memory");
+    } catch (const VulkanError& e) {
+        // Out of memory, say for what: the size the settings asked for (a shadow map's resolution,
+        // the lights' count, the frame's size) is the user's to lower.
+        throw VulkanError(std::string(e.what()) + ", for a " + std::to_string(desc.width) + " x " + std::to_string(desc.height) + " image" +
+                          (desc.layers > 1 ? " of " + std::to_string(desc.layers) + " layers" : std::string()) + " (" +
+                          std::to_string((req.size + (1u << 20) - 1) >> 20) + " MiB)");
+    }
 
     VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vci.image = img;
