@@ -23,6 +23,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "common/core/cli_number_validators.h"
 #include "common/core/input_error.h"
 #include "common/core/wall_clock.h"
 #include "common/device_rays/device_ray_replay.h"
@@ -580,7 +581,7 @@ void addBenchCommand(CLI::App& app) {
     cmd->add_option("--repeats", o->repeats, "Timed repeats of each")->check(CLI::Range(1, 1000))->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (default: every core)")->check(CLI::Range(1, 1024));
     cmd->add_option("--budget", o->budget, "heuristic_rt's budget in the device traces (default: 1e6 scaled to the image's area)")
-        ->check(CLI::Range(1.0, 1e18));
+        ->check(numberIn(1.0, 1e18));
     cmd->add_option("--wavefront-bound", o->wavefrontBlocks,
                     "Also bare Embree with the shadow rays in packets by light over runs of this many 4x2 pixel blocks (32: a 16x16 "
                     "tile): what a wavefront walk could save, at most")

@@ -187,7 +187,10 @@ void addRunCommand(CLI::App& app) {
     auto shards = std::make_shared<std::vector<std::string>>();
     auto mixed = std::make_shared<bool>(false);
     auto* merge = app.add_subcommand("merge", "Join the shard folders of one experiment into one result set");
-    merge->add_option("--out", *out, "Folder for the merged result set (new or empty)")->required();
+    merge->add_option("--out", *out, "Folder for the merged result set (new or empty)")
+        ->required()
+        ->check(CLI::Validator([](std::string& folder) { return folder.empty() ? std::string("expected a folder, got ''") : std::string(); },
+                               "DIR", "nonEmpty"));
     merge->add_option("shards", *shards, "Shard folders written by `hybridlab run --shard i/n`")->required();
     merge->add_flag("--allow-mixed-devices", *mixed, "Merge shards measured on different devices; each run keeps its device");
     merge->callback([out, shards, mixed] {

@@ -115,6 +115,16 @@ def dimensions_of(technique_json, pixels):
     return dims
 
 
+def rt_only_anchor(spaces, defaults):
+    """rt_only at its defaults (`defaults`: its parameters' default values), the anchor every stage
+    times: where rt_only is searched, written with the searched knobs at their defaults, so that the
+    grid's point there is that same setting (as two settings the runner would refuse the stage,
+    which would list one run twice)."""
+    if RT_ONLY not in spaces:
+        return setting(RT_ONLY)
+    return setting(RT_ONLY, {d.parameter: defaults[d.parameter] for d in spaces[RT_ONLY]})
+
+
 def grid(technique, dims):
     """Every point of the grid (the Cartesian product of the dimensions' values)."""
     names = [d.parameter for d in dims]
@@ -178,6 +188,8 @@ class Target:
             self.value = float(m.group(3))
         except ValueError:
             raise SearchError("--target %r: %r is not a number" % (text, m.group(3)))
+        if not math.isfinite(self.value):
+            raise SearchError("--target %r: %r is not a finite number" % (text, m.group(3)))
         known = {t["key"]: t for t in metric_table}
         if self.metric not in known:
             raise SearchError("--target %r: unknown metric %r (metrics: %s)" % (text, self.metric, ", ".join(sorted(known))))
@@ -273,6 +285,7 @@ def fastest_set(candidates, outcomes, tolerance):
 
 class Result:
     def __init__(self):
+        self.anchor = None          # rt_only at its defaults, timed in every stage
         self.stages = []
         self.choice = []            # the final fastest set reaching the target (best first)
         self.decision = None        # timing.SINGLE, TIED or NOT_DECIDED
@@ -341,15 +354,18 @@ def boundary_points(reaching, dims_of, tried, quality_of, target, time_of, faste
     return ordered
 
 
-def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERANCE, plan=Plan(), progress=lambda line: None):
+def search(spaces, evaluator, target, budget_s, tolerance=timing.DEFAULT_TOLERANCE, plan=Plan(), progress=lambda line: None,
+           anchor=None):
     """Runs the stages (see the module's text). `spaces`: {technique: [Dimension]}, each with at
     least one dimension; `evaluator.stage(name, settings, rounds, budget_s, max_rounds)` renders
     and times the settings (rt_only among them) in one group, `rounds` a number (exactly that many
     rounds after a warm-up frame, no interval: the screen) or "full" (the runner's protocol within
     `budget_s`, and at most `max_rounds` rounds where that is not None), and returns a Measured.
-    Returns a Result."""
+    `anchor`: rt_only at its defaults, timed in every stage (default: setting(RT_ONLY); where rt_only
+    is searched, its grid's point at the defaults, rt_only_anchor). Returns a Result."""
     result = Result()
-    anchor = setting(RT_ONLY)
+    anchor = anchor or setting(RT_ONLY)
+    result.anchor = anchor
     tried = set()
     quality = {}
     time_of = {}  # each setting's time in the last stage that timed it

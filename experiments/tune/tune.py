@@ -59,6 +59,7 @@ def techniques_json(program):
 
 
 def search_spaces(program, names, pixels):
+    """The searched techniques' dimensions ({technique: [Dimension]}) and rt_only's anchor setting."""
     known = techniques_json(program)
     searchable = sorted(n for n, t in known.items() if t.get("search"))
     for n in names:
@@ -66,7 +67,9 @@ def search_spaces(program, names, pixels):
             fail("--technique %s: unknown technique (techniques: %s)" % (n, ", ".join(sorted(known))))
         if not known[n].get("search"):
             fail("--technique %s: declares no knobs to search (searchable: %s)" % (n, ", ".join(searchable)))
-    return {n: search.dimensions_of(known[n], pixels) for n in (names or searchable)}
+    spaces = {n: search.dimensions_of(known[n], pixels) for n in (names or searchable)}
+    defaults = {p["name"]: p["default"] for p in known[search.RT_ONLY]["parameters"]}
+    return spaces, search.rt_only_anchor(spaces, defaults)
 
 
 def check_scene(program, scene):
@@ -105,8 +108,7 @@ def outcome_json(s, outcome, target):
 
 def speedup_text(result, s):
     final = result.stages[-1].outcomes
-    anchor = search.setting(search.RT_ONLY)
-    iv = timing.median_interval(timing.paired_ratios(final[anchor].rounds, final[s].rounds))
+    iv = timing.median_interval(timing.paired_ratios(final[result.anchor].rounds, final[s].rounds))
     return iv.text("%.2f", "x") + " over rt_only" if iv else "no interval over rt_only"
 
 
@@ -146,14 +148,14 @@ def main(argv):
         args = ap.parse_args(argv)
     except SystemExit as e:
         sys.exit(2 if e.code else 0)
-    if args.budget_s <= 0:
-        fail("--budget-s %g: expected a positive number of seconds" % args.budget_s)
+    if not (0 < args.budget_s <= 1e7):
+        fail("--budget-s %g: expected a positive number of seconds, at most 1e7" % args.budget_s)
     size = parse_size(args.size)
     try:
         target = search.Target(args.target, rs.BUILT_IN_METRICS)
     except search.SearchError as e:
         fail(str(e))
-    spaces = search_spaces(args.program, list(dict.fromkeys(args.technique)), size[0] * size[1])
+    spaces, anchor = search_spaces(args.program, list(dict.fromkeys(args.technique)), size[0] * size[1])
     scene = check_scene(args.program, args.scene)
     arguments = {"scene": scene, "target": str(target), "region": args.region, "techniques": sorted(spaces), "size": list(size),
                  "budget_s": args.budget_s}
@@ -165,7 +167,8 @@ def main(argv):
     evaluator = stages.RunnerEvaluator(args.program, args.out, scene, size, target, REGIONS[args.region], timing.DEFAULT_TOLERANCE,
                                        cache=args.cache)
     try:
-        result = search.search(spaces, evaluator, target, args.budget_s, progress=lambda line: print("tune: " + line, flush=True))
+        result = search.search(spaces, evaluator, target, args.budget_s, progress=lambda line: print("tune: " + line, flush=True),
+                               anchor=anchor)
     except stages.RunFailed as e:
         fail(str(e), e.status if e.status in (2, 3) else 1)
     except search.SearchError as e:

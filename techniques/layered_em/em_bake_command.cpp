@@ -179,7 +179,8 @@ void defineCommand(CLI::App& command) {
     cmd->add_option("--tau", s.tessellation.tauPixels, "Adaptive tessellation: stop below this edge length (pixels)")->check(numberIn(0.5, 1000.0));
     cmd->add_option("--step", s.viewpoints.stepDegrees, "Viewpoint circle: degrees between samples")->check(numberIn(0.5, 360.0));
     cmd->add_option("--radius", s.viewpoints.radius, "Viewpoint circle radius (0: the scene camera's distance)")->check(numberIn(0.0, 1e6));
-    cmd->add_option("--view-height", o->viewHeight, "Viewpoint circle height (world y; default: the scene camera's)");
+    cmd->add_option("--view-height", o->viewHeight, "Viewpoint circle height (world y; default: the scene camera's)")
+        ->check(numberIn(-limits::kSceneCoordinate, limits::kSceneCoordinate));
     cmd->add_option("--camera-path", s.viewpoints.cameraPath, "Viewpoint samples: the frames of this camera path instead of a circle");
     cmd->add_option("--frame-stride", s.viewpoints.frameStride, "With --camera-path: every n-th frame")->check(CLI::Range(1, 100000));
     cmd->add_option("--max-viewpoints", s.viewpoints.maxSamples, "Only the first n viewpoint samples (0: all)")->check(CLI::Range(0, 100000));

@@ -348,6 +348,11 @@ const std::vector<BadInputCase> kCases = {
     {{"run", "%d/name-up.toml", "--dry-run"}, 2,
      "%d/name-up.toml:2:8: experiment.name: expected a folder name for results/<name> (1 to 100 characters, no '/', '\\' or control "
      "characters, not '.' or '..'), got '../../up'"},
+    // Numbers that reached Embree as NaN rays (bake-em's viewpoints), and an empty folder name.
+    {{"bake-em", "--scene", "em-disocclusion", "--view-height", "nan", "--cache", "%o"}, 2,
+     "--view-height: expected a finite number in [-1e+12, 1e+12], got nan"},
+    {{"bench", "--scene", "whitted-classic", "--budget", "nan"}, 2, "--budget: expected a finite number in [1, 1e+18], got nan"},
+    {{"merge", "--out", "", "%d/shard-a0", "%d/shard-a1"}, 2, "--out: expected a folder, got ''"},
     // FLIP's viewing condition: its filters grow with it (10^10 asked for more memory than exists).
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "nan", "--out", "%o"}, 2, "--ppd: expected a finite number in [0.001, 1000], got nan"},
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "1e10", "--out", "%o"}, 2, "--ppd: expected a number in [0.001, 1000], got 1e10"},

@@ -85,6 +85,19 @@ class TuneCommandTest(unittest.TestCase):
         self.assertGreater(doc["shortfall"], 0.0)
         self.assertFalse(os.path.exists(os.path.join(out, "tune.toml")))
 
+    def test_rt_only_searched_is_timed_once_as_its_own_anchor(self):
+        # rt_only's grid holds its defaults, the setting every stage times as its anchor: one
+        # setting, not two (the runner refuses a stage that lists one run twice).
+        out = os.path.join(WORK, "rt_only")
+        shutil.rmtree(out, ignore_errors=True)
+        got = tune("--target", "ssim>=0.5", "--technique", "rt_only", "--size", "32x18", "--budget-s", "2", out=out)
+        self.assertEqual(got.returncode, 0, got.stderr + got.stdout)
+        self.assertIn("tune: stage screen: 12 settings", got.stdout)
+        with open(os.path.join(out, "tune.json")) as f:
+            doc = json.load(f)
+        self.assertTrue(doc["reached"])
+        self.assertTrue(all(s.startswith("rt_only") for s in doc["choice"]), doc["choice"])
+
     def test_bad_input_exits_2_and_writes_nothing(self):
         out = os.path.join(WORK, "bad")
         cases = [(["--target", "ssim>0.9"], "expected METRIC>=VALUE"),
@@ -92,7 +105,10 @@ class TuneCommandTest(unittest.TestCase):
                  (["--target", "ssim>=0.9", "--technique", "nope"], "--technique nope: unknown technique"),
                  (["--target", "ssim>=0.9", "--technique", "layered_em"], "declares no knobs to search"),
                  (["--target", "ssim>=0.9", "--size", "64by36"], "expected WIDTHxHEIGHT"),
-                 (["--target", "ssim>=0.9", "--budget-s", "0"], "expected a positive number")]
+                 (["--target", "ssim>=0.9", "--budget-s", "0"], "expected a positive number"),
+                 (["--target", "ssim>=0.9", "--budget-s", "nan"], "expected a positive number"),
+                 (["--target", "ssim>=0.9", "--budget-s", "inf"], "expected a positive number"),
+                 (["--target", "psnr>=1e400"], "is not a finite number")]
         for args, says in cases:
             shutil.rmtree(out, ignore_errors=True)
             got = tune(*args, out=out)
