@@ -216,6 +216,9 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
         }
     }
     const ResultsStore store(o.outDir);
+    // A resumed set's records are read (and checked) before anything changes: one that is bad
+    // input stops the runner here, with results.json/csv still there, not after the remaining runs.
+    if (o.resume && fs::exists(meta)) (void)store.loadRecords();
     store.createLayout();
     // Records are about to be added: results.json/csv are written again when the runner stops.
     store.removeResults();

@@ -117,6 +117,32 @@ TEST(CliHardening, RunnersStartedTogetherOnOneFolderTellTheLoserWhoHoldsIt) {
     std::printf("[ race ] %d pairs: %d losers refused, each naming the holder\n", kPairs, refused);
 }
 
+// A --resume that finds one of the set's records broken stops before it renders or removes
+// anything: the finished set's results.json is still there, byte for byte.
+TEST(CliHardening, ResumeRefusesABrokenRecordBeforeTouchingTheSet) {
+    TempDir dir;
+    const fs::path config = dir / "small.toml", out = dir / "set", cache = dir / "cache";
+    test::writeTextFile(config, "[experiment]\nname = \"small\"\nwarmup_frames = 0\nrepeats = 1\n\n"
+                                "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 18]]\n\n"
+                                "[[techniques]]\nname = \"whitted\"\nparams = { max_depth = [1, 2] }\n");
+    const std::vector<std::string> run = {"run", config.string(), "--out", out.string(), "--cache", cache.string(), "--quiet"};
+    const CliResult first = runHybridlab(run);
+    ASSERT_EQ(first.exitStatus, 0) << first.err;
+    const std::string results = test::readTextFile(out / "results.json");
+    fs::path broken;
+    for (const auto& e : fs::directory_iterator(out / "runs")) broken = e.path();
+    ASSERT_FALSE(broken.empty());
+    test::writeTextFile(broken, "{");
+    std::vector<std::string> resume = run;
+    resume.push_back("--resume");
+    const CliResult again = runHybridlab(resume);
+    EXPECT_EQ(again.exitStatus, 2) << again.err;
+    EXPECT_CONTAINS(again.err, broken.filename().string());
+    ASSERT_TRUE(fs::exists(out / "results.json"));
+    EXPECT_EQ(test::readTextFile(out / "results.json"), results);
+    EXPECT_TRUE(fs::exists(out / "results.csv"));
+}
+
 TEST(CliHardening, CompareNamesNonFinitePixelsAndScoresTheRestOnlyWhenAsked) {
     TempDir dir;
     Image reference(32, 24, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f)), test = reference;
