@@ -96,10 +96,7 @@ std::string formatScale(double scale) {
     return text;
 }
 
-json readJson(const fs::path& p) {
-    std::ifstream in(p);
-    return json::parse(in);
-}
+json readJson(const fs::path& p) { return readSetJson(p); }
 
 // "a, b, c and 4 more" of at most three names.
 std::string someOf(const std::vector<std::string>& names) {
@@ -180,7 +177,7 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
         throw notExperimentFolder();
     createDirectories(o.outDir);
     auto lock = std::make_unique<DirectoryLock>(o.outDir);
-    {
+    try {
         if (fs::exists(meta)) {
             json m = readJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
@@ -214,6 +211,8 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
         } else if (holdsOtherFiles()) {
             throw notExperimentFolder();
         }
+    } catch (const json::exception& e) {  // JSON, but not the experiment record this program writes
+        throw InputError(meta.string() + ": not an experiment.json of hybridlab run (" + e.what() + "); choose another --out");
     }
     const ResultsStore store(o.outDir);
     // A resumed set's records are read (and checked) before anything changes: one that is bad

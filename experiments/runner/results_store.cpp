@@ -135,10 +135,23 @@ std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
     if (store.hasResults() || !fs::exists(meta)) return std::nullopt;
     const DirectoryLock lock(dir);
     if (store.hasResults()) return std::nullopt;  // a runner finished in between
-    std::ifstream in(meta);
-    const std::vector<RunRecord> records = store.finalRecords(json::parse(in));
+    std::vector<RunRecord> records;
+    try {
+        records = store.finalRecords(readSetJson(meta));
+    } catch (const json::exception& e) {  // JSON, but not the experiment record this program writes
+        throw InputError(meta.string() + ": not an experiment.json of hybridlab run (" + e.what() + ")");
+    }
     store.writeResults(records);
     return records.size();
+}
+
+json readSetJson(const fs::path& file) {
+    std::ifstream in(file);
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw InputError(file.string() + ": " + e.what());
+    }
 }
 
 void addTemporalErrors(std::vector<RunRecord>& records, const fs::path& dir) {

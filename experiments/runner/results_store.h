@@ -62,6 +62,9 @@ private:
 // of records written, or nothing when `dir` has results.json or is not an experiment folder.
 std::optional<std::size_t> writeMissingResults(const std::filesystem::path& dir);
 
+// A result set's JSON file (experiment.json): InputError naming it where it is not JSON.
+nlohmann::json readSetJson(const std::filesystem::path& file);
+
 // Adds the temporal error to every record on a camera path whose previous frame (in the same
 // sequence: scene, path, resolution, technique label and parameters) is also recorded:
 // mean |(T_k - T_(k-1)) - (R_k - R_(k-1))| over the display image, from the saved frames; and

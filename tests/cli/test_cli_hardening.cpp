@@ -141,6 +141,15 @@ TEST(CliHardening, ResumeRefusesABrokenRecordBeforeTouchingTheSet) {
     ASSERT_TRUE(fs::exists(out / "results.json"));
     EXPECT_EQ(test::readTextFile(out / "results.json"), results);
     EXPECT_TRUE(fs::exists(out / "results.csv"));
+    // A broken experiment.json: not JSON, or JSON that is no experiment record.
+    for (const char* meta : {"{", "[]"}) {
+        SCOPED_TRACE(meta);
+        test::writeTextFile(out / "experiment.json", meta);
+        const CliResult r = runHybridlab(resume);
+        EXPECT_EQ(r.exitStatus, 2) << r.err;
+        EXPECT_CONTAINS(r.err, (out / "experiment.json").string() + ": ");
+        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    }
 }
 
 TEST(CliHardening, CompareNamesNonFinitePixelsAndScoresTheRestOnlyWhenAsked) {
