@@ -82,22 +82,32 @@ def check_scene(program, scene):
 
 def prepare_out(out, arguments, resume):
     """DIR new (or empty), or with --resume one holding a search with the same arguments."""
+    if not out:
+        fail("--out: expected a folder, got ''")
     recorded = os.path.join(out, ARGUMENTS_FILE)
     if os.path.exists(out) and not (os.path.isdir(out) and not os.listdir(out)):
         if not resume:
             fail("%s: exists; pass --resume to continue the search in it, or choose another --out" % out)
         if not os.path.exists(recorded):
             fail("%s: holds no search of `hybridlab tune` (no %s); choose another --out" % (out, ARGUMENTS_FILE))
-        with open(recorded) as f:
-            before = json.load(f)
+        try:
+            with open(recorded) as f:
+                before = json.load(f)
+        except (OSError, ValueError) as e:
+            fail("%s: cannot be read as a search's arguments (%s); choose another --out" % (recorded, e))
+        if not isinstance(before, dict):
+            fail("%s: holds no search's arguments (expected a JSON object); choose another --out" % recorded)
         if before != arguments:
             changed = sorted(k for k in set(before) | set(arguments) if before.get(k) != arguments.get(k))
             fail("%s: holds a search with other arguments (%s there); resume it with the same ones, or choose another --out"
                  % (out, ", ".join("%s: %s" % (k, before.get(k)) for k in changed)))
         return
-    os.makedirs(out, exist_ok=True)
-    with open(recorded, "w") as f:
-        json.dump(arguments, f, indent=1)
+    try:
+        os.makedirs(out, exist_ok=True)
+        with open(recorded, "w") as f:
+            json.dump(arguments, f, indent=1)
+    except OSError as e:  # a file where a folder goes, a read-only parent: the machine's, exit 3
+        fail("%s: cannot be written (%s)" % (out, e.strerror or e), 3)
 
 
 def outcome_json(s, outcome, target):

@@ -120,6 +120,27 @@ class TuneCommandTest(unittest.TestCase):
         self.assertEqual(got.returncode, 2)
         self.assertIn("--scene no-such-scene", got.stderr)
         self.assertFalse(os.path.exists(out))
+        # Folders that cannot hold a search: exit 3 under a file, 2 for an empty name or a broken
+        # record of the arguments.
+        blocker = os.path.join(WORK, "a-file")
+        with open(blocker, "w") as f:
+            f.write("x")
+        got = tune("--target", "ssim>=0.9", out=os.path.join(blocker, "sub"))
+        self.assertEqual(got.returncode, 3, got.stderr)
+        self.assertIn("cannot be written", got.stderr)
+        self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
+        got = tune("--target", "ssim>=0.9", out="")
+        self.assertEqual(got.returncode, 2, got.stderr)
+        self.assertIn("--out: expected a folder", got.stderr)
+        broken = os.path.join(WORK, "broken-arguments")
+        shutil.rmtree(broken, ignore_errors=True)
+        os.makedirs(broken)
+        with open(os.path.join(broken, "tune-arguments.json"), "w") as f:
+            f.write("{")
+        got = tune("--target", "ssim>=0.9", "--resume", out=broken)
+        self.assertEqual(got.returncode, 2, got.stderr)
+        self.assertIn("cannot be read as a search's arguments", got.stderr)
+        self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
         # An existing folder without --resume.
         got = tune("--target", "ssim>=0.95", out=self.out)
         self.assertEqual(got.returncode, 2)
