@@ -39,4 +39,10 @@ inline CLI::Validator integerIn(long long min, long long max) {
         "INT", "integerIn");
 }
 
+// Text that must not be empty (a name, a folder): "expected `what`, got ''".
+inline CLI::Validator nonEmpty(const std::string& what) {
+    return CLI::Validator([what](std::string& text) { return text.empty() ? "expected " + what + ", got ''" : std::string(); }, "TEXT",
+                          "nonEmpty");
+}
+
 }  // namespace hybridlab::cli

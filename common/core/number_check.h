@@ -10,6 +10,12 @@
 
 namespace hybridlab {
 
+// The range a number is checked against (numberProblem's min and max).
+struct NumberRange {
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+};
+
 // Empty when `v` is finite and in [min, max]; else "expected a number in [min, max], got v", with
 // v as `written` when given (the text the user wrote: "1e400", not the "inf" it became).
 std::string numberProblem(double v, double min, double max, std::string_view written = {});
@@ -29,6 +35,11 @@ inline constexpr int kTessellation = 4096;          // slices or stacks of a sph
 inline constexpr long long kPrimitiveVertices = 4'000'000;  // one tessellated primitive's vertices
 inline constexpr int kFrame = 10'000'000;           // a frame number on a camera path
 inline constexpr float kSceneCoordinate = 1e12f;    // |world coordinate| of a vertex (as far as a camera's far plane)
+// A camera's lens, from a scene file's [camera] or a glTF camera.
+inline constexpr NumberRange kFovYDegrees{1e-3, 179.0};
+inline constexpr NumberRange kOrthoHeight{1e-6, 1e9};  // the view's height, in world units
+inline constexpr NumberRange kNearPlane{1e-6, 1e9};
+inline constexpr NumberRange kFarPlane{1e-6, 1e12};
 }  // namespace limits
 
 }  // namespace hybridlab

@@ -15,6 +15,8 @@
 #include <glm/vec3.hpp>
 #include <toml++/toml.h>
 
+#include "common/core/number_check.h"
+
 namespace hybridlab {
 
 // "a, b, c": how the messages list choices and known keys.
@@ -33,11 +35,6 @@ private:
     std::filesystem::path file_;
     std::shared_ptr<const std::string> text_;  // the file as read: messages quote values as written
     std::shared_ptr<toml::table> table_;
-};
-
-struct NumberRange {
-    double min = -std::numeric_limits<double>::infinity();
-    double max = std::numeric_limits<double>::infinity();
 };
 
 class TomlTable {

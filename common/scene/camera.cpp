@@ -18,10 +18,15 @@ glm::quat Camera::lookAtOrientation(glm::vec3 position, glm::vec3 target, glm::v
     return glm::normalize(glm::quat_cast(basis));
 }
 
-bool Camera::placementUsable() const {
+bool withinSceneReach(glm::vec3 p) {
     for (int i = 0; i < 3; ++i)
-        if (!(std::abs(position[i]) <= limits::kSceneCoordinate)) return false;  // also NaN
-    return std::isfinite(orientation.x) && std::isfinite(orientation.y) && std::isfinite(orientation.z) && std::isfinite(orientation.w);
+        if (!(std::abs(p[i]) <= limits::kSceneCoordinate)) return false;  // also NaN
+    return true;
+}
+
+bool Camera::placementUsable() const {
+    return withinSceneReach(position) && std::isfinite(orientation.x) && std::isfinite(orientation.y) && std::isfinite(orientation.z) &&
+           std::isfinite(orientation.w);
 }
 
 glm::mat4 Camera::view() const {

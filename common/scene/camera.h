@@ -19,6 +19,10 @@ struct Ray {
     glm::vec3 direction;  // unit length
 };
 
+// Whether `p` is finite and within limits::kSceneCoordinate of the origin, as every vertex is: a
+// camera, or the point it looks at, farther off loses every digit of its view's basis.
+bool withinSceneReach(glm::vec3 p);
+
 struct Camera {
     enum class Projection { Perspective, Orthographic };
 
@@ -31,8 +35,8 @@ struct Camera {
     float farPlane = 1000.0f;
 
     static glm::quat lookAtOrientation(glm::vec3 position, glm::vec3 target, glm::vec3 up = {0, 1, 0});
-    // Whether rays can leave it: its position finite and within limits::kSceneCoordinate of the
-    // origin (as every vertex is), its orientation finite. Past that, its rays come out NaN.
+    // Whether rays can leave it: its position withinSceneReach, its orientation finite. Past that,
+    // its rays come out NaN.
     bool placementUsable() const;
 
     glm::vec3 forward() const { return orientation * glm::vec3(0, 0, -1); }

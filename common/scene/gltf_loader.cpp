@@ -291,22 +291,25 @@ private:
         glm::mat3 rot(glm::normalize(glm::vec3(world[0])), glm::normalize(glm::vec3(world[1])), glm::normalize(glm::vec3(world[2])));
         cam.orientation = glm::normalize(glm::quat_cast(rot));
         // The glTF 2.0 camera's properties, in the ranges a scene file's [camera] takes.
-        const auto within = [&](const std::string& key, double v, double lo, double hi) {
-            if (!(v >= lo && v <= hi))
-                reader_.fail(what + ": " + key + " " + formatNumber(v) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
+        const auto within = [&](const std::string& key, double v, NumberRange range) {
+            if (!(v >= range.min && v <= range.max))
+                reader_.fail(what + ": " + key + " " + formatNumber(v) + " is outside [" + formatNumber(range.min) + ", " +
+                             formatNumber(range.max) + "]");
             return static_cast<float>(v);
         };
         if (gc.type == "orthographic") {
             cam.projection = Camera::Projection::Orthographic;
-            within("orthographic.xmag", gc.orthographic.xmag, 5e-7, 5e8);
-            cam.orthoHeight = 2.0f * within("orthographic.ymag", gc.orthographic.ymag, 5e-7, 5e8);
-            // glTF allows an orthographic near plane at 0; a scene's camera takes at least 1e-6.
-            cam.nearPlane = std::max(within("orthographic.znear", gc.orthographic.znear, 0.0, 1e9), 1e-6f);
-            cam.farPlane = within("orthographic.zfar", gc.orthographic.zfar, 1e-6, 1e12);
+            const NumberRange magnification{limits::kOrthoHeight.min / 2.0, limits::kOrthoHeight.max / 2.0};  // half the view
+            within("orthographic.xmag", gc.orthographic.xmag, magnification);
+            cam.orthoHeight = 2.0f * within("orthographic.ymag", gc.orthographic.ymag, magnification);
+            // glTF allows an orthographic near plane at 0; a scene's camera takes at least kNearPlane.min.
+            cam.nearPlane = std::max(within("orthographic.znear", gc.orthographic.znear, {0.0, limits::kNearPlane.max}),
+                                     static_cast<float>(limits::kNearPlane.min));
+            cam.farPlane = within("orthographic.zfar", gc.orthographic.zfar, limits::kFarPlane);
         } else {
-            cam.fovYDegrees = within("perspective.yfov (in degrees)", glm::degrees(gc.perspective.yfov), 1e-3, 179.0);
-            cam.nearPlane = within("perspective.znear", gc.perspective.znear, 1e-6, 1e9);
-            if (gc.perspective.zfar > 0.0) cam.farPlane = within("perspective.zfar", gc.perspective.zfar, 1e-6, 1e12);
+            cam.fovYDegrees = within("perspective.yfov (in degrees)", glm::degrees(gc.perspective.yfov), limits::kFovYDegrees);
+            cam.nearPlane = within("perspective.znear", gc.perspective.znear, limits::kNearPlane);
+            if (gc.perspective.zfar > 0.0) cam.farPlane = within("perspective.zfar", gc.perspective.zfar, limits::kFarPlane);
         }
         if (cam.farPlane <= cam.nearPlane) reader_.fail(what + ": expected zfar > znear");
         out_.cameras.push_back({node.name, cam});

@@ -53,11 +53,10 @@ public:
     }
 
 private:
-    // A point the camera is at or looks at: within limits::kSceneCoordinate of the origin, as every
-    // vertex is (farther, its view's basis and its rays lose every digit and come out NaN).
+    // A point the camera is at or looks at (withinSceneReach).
     static glm::vec3 pointInReach(const TomlTable& t, const std::string& key) {
         const glm::vec3 p = t.requiredVec3(key);
-        if (!glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(limits::kSceneCoordinate))))
+        if (!withinSceneReach(p))
             t.fail(key, "expected each coordinate within " + formatNumber(limits::kSceneCoordinate) + " of the origin, got [" +
                             formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) + "]");
         return p;
@@ -487,10 +486,10 @@ private:
         std::string proj = t.choice("projection", c.projection == Camera::Projection::Perspective ? "perspective" : "orthographic",
                                     {"perspective", "orthographic"});
         c.projection = proj == "perspective" ? Camera::Projection::Perspective : Camera::Projection::Orthographic;
-        c.fovYDegrees = static_cast<float>(t.number("fov_y", c.fovYDegrees, {1e-3, 179.0}));
-        c.orthoHeight = static_cast<float>(t.number("height", c.orthoHeight, {1e-6, 1e9}));
-        c.nearPlane = static_cast<float>(t.number("near", c.nearPlane, {1e-6, 1e9}));
-        c.farPlane = static_cast<float>(t.number("far", c.farPlane, {1e-6, 1e12}));
+        c.fovYDegrees = static_cast<float>(t.number("fov_y", c.fovYDegrees, limits::kFovYDegrees));
+        c.orthoHeight = static_cast<float>(t.number("height", c.orthoHeight, limits::kOrthoHeight));
+        c.nearPlane = static_cast<float>(t.number("near", c.nearPlane, limits::kNearPlane));
+        c.farPlane = static_cast<float>(t.number("far", c.farPlane, limits::kFarPlane));
         if (c.farPlane <= c.nearPlane) t.fail("far", "expected far > near");
     }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/cli_number_validators.h"
 #include "common/core/input_error.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/python_script.h"
@@ -189,8 +190,7 @@ void addRunCommand(CLI::App& app) {
     auto* merge = app.add_subcommand("merge", "Join the shard folders of one experiment into one result set");
     merge->add_option("--out", *out, "Folder for the merged result set (new or empty)")
         ->required()
-        ->check(CLI::Validator([](std::string& folder) { return folder.empty() ? std::string("expected a folder, got ''") : std::string(); },
-                               "DIR", "nonEmpty"));
+        ->check(nonEmpty("a folder"));
     merge->add_option("shards", *shards, "Shard folders written by `hybridlab run --shard i/n`")->required();
     merge->add_flag("--allow-mixed-devices", *mixed, "Merge shards measured on different devices; each run keeps its device");
     merge->callback([out, shards, mixed] {

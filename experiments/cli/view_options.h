@@ -23,8 +23,7 @@ struct ViewOptions {
     void addTo(CLI::App* cmd, const std::string& sizeNote = "") {
         cmd->add_option("--scene", scene, "Scene file, or the name of a built-in scene")->required();
         cmd->add_option("--camera-path", cameraPath, "A camera path of the scene (default: the scene's camera)")
-            ->check(CLI::Validator([](std::string& name) { return name.empty() ? std::string("expected a camera path's name, got ''") : std::string(); },
-                                   "NAME", "nonEmpty"));
+            ->check(nonEmpty("a camera path's name"));
         cmd->add_option("--frame", frame, "Frame number on the camera path")->check(integerIn(0, limits::kFrame));
         cmd->add_option("--time", time, "Scene time in seconds (animation, and position on the camera path)")
             ->check(numberIn(-limits::kSceneTime, limits::kSceneTime));

@@ -96,8 +96,6 @@ std::string formatScale(double scale) {
     return text;
 }
 
-json readJson(const fs::path& p) { return readSetJson(p); }
-
 // "a, b, c and 4 more" of at most three names.
 std::string someOf(const std::vector<std::string>& names) {
     std::string out;
@@ -179,7 +177,7 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
     auto lock = std::make_unique<DirectoryLock>(o.outDir);
     try {
         if (fs::exists(meta)) {
-            json m = readJson(meta);
+            json m = readSetJson(meta);
             if (m.at("config_hash") != config.hash) throw InputError(configChangedMessage(config, o.outDir, m, runsTotal));
             if (const double recorded = m.value("resolution_scale", 1.0); recorded != config.resolutionScale) {
                 throw InputError(o.outDir.string() + ": was rendered at " + formatScale(recorded) + " of the configured size (--scale " +
@@ -211,8 +209,8 @@ std::unique_ptr<DirectoryLock> prepareOutputFolder(const ExperimentConfig& confi
         } else if (holdsOtherFiles()) {
             throw notExperimentFolder();
         }
-    } catch (const json::exception& e) {  // JSON, but not the experiment record this program writes
-        throw InputError(meta.string() + ": not an experiment.json of hybridlab run (" + e.what() + "); choose another --out");
+    } catch (const json::exception& e) {
+        throw notExperimentJson(meta, e);
     }
     const ResultsStore store(o.outDir);
     // A resumed set's records are read (and checked) before anything changes: one that is bad
@@ -612,7 +610,7 @@ void renderRuns(const ExperimentConfig& config, const RunnerOptions& o, const st
     summary.complete = true;
     for (const RunSpec* run : mine) summary.complete &= store.hasRecord(run->id);
     // Once, now that the records are final (results_store.h).
-    store.writeResults(store.finalRecords(readJson(o.outDir / "experiment.json")));
+    store.writeResults(store.finalRecords(readSetJson(o.outDir / "experiment.json")));
 }
 
 }  // namespace
@@ -634,7 +632,8 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     try {
         renderRuns(config, o, mine, mixed, summary);
     } catch (const InputError&) {
-        if (madeHere && summary.runsRendered == 0 && ResultsStore(o.outDir).loadRecords().empty()) {
+        // A folder made here holds records only where this runner recorded some.
+        if (madeHere && summary.runsRendered == 0) {
             lock.reset();
             if (existed) {
                 for (const fs::directory_entry& e : fs::directory_iterator(o.outDir, error)) fs::remove_all(e.path(), error);
@@ -646,7 +645,6 @@ RunnerSummary runExperiment(const ExperimentConfig& config, const RunnerOptions&
     }
     return summary;
 }
-
 
 ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOptions& o) {
     checkOptions(o);

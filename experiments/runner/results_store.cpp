@@ -138,11 +138,15 @@ std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
     std::vector<RunRecord> records;
     try {
         records = store.finalRecords(readSetJson(meta));
-    } catch (const json::exception& e) {  // JSON, but not the experiment record this program writes
-        throw InputError(meta.string() + ": not an experiment.json of hybridlab run (" + e.what() + ")");
+    } catch (const json::exception& e) {
+        throw notExperimentJson(meta, e);
     }
     store.writeResults(records);
     return records.size();
+}
+
+InputError notExperimentJson(const fs::path& file, const json::exception& e) {
+    return InputError(file.string() + ": not an experiment.json of hybridlab run (" + e.what() + ")");
 }
 
 json readSetJson(const fs::path& file) {

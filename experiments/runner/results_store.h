@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/core/input_error.h"
 #include "experiments/runner/run_record.h"
 
 namespace hybridlab {
@@ -64,6 +65,8 @@ std::optional<std::size_t> writeMissingResults(const std::filesystem::path& dir)
 
 // A result set's JSON file (experiment.json): InputError naming it where it is not JSON.
 nlohmann::json readSetJson(const std::filesystem::path& file);
+// What reading `file`, JSON but not the experiment record `run` writes, failed with (`e`): bad input.
+InputError notExperimentJson(const std::filesystem::path& file, const nlohmann::json::exception& e);
 
 // Adds the temporal error to every record on a camera path whose previous frame (in the same
 // sequence: scene, path, resolution, technique label and parameters) is also recorded:

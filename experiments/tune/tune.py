@@ -171,9 +171,10 @@ def main(argv):
                  "budget_s": args.budget_s}
     prepare_out(args.out, arguments, args.resume)
 
+    grid_settings = sum(len(search.grid(t, d)) for t, d in spaces.items())
     print("tune: %s at %dx%d, %s on the %s, searching %s (%d grid settings), budget %.0f s" % (
         args.scene, size[0], size[1], target, "whole image" if args.region == "whole" else "reflective/refractive pixels",
-        ", ".join(sorted(spaces)), sum(len(search.grid(t, d)) for t, d in spaces.items()), args.budget_s), flush=True)
+        ", ".join(sorted(spaces)), grid_settings, args.budget_s), flush=True)
     evaluator = stages.RunnerEvaluator(args.program, args.out, scene, size, target, REGIONS[args.region], timing.DEFAULT_TOLERANCE,
                                        cache=args.cache)
     try:
@@ -185,7 +186,7 @@ def main(argv):
         fail(str(e))
     write_summary(args.out, result, target, args, size)
 
-    most = search.Plan().most_frames(sum(len(search.grid(t, d)) for t, d in spaces.items()))
+    most = search.Plan().most_frames(grid_settings)
     print("tune: %d frames rendered (the plan's most: %d) in %.0f s%s" % (result.renders, most, result.seconds,
                                                     " (over the %.0f s budget: the stages a decision needs took longer)" % args.budget_s
                                                     if result.over_budget else ""))

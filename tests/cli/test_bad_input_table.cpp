@@ -219,13 +219,14 @@ struct BadInputCase {
     std::string message;            // a fragment of the message, "%d" expanded
 };
 
-const std::vector<std::string> kRender = {"render", "--scene", "whitted-classic", "--width", "32", "--height", "24"};
-
-std::vector<std::string> render(std::vector<std::string> extra) {
-    std::vector<std::string> a = kRender;
+// `render` of `scene` at 32 x 24, then `extra`.
+std::vector<std::string> renderScene(const std::string& scene, std::vector<std::string> extra) {
+    std::vector<std::string> a = {"render", "--scene", scene, "--width", "32", "--height", "24"};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
 }
+
+std::vector<std::string> render(std::vector<std::string> extra) { return renderScene("whitted-classic", std::move(extra)); }
 
 const std::vector<BadInputCase> kCases = {
     // Numbers on the command line: finite, in range, within their type.
@@ -280,21 +281,21 @@ const std::vector<BadInputCase> kCases = {
     // The second round. An object scaled past every bound: refused by scene-info and render alike.
     {{"scene-info", "%d/huge-scale.toml"}, 2,
      "%d/huge-scale.toml:9:9: objects[0].scale: places the object's vertices up to 5e+37 from the origin, beyond the limit of 1e+12"},
-    {{"render", "--scene", "%d/huge-scale.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/huge-scale.toml", {"--out", "%o/x.exr"}), 2,
      "objects[0].scale: places the object's vertices up to 5e+37 from the origin"},
     {{"scene-info", "%d/sign-change.toml"}, 2, "objects[0].animation.keys[1].scale: expected each scale factor to keep the sign it has at the first keyframe"},
     // Non-finite texels, in a texture and in a sky's face: named with the file and the first texel,
     // by scene-info (which decodes float images to check them) and by render.
     {{"scene-info", "%d/nan-texture.toml"}, 2,
      "%d/nan-texture.toml:5:19: materials.grey.diffuse_texture: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1): (0.5, nan, 0.5, 0.5)"},
-    {{"render", "--scene", "%d/nan-texture.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/nan-texture.toml", {"--out", "%o/x.exr"}), 2,
      "materials.grey.diffuse_texture: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1)"},
-    {{"render", "--scene", "%d/nan-sky.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/nan-sky.toml", {"--out", "%o/x.exr"}), 2,
      "sky.cube_map: %d/nan-texel.exr: 2 non-finite texels (NaN or infinite), the first at (2, 1)"},
     // Paths that are no files: a loop of symbolic links (as scene, model and config entry), a device,
     // a file the system cannot read: the system's reason, never an internal error.
     {{"scene-info", "%d/loop-a.toml"}, 2, "%d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
-    {{"render", "--scene", "%d/loop-a.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/loop-a.toml", {"--out", "%o/x.exr"}), 2,
      "%d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
     {{"scene-info", "%d/loop-model.toml"}, 2, "objects[0].model: 'loop-a.glb' cannot be read (%d/loop-a.glb: Too many levels of symbolic links)"},
     {{"run", "%d/loop-scene.toml", "--out", "%o"}, 2, "scenes[0].scene: %d/loop-a.toml: cannot be read (Too many levels of symbolic links)"},
@@ -304,7 +305,7 @@ const std::vector<BadInputCase> kCases = {
     // A header claiming more pixels than its file can hold: refused before the pixels are allocated.
     {{"scene-info", "%d/huge-png.toml"}, 2,
      "materials.grey.diffuse_texture: %d/huge.png: cannot read image (PNG: header claims 16384x16384 pixels, which take at least 780336 bytes (deflate packs at most 1032 bytes of rows into one), more than the file's 1017"},
-    {{"render", "--scene", "%d/huge-png.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2, "%d/huge.png: cannot read image (PNG: header claims 16384x16384 pixels"},
+    {renderScene("%d/huge-png.toml", {"--out", "%o/x.exr"}), 2, "%d/huge.png: cannot read image (PNG: header claims 16384x16384 pixels"},
     // Numbers echoed as written.
     {{"render", "--scene", "whitted-classic", "--width", "99999999999999999999", "--height", "24", "--out", "%o/x.exr"}, 2,
      "--width: expected an integer in [1, 16384], got 99999999999999999999"},
@@ -320,18 +321,18 @@ const std::vector<BadInputCase> kCases = {
      "techniques[0].param_sets[1]: the settings max_depth=2 are, with the defaults filled in, those of techniques[0].param_sets[0] (max_depth=2)"},
     // The third round: cameras that would look along NaN, a scale that underflows, a sky's faces.
     {{"scene-info", "%d/camera-up-zero.toml"}, 2, "%d/camera-up-zero.toml:14:6: camera.up: expected a non-zero vector"},
-    {{"render", "--scene", "%d/camera-far.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/camera-far.toml", {"--out", "%o/x.exr"}), 2,
      "%d/camera-far.toml:12:12: camera.position: expected each coordinate within 1e+12 of the origin, got [1e+30, 1, 5]"},
     {{"scene-info", "%d/key-spacing.toml"}, 2,
      "camera_paths.close.keys[1].time: keyframe times must be at least 1e-06 s apart (previous key is at 0, this one at 1e-09)"},
     {{"render", "--scene", "%d/through-look-at.toml", "--camera-path", "through", "--frame", "10", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
      "%d/through-look-at.toml: camera path 'through' at 1 s: the camera is at the point it looks at, so it looks nowhere"},
-    {{"render", "--scene", "%d/tiny-scale.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/tiny-scale.toml", {"--out", "%o/x.exr"}), 2,
      "%d/tiny-scale.toml:9:9: objects[0].scale: expected non-zero scale factors, each at least 1e-09 in magnitude, got [1e-30, 1, 1]"},
     {{"render", "--scene", "%d/sky-sizes.toml", "--technique", "raster", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
      "sky.cube_map: expected six square faces of one size, got small.exr at 2 x 2 beside finite.exr at 4 x 4"},
     {{"scene-info", "%d/sky-sizes.toml"}, 2, "sky.cube_map: expected six square faces of one size, got small.exr at 2 x 2"},
-    {{"render", "--scene", "%d/camera-scale-zero.toml", "--width", "32", "--height", "24", "--out", "%o/x.exr"}, 2,
+    {renderScene("%d/camera-scale-zero.toml", {"--out", "%o/x.exr"}), 2,
      "objects[0].model: %d/camera-scale-zero.gltf: camera node 'eye': its transform scales an axis to 0 or to infinity"},
     {{"scene-info", "%d/camera-no-fov.toml"}, 2,
      "objects[0].model: %d/camera-no-fov.gltf: camera node 'eye': perspective.yfov (in degrees) 0 is outside [0.001, 179]"},
