@@ -15,7 +15,7 @@ namespace {
 
 TEST(CliBench, LogsEveryRayOfTheReferenceAndComparesItsThroughput) {
     const test::CliResult r =
-        test::runHybridlab({"bench", "--scene", "whitted-classic", "--width", "48", "--height", "27", "--repeats", "3", "--threads", "2"},
+        test::runHybridlab({"bench", "--scene", "whitted-classic", "--width", "48", "--height", "27", "--repeats", "9", "--threads", "2"},
                            {{"VK_ICD_FILENAMES", "/nonexistent"}});
     ASSERT_EQ(r.exitStatus, 0) << r.err;
     std::smatch m;
@@ -46,9 +46,19 @@ TEST(CliBench, LogsEveryRayOfTheReferenceAndComparesItsThroughput) {
     EXPECT_NEAR(std::stod(m[3]), 100.0 * inside / frame, 0.051 + 100.0 * 0.01 / frame);  // the times printed to 0.01 ms
     EXPECT_GT(inside, 0.0);
     EXPECT_GT(around, 0.0);
-    EXPECT_GT(inside, 0.33 * bare);
-    EXPECT_LT(inside, 3.0 * bare);
     EXPECT_GT(std::stod(m[6]), 0.0);  // the same frame with the clock off: what the clock's readings cost
+    // Inside and bare compared on their fastest repeats: a parallel test run's preemptions made the
+    // medians of a 5 ms frame differ 3.3x once; the minima of nine rise only if all nine are hit.
+    ASSERT_TRUE(std::regex_search(
+        r.out, m,
+        std::regex(R"(one thread, fastest repeat: reference frame ([0-9.]+) ms, inside Embree's calls ([0-9.]+) ms, the same rays bare ([0-9.]+) ms)")))
+        << r.out;
+    const double fastestFrame = std::stod(m[1]), fastestInside = std::stod(m[2]), fastestBare = std::stod(m[3]);
+    EXPECT_LE(fastestFrame, frame);  // each the least of the values whose median the line above gave
+    EXPECT_LE(fastestInside, inside);
+    EXPECT_LE(fastestBare, bare);
+    EXPECT_GT(fastestInside, 0.33 * fastestBare);
+    EXPECT_LT(fastestInside, 3.0 * fastestBare);
     EXPECT_CONTAINS(r.out, "vulkan: not measured");  // no device here: said, not failed
 }
 
