@@ -15,11 +15,16 @@ import results as rs  # noqa: E402
 import timing  # noqa: E402
 
 
-class RunFailed(Exception):
-    """`hybridlab run` failed: its exit status (2: bad input, 3: I/O) and the stage's folder."""
+RUN_ERROR_PREFIX = "hybridlab: error: "
 
-    def __init__(self, status, where):
-        super().__init__("hybridlab run failed on %s (exit status %d; its message above)" % (where, status))
+
+class RunFailed(Exception):
+    """`hybridlab run` failed: its exit status (2: bad input, 3: I/O), the stage's folder and the
+    runner's own error line, so that tune says the failure on one line."""
+
+    def __init__(self, status, where, message=""):
+        super().__init__("hybridlab run on %s: %s" % (where, message) if message else
+                         "hybridlab run failed on %s (exit status %d)" % (where, status))
         self.status = status
 
 
@@ -94,15 +99,22 @@ def frames_rendered(records):
 def run_experiment(program, config_file, out, cache=None, quiet=True, log=None):
     """`hybridlab run CONFIG --out OUT`, resuming OUT where an interrupted run left it; nothing
     where OUT is complete (it has its results.json). The runner's own lines go to `log` (a file
-    object) where one is given; its errors to the terminal. Raises RunFailed."""
+    object) where one is given; its progress to the terminal, its error into RunFailed's message."""
     if os.path.exists(os.path.join(out, "results.json")):
         return
     command = [program, "run", config_file, "--out", out] + (["--resume"] if os.path.exists(out) else [])
     command += ["--cache", cache] if cache else []
     command += ["--quiet"] if quiet else []
-    status = subprocess.run(command, stdout=log).returncode
-    if status != 0:
-        raise RunFailed(status, out)
+    errors = []
+    with subprocess.Popen(command, stdout=log, stderr=subprocess.PIPE, text=True, errors="replace") as runner:
+        for line in runner.stderr:
+            if line.startswith(RUN_ERROR_PREFIX):
+                errors.append(line[len(RUN_ERROR_PREFIX):].strip())
+            else:
+                sys.stderr.write(line)
+                sys.stderr.flush()
+    if runner.returncode != 0:
+        raise RunFailed(runner.returncode, out, "; ".join(errors))
 
 
 class RunnerEvaluator:

@@ -142,8 +142,15 @@ def write_summary(out, result, target, args, size):
         shutil.copyfile(os.path.join(out, "stages", "final.toml"), os.path.join(out, "tune.toml"))
 
 
+class OneLineArgumentParser(argparse.ArgumentParser):
+    """argparse whose refusal is one line, like every other command's, not a usage block."""
+
+    def error(self, message):
+        fail("%s (hybridlab tune --help for usage)" % message)
+
+
 def main(argv):
-    ap = argparse.ArgumentParser(prog="hybridlab tune", description=__doc__.split("\n\n")[0])
+    ap = OneLineArgumentParser(prog="hybridlab tune", description=__doc__.split("\n\n")[0])
     ap.add_argument("--program", required=True, help=argparse.SUPPRESS)
     ap.add_argument("--scene", required=True, help="a scenes/ name or a scene file")
     ap.add_argument("--target", required=True, help="METRIC>=VALUE or METRIC<=VALUE, e.g. \"ssim>=0.97\", \"flip<=0.05\"")

@@ -108,7 +108,8 @@ class TuneCommandTest(unittest.TestCase):
                  (["--target", "ssim>=0.9", "--budget-s", "0"], "expected a positive number"),
                  (["--target", "ssim>=0.9", "--budget-s", "nan"], "expected a positive number"),
                  (["--target", "ssim>=0.9", "--budget-s", "inf"], "expected a positive number"),
-                 (["--target", "psnr>=1e400"], "is not a finite number")]
+                 (["--target", "psnr>=1e400"], "is not a finite number"),
+                 (["--target", "ssim>=0.9", "--region", "bogus"], "argument --region: invalid choice: 'bogus'")]
         for args, says in cases:
             shutil.rmtree(out, ignore_errors=True)
             got = tune(*args, out=out)
@@ -140,6 +141,14 @@ class TuneCommandTest(unittest.TestCase):
         got = tune("--target", "ssim>=0.9", "--resume", out=broken)
         self.assertEqual(got.returncode, 2, got.stderr)
         self.assertIn("cannot be read as a search's arguments", got.stderr)
+        self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
+        # A stage's runner that fails says its own error on tune's one line, with its exit status.
+        stage_fails = os.path.join(WORK, "stage-fails")
+        shutil.rmtree(stage_fails, ignore_errors=True)
+        got = subprocess.run([PROGRAM, "tune", "--scene", "whitted-classic", "--target", "ssim>=0.9", "--technique", "whitted", "--size", "32x18",
+                              "--budget-s", "1", "--cache", os.path.join(blocker, "cache"), "--out", stage_fails], capture_output=True, text=True)
+        self.assertEqual(got.returncode, 3, got.stderr)
+        self.assertRegex(got.stderr, r"^hybridlab tune: error: hybridlab run on .*stages/screen: .*a-file/cache: cannot create folder")
         self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
         # An existing folder without --resume.
         got = tune("--target", "ssim>=0.95", out=self.out)
