@@ -1,6 +1,7 @@
 // hybridlab: render, compare and time hybrid rasterisation + ray-tracing techniques.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,13 @@ int main(int argc, char** argv) {
     } catch (const hybridlab::IoError& e) {
         // A file that could not be written or read: a full disk, a missing permission (exit 3).
         printError("error", e.what());
+        return 3;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // A path the file system refuses where no reader foresaw it (a name too long, a link
+        // loop): still the machine's answer about a file, exit 3, with the path and the reason.
+        std::string paths = e.path1().string();
+        if (!e.path2().empty()) paths += ", " + e.path2().string();
+        printError("error", (paths.empty() ? std::string("a file") : paths) + ": " + e.code().message());
         return 3;
     } catch (const hybridlab::VulkanError& e) {
         // No usable Vulkan device, a missing format, out of memory: the machine, not the program.
