@@ -36,11 +36,14 @@ public:
     bool contains(const std::string& key) const;
     // The cached entry, or nullopt.
     std::optional<CachedReference> find(const std::string& key) const;
+    // Keeps the entry, or says why it cannot (a warning): the run goes on with the reference in hand.
     void store(const CachedReference& entry) const;
 
     const std::filesystem::path& dir() const { return dir_; }
 
 private:
+    void write(const CachedReference& entry) const;  // throws IoError
+
     std::filesystem::path dir_;
 };
 

@@ -346,6 +346,11 @@ TEST(ExperimentRunner, ChangedSceneContentInvalidatesTheCachedReference) {
     EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "b", cache)).referencesRendered, 0u);
     std::ofstream(dir.path() / "scene.toml", std::ios::app) << "\n# an edit\n";
     EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "c", cache)).referencesRendered, 1u);
+    // A damaged entry is rendered again, not scored against.
+    for (const auto& f : fs::directory_iterator(cache))
+        if (f.path().extension() == ".exr") fs::resize_file(f.path(), fs::file_size(f.path()) / 2);
+    EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "d", cache)).referencesRendered, 1u);
+    EXPECT_EQ(runExperiment(c, test::quietRunnerOptions(dir.path() / "e", cache)).referencesRendered, 0u);
 }
 
 // A run's counters are a function of the run alone: the same whitted run in an experiment of its
