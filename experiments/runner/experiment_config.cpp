@@ -229,17 +229,15 @@ SceneSpec readSceneSpec(const TomlTable& t, const fs::path& configFile) {
 class DistinctParameterSets {
 public:
     void add(const TomlTable& at, const std::string& where, const ParameterChecker& checker, const ParameterList& set) {
-        std::map<std::string, ParamValue> values = checker.resolved(at, set);
-        for (const auto& [seen, first] : sets_) {
-            if (seen == values)
-                at.failHere("the settings " + parametersText(set) + " are, with the defaults filled in, those of " + first +
-                            ": every run of them would be rendered twice");
-        }
-        sets_.emplace_back(std::move(values), where + " (" + parametersText(set) + ")");
+        const auto [seen, added] = sets_.emplace(checker.resolved(at, set), where + " (" + parametersText(set) + ")");
+        if (!added)
+            at.failHere("the settings " + parametersText(set) + " are, with the defaults filled in, those of " + seen->second +
+                        ": every run of them would be rendered twice");
     }
 
 private:
-    std::vector<std::pair<std::map<std::string, ParamValue>, std::string>> sets_;
+    // Ordered, so that a sweep of a hundred thousand sets is checked in n log n, not n squared.
+    std::map<std::map<std::string, ParamValue>, std::string> sets_;
 };
 
 // Every (scene file, size, camera path, frame) of the [[scenes]] entries so far, with the entry
@@ -270,7 +268,8 @@ private:
 };
 
 // One [[techniques]] entry: a registered technique, its label (unique among `labels`, which gains
-// it) and its parameter sets (a sweep, a list, or the defaults), no two alike.
+// it) and its parameter sets (a sweep, a list, or the defaults), no two alike. Two entries may
+// share a set: their labels make them two series (two sweeps through the default point).
 TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& labels) {
     TechniqueSpec s;
     s.name = t.requiredString("name");
@@ -286,6 +285,8 @@ TechniqueSpec readTechniqueSpec(const TomlTable& t, std::set<std::string>& label
     auto params = t.table("params");
     auto sets = t.tableArray("param_sets");
     if (params && !sets.empty()) t.failHere("give 'params' (a sweep) or 'param_sets' (a list of sets), not both");
+    if (sets.empty() && t.has("param_sets"))
+        t.fail("param_sets", "an empty list of sets renders nothing (leave it out for the technique's defaults)");
     DistinctParameterSets distinct;
     if (params) {
         s.parameterSets = expandSweep(*params, checker);
@@ -316,9 +317,14 @@ void readTimingProtocol(const TomlTable& e, TimingProtocol& t) {
     t.maxWarmupFrames = static_cast<int>(e.integer("max_warmup_frames", t.maxWarmupFrames, 0, 10000));
     t.minRounds = static_cast<int>(e.integer("repeats", t.minRounds, 1, 1000));
     t.maxRounds = static_cast<int>(e.integer("max_rounds", t.maxRounds, 1, 100000));
-    t.precision = e.number("precision", t.precision, {0.0, 10.0});
+    // The tie band is [1 - precision, 1 / (1 - precision)] (experiments/README.md "Timing"): past a
+    // half it ties settings twice as fast.
+    t.precision = e.number("precision", t.precision, {0.0, 0.5});
     t.sceneBudgetMs = 1000.0 * e.number("budget_s", t.sceneBudgetMs / 1000.0, {0.0, 86400.0});
     if (t.maxRounds < t.minRounds) e.fail("max_rounds", "expected at least repeats (" + std::to_string(t.minRounds) + ")");
+    // Both given: the most frames in all cannot be fewer than the least (alone, warmup_frames wins).
+    if (e.has("max_warmup_frames") && e.has("warmup_frames") && t.maxWarmupFrames < t.warmupFrames)
+        e.fail("max_warmup_frames", "expected at least warmup_frames (" + std::to_string(t.warmupFrames) + ")");
 }
 
 }  // namespace

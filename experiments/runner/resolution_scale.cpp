@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include "common/core/input_error.h"
 
@@ -26,14 +31,29 @@ int scaledSide(int side, double scale) {
     return std::min(side, std::max(even, kMinimumSide));
 }
 
+namespace {
+std::string sizeText(std::pair<int, int> size) { return std::to_string(size.first) + "x" + std::to_string(size.second); }
+std::string scaleText(double scale) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", scale);
+    return text;
+}
+}  // namespace
+
 void scaleResolutions(ExperimentConfig& config, double scale) {
     config.resolutionScale = scale;
     if (scale == 1.0) return;
-    for (SceneSpec& scene : config.scenes)
+    for (SceneSpec& scene : config.scenes) {
+        std::map<std::pair<int, int>, std::pair<int, int>> configured;  // scaled size -> the size configured
         for (auto& [w, h] : scene.resolutions) {
-            w = scaledSide(w, scale);
-            h = scaledSide(h, scale);
+            const std::pair<int, int> size{scaledSide(w, scale), scaledSide(h, scale)};
+            if (const auto [first, added] = configured.emplace(size, std::make_pair(w, h)); !added)
+                throw InputError(config.file.string() + ": --scale " + scaleText(scale) + " makes " + sizeText(first->second) + " and " +
+                                 sizeText({w, h}) + " of scene '" + scene.name + "' both " + sizeText(size) +
+                                 ": every run of them would be rendered twice (list one of them)");
+            std::tie(w, h) = size;
         }
+    }
 }
 
 }  // namespace hybridlab

@@ -157,6 +157,13 @@ TEST(RunScale, BadScaleExitsTwoAndWritesNothing) {
             EXPECT_EQ(test::fileTree(dir.path()), std::vector<std::string>{"tiny.toml"});
         }
     }
+    // Two configured sizes that the scale makes one would render every run of them twice.
+    const fs::path twoSizes = dir / "two-sizes.toml";
+    test::writeTextFile(twoSizes, "[[scenes]]\nscene = \"whitted-classic\"\nresolutions = [[32, 18], [33, 19]]\n[[techniques]]\nname = \"rt_only\"\n");
+    const test::CliResult r = test::runHybridlab({"run", twoSizes.string(), "--out", (dir / "out").string(), "--scale", "0.5", "--dry-run"});
+    EXPECT_EQ(r.exitStatus, 2);
+    EXPECT_CONTAINS(r.err, "two-sizes.toml: --scale 0.5 makes 32x18 and 33x19 of scene 'whitted-classic' both 16x16");
+    EXPECT_EQ(test::fileTree(dir.path()), (std::vector<std::string>{"tiny.toml", "two-sizes.toml"}));
 }
 
 // Rendered at the scaled size, recorded, resumed only at the same scale (exit 2 naming both, nothing

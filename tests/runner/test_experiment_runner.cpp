@@ -651,6 +651,11 @@ TEST(ExperimentRunner, BadConfigsAreRejectedBeforeAnythingIsWrittenWithOrWithout
          "experiment.keep: 'thumbnails' is not one of: error_maps, debug_images"},
         {"maps-without-metric", "[experiment]\nmetrics = [\"temporal\"]\nkeep = [\"error_maps\"]\n" + scene + technique,
          "experiment.keep: error_maps needs ssim, flip, flip_hdr, rmse or psnr in metrics"},
+        // The tie band [1 - t, 1 / (1 - t)] has no meaning from t = 1 on.
+        {"precision-range", "[experiment]\nprecision = 1\n" + scene + technique, "experiment.precision: expected a number in [0, 0.5], got 1"},
+        {"warmup-past-its-most", "[experiment]\nwarmup_frames = 5\nmax_warmup_frames = 0\n" + scene + technique,
+         "experiment.max_warmup_frames: expected at least warmup_frames (5)"},
+        {"no-parameter-sets", scene + "[[techniques]]\nname = \"whitted\"\nparam_sets = []\n", "techniques[0].param_sets: an empty list of sets renders nothing"},
     };
     std::vector<test::CliRun> runs;
     for (const auto& c : cases) {

@@ -5,6 +5,8 @@ finished search renders nothing and answers alike; a target nothing reaches is s
 shortfall; bad input exits 2 and writes nothing.
 
     tune_command_test.py PROGRAM WORK_DIR"""
+import contextlib
+import io
 import json
 import os
 import shutil
@@ -16,6 +18,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "report"))
 import results as rs  # noqa: E402
 import verdict  # noqa: E402
+
+sys.path.insert(0, os.path.join(HERE, "..", "..", "experiments", "tune"))
+import stages  # noqa: E402
 
 PROGRAM, WORK = None, None
 
@@ -142,18 +147,24 @@ class TuneCommandTest(unittest.TestCase):
         self.assertEqual(got.returncode, 2, got.stderr)
         self.assertIn("cannot be read as a search's arguments", got.stderr)
         self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
-        # A stage's runner that fails says its own error on tune's one line, with its exit status.
-        stage_fails = os.path.join(WORK, "stage-fails")
-        shutil.rmtree(stage_fails, ignore_errors=True)
-        got = subprocess.run([PROGRAM, "tune", "--scene", "whitted-classic", "--target", "ssim>=0.9", "--technique", "whitted", "--size", "32x18",
-                              "--budget-s", "1", "--cache", os.path.join(blocker, "cache"), "--out", stage_fails], capture_output=True, text=True)
-        self.assertEqual(got.returncode, 3, got.stderr)
-        self.assertRegex(got.stderr, r"^hybridlab tune: error: hybridlab run on .*stages/screen: .*a-file/cache: cannot create folder")
-        self.assertEqual(got.stderr.count("\n"), 1, got.stderr)
         # An existing folder without --resume.
         got = tune("--target", "ssim>=0.95", out=self.out)
         self.assertEqual(got.returncode, 2)
         self.assertIn("exists; pass --resume", got.stderr)
+
+    def test_a_stages_runner_that_fails_is_said_on_tunes_one_line(self):
+        # A stand-in for `hybridlab run`: a progress line, then its error, exit 3.
+        program = os.path.join(WORK, "failing-run")
+        with open(program, "w") as f:
+            f.write("#!/bin/sh\necho 'runs 1-2/6' >&2\necho 'hybridlab: error: /cache: cannot create folder (Not a directory)' >&2\nexit 3\n")
+        os.chmod(program, 0o755)
+        terminal = io.StringIO()
+        with contextlib.redirect_stderr(terminal), self.assertRaises(stages.RunFailed) as failed:
+            stages.run_experiment(program, "screen.toml", os.path.join(WORK, "no-stage-yet"))
+        self.assertEqual(failed.exception.status, 3)
+        self.assertEqual(str(failed.exception), "hybridlab run on %s: /cache: cannot create folder (Not a directory)" % (
+            os.path.join(WORK, "no-stage-yet")))
+        self.assertEqual(terminal.getvalue(), "runs 1-2/6\n")  # the progress still reaches the terminal
 
 
 if __name__ == "__main__":
