@@ -11,7 +11,13 @@ namespace fs = std::filesystem;
 
 fs::path scenesDirectory() {
     // A bundle (`hybridlab bundle`) carries its own scenes, away from the checkout it was built in.
-    if (const char* v = std::getenv(kScenesEnvVar); v && *v) return fs::path(v);
+    if (const char* v = std::getenv(kScenesEnvVar); v && *v) {
+        // Set wrong, it would list no scenes and find none, as if there were none to find.
+        std::error_code error;
+        if (!fs::is_directory(v, error))
+            throw InputError(std::string(kScenesEnvVar) + "=" + v + ": not a folder (a folder of scene files; unset it for the program's own)");
+        return fs::path(v);
+    }
     return fs::path(HYBRIDLAB_SCENES_DIR);
 }
 

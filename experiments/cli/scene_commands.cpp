@@ -104,9 +104,10 @@ void addScenesCommand(CLI::App& app) {
             std::printf("%s\n", out.dump(1).c_str());
             return;
         }
+        const std::vector<std::filesystem::path> files = listSceneFiles();  // before the header: its folder may be refused
         std::printf("%-26s %8s %10s %10s %7s %11s %11s %10s\n", "scene", "objects", "vertices", "triangles", "lights", "reflective",
                     "refractive", "dynamic");
-        for (const auto& file : listSceneFiles()) {
+        for (const auto& file : files) {
             try {
                 printSceneRow(file.stem().string(), loadSceneFile(file, {.loadTextures = false}));
             } catch (const InputError& e) {

@@ -70,6 +70,20 @@ TEST(CliScenes, ListsEverySceneAndExplainsMissingAssets) {
     }
 }
 
+// HYBRIDLAB_SCENES naming no folder is said, not taken for a folder without scenes.
+TEST(CliScenes, AScenesFolderThatIsNoneIsRefused) {
+    test::TempDir dir;
+    for (const std::string& scenes : {(dir / "missing").string(), test::builtinSceneFile("whitted-classic").string()}) {
+        for (const std::vector<std::string>& args :
+             {std::vector<std::string>{"scenes"}, std::vector<std::string>{"render", "--scene", "whitted-classic", "--out", (dir / "x.exr").string()}}) {
+            const CliResult r = runHybridlab(args, {{"HYBRIDLAB_SCENES", scenes}});
+            EXPECT_EQ(r.exitStatus, 2) << r.err;
+            EXPECT_EQ(r.out, "");
+            EXPECT_EQ(r.err, "hybridlab: error: HYBRIDLAB_SCENES=" + scenes + ": not a folder (a folder of scene files; unset it for the program's own)\n");
+        }
+    }
+}
+
 // The models come with the repository (scenes/assets): no environment needed.
 TEST(CliScenes, PaperScenesWithTheRepositorysAssets) {
     CliResult r = runHybridlab({"scenes"}, {{"HYBRIDLAB_ASSETS", std::nullopt}});
