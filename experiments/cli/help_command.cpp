@@ -12,21 +12,20 @@ void addHelpCommand(CLI::App& app) {
     auto command = std::make_shared<std::string>();
     auto* cmd = app.add_subcommand("help", "Print this help, or one command's (hybridlab help COMMAND)");
     cmd->add_option("command", *command, "A command's name");
-    cmd->callback([&app, command] {
+    cmd->callback([&app, cmd, command] {
         // The formatter itself: App::help() would print the help of the command running, this one.
-        if (command->empty()) {
+        if (cmd->count("command") == 0) {
             std::printf("%s", app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal).c_str());
             return;
         }
         for (const auto* c : app.get_subcommands({})) {
-            if (c->get_name() == *command && *command != "help") {
+            if (c->get_name() == *command) {
                 std::printf("%s", c->get_formatter()->make_help(c, app.get_name() + " " + c->get_name(), CLI::AppFormatMode::Normal).c_str());
                 return;
             }
         }
         std::string known;
-        for (const auto* c : app.get_subcommands({}))
-            if (c->get_name() != "help") known += (known.empty() ? "" : ", ") + c->get_name();
+        for (const auto* c : app.get_subcommands({})) known += (known.empty() ? "" : ", ") + c->get_name();
         throw InputError("help: unknown command '" + *command + "' (commands: " + known + ")");
     });
 }
