@@ -3,8 +3,8 @@
 tests/fixtures/result_sets (made by its make_result_sets.py): results.py (records from results.json
 or runs/, their accessors, the schema check on python3-jsonschema, the table lines and the device
 line), images.py (the images through OpenImageIO), verdict.py (digests that find identical images,
-the sentence, its command line), device.py, palette.py and figure_files.py; and the checks that
-refuse a malformed result set.
+the sentence, its command line), device.py, palette.py and figure_files.py; the checks that refuse
+a malformed result set, and staged_folder.py.
 
     result_set_test.py        (standard library unittest; no hybridlab program needed)"""
 import contextlib
@@ -28,6 +28,7 @@ import images  # noqa: E402
 import numpy as np  # noqa: E402
 import palette  # noqa: E402
 import results  # noqa: E402
+import staged_folder  # noqa: E402
 import verdict  # noqa: E402
 
 VERDICT_SET = os.path.join(SETS, "verdict")
@@ -249,6 +250,45 @@ class BadInput(unittest.TestCase):
                 write_text(path, json.dumps(experiment))
                 message = self.error(results.metric_table, d)
                 self.assertTrue(message.startswith("%s: %s" % (path, problem)), (problem, message))
+
+
+class StagedFolder(unittest.TestCase):
+    """staged_folder.staged: a report folder written whole or not at all."""
+
+    def test_a_failure_leaves_the_folder_as_it_was(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "report")
+            with self.assertRaises(RuntimeError):
+                with staged_folder.staged(out) as into:
+                    write_text(os.path.join(into, "index.html"), "half")
+                    raise RuntimeError("drawing failed")
+            self.assertEqual(os.listdir(d), [])
+            os.makedirs(os.path.join(out, "figures"))
+            write_text(os.path.join(out, "index.html"), "earlier")
+            write_text(os.path.join(out, "figures", "old.svg"), "earlier")
+            write_text(os.path.join(out, "notes.txt"), "the user's")
+            with self.assertRaises(OSError):
+                with staged_folder.staged(out) as into:
+                    write_text(os.path.join(into, "index.html"), "half")
+                    raise OSError(28, "No space left on device")
+            self.assertEqual(read_text(os.path.join(out, "index.html")), "earlier")
+            # Whole: its entries replace those of their names, the others stay.
+            with staged_folder.staged(out) as into:
+                os.makedirs(os.path.join(into, "figures"))
+                write_text(os.path.join(into, "index.html"), "new")
+            self.assertEqual(sorted(os.listdir(d)), ["report"])
+            self.assertEqual(sorted(os.listdir(out)), ["figures", "index.html", "notes.txt"])
+            self.assertEqual((read_text(os.path.join(out, "index.html")), os.listdir(os.path.join(out, "figures"))), ("new", []))
+
+    def test_a_destination_that_cannot_be_written(self):
+        with tempfile.TemporaryDirectory() as d:
+            write_text(os.path.join(d, "a-file"), "")
+            for out in (os.path.join(d, "a-file"), os.path.join(d, "a-file", "report")):
+                with self.assertRaises(OSError) as caught:
+                    with staged_folder.staged(out):
+                        self.fail("staged into " + out)
+                self.assertEqual(caught.exception.filename, out)
+            self.assertEqual(os.listdir(d), ["a-file"])
 
 
 def device_record():
