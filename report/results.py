@@ -396,7 +396,8 @@ def mean_known(values):
 def table_script(doc, name, extra_arguments=()):
     """The command line every table script shares: RESULT_DIR [--out FILE.md] plus `extra_arguments`
     (argparse add_argument argument tuples, keyword dicts). Returns the parsed arguments and the
-    result set's rows; exits with a message naming the folder when it holds no runs."""
+    result set's rows; exits with a message naming the folder when it holds no runs, or the file
+    that is not a result set's (ResultSetError)."""
     ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("result_dir")
     ap.add_argument("--out", help="write the table(s) (Markdown) here as well as to standard output")
@@ -404,9 +405,11 @@ def table_script(doc, name, extra_arguments=()):
         ap.add_argument(*args, **kwargs)
     a = ap.parse_args()
     try:
-        rows = checked_records(a.result_dir, metric_table(a.result_dir))
+        rows = load(a.result_dir)
     except ResultSetError as e:
         sys.exit("%s: %s" % (name, e))
+    if not rows:
+        sys.exit("%s: %s has no runs" % (name, a.result_dir))
     if not os.path.isfile(os.path.join(a.result_dir, "results.json")):
         sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (
             a.result_dir, len(rows), os.path.join(a.result_dir, "runs")))
