@@ -2,7 +2,11 @@
 """The report of a hybridlab result set: index.html (works from the file system), report.md and
 the figures as SVG and PDF.
 
-    report.py RESULT_DIR --out REPORT_DIR [--baseline SCENE]
+    report.py RESULT_DIR --out REPORT_DIR [--baseline SCENE] [--check-only]
+
+A result set's file that is malformed (a record, experiment.json, config.toml, an image) is named on
+one line of standard error, with the place in it and what was expected: exit status 2, nothing
+written. A report folder that cannot be written: one line, exit status 3, the folder as it was.
 
 Figures: per scene and resolution, frame time (wall clock: the records' frame_ms) against SSIM and
 against FLIP for every setting, a bar over its median's 95% interval, with the Pareto front drawn
@@ -31,6 +35,7 @@ import matplotlib.pyplot as plt
 import palette
 import point_labels
 import results as rs
+import staged_folder
 import timing
 import verdict
 import viewer
@@ -345,28 +350,33 @@ def contents_html(entries):
     return '<nav class="contents"><b>Contents</b><ul>%s</ul></nav>' % "".join(items)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("result_dir")
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--baseline", default=failures.BASELINE_SCENE,
-                    help="the scene whose path is the \"where methods fail\" section's baseline (default: %(default)s)")
-    a = ap.parse_args()
-    records = rs.load(a.result_dir)
-    if not records:
-        sys.exit("report: %s holds no runs" % a.result_dir)
-    table = rs.metric_table(a.result_dir)
-    if viewer.missing():
-        sys.exit("report: " + viewer.missing())
-    # Every image the report reads, checked before anything is written.
-    try:
-        for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
-            images.check(os.path.join(a.result_dir, path))
-        verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, a.result_dir, table)}
-    except images.ImageError as e:
-        print("report: %s" % e, file=sys.stderr)
-        sys.exit(2)
-    os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
+def fail(message, status):
+    """One line on standard error, and exit `status`: 2 for a result set's file that is malformed, 3
+    for a report that cannot be written (`hybridlab report` adds nothing to it)."""
+    sys.stderr.write("hybridlab: error: %s\n" % str(message).replace("\n", "; "))
+    sys.exit(status)
+
+
+class Inputs(collections.namedtuple("Inputs", "records table reference verdicts")):
+    """What the report is drawn from, every file of the result set it reads checked."""
+
+
+def read_inputs(result_dir):
+    """Inputs of the result set in `result_dir`. ResultSetError or ImageError where one of its files
+    is malformed (a record, experiment.json, config.toml, an image), before anything is written."""
+    table = rs.metric_table(result_dir)
+    records = rs.checked_records(result_dir, table)
+    reference = viewer.reference_parameters(result_dir)
+    for path in sorted({p for r in records for p in (r["images"]["exr"], r["reference"]["exr"])}):
+        images.check(os.path.join(result_dir, path))
+    verdicts = {(v.scene, v.size): v for v in verdict.verdicts(records, result_dir, table)}
+    return Inputs(records, table, reference, verdicts)
+
+
+def write_report(inputs, result_dir, out, into, baseline):
+    """The report of `inputs` for the folder `out`, its files written into the folder `into`."""
+    records, table, verdicts = inputs.records, inputs.table, inputs.verdicts
+    os.makedirs(os.path.join(into, "figures"))
     colours = palette.setting_colours(records)  # one colour per setting for the whole report
 
     sections = []
@@ -375,21 +385,21 @@ def main():
         by_scene[(r["scene"], rs.resolution(r))].append(r)
     for (scene, res), rows in sorted(by_scene.items()):
         key = "%s-%s" % (os.path.basename(scene).replace(".toml", ""), res)
-        figs = speed_accuracy(verdicts[(scene, res)], a.out, key, "%s at %s: speed against accuracy" % (scene, res), colours) + [
-                stage_breakdown(rows, a.out, key, "%s at %s: stage times" % (scene, res)),
-                work_accuracy(rows, a.out, key, "%s at %s: rays per pixel against accuracy" % (scene, res), colours)]
+        figs = speed_accuracy(verdicts[(scene, res)], into, key, "%s at %s: speed against accuracy" % (scene, res), colours) + [
+                stage_breakdown(rows, into, key, "%s at %s: stage times" % (scene, res)),
+                work_accuracy(rows, into, key, "%s at %s: rays per pixel against accuracy" % (scene, res), colours)]
         paths = collections.defaultdict(list)
         for r in rows:
             if r["frame"] >= 0:
                 paths[r["view"]].append(r)
         for path, prs in sorted(paths.items()):
-            figs.append(along_path(prs, a.out, key + "-" + path, "%s at %s along path %s" % (scene, res, path), colours))
+            figs.append(along_path(prs, into, key + "-" + path, "%s at %s along path %s" % (scene, res, path), colours))
         sections.append((scene, res, figs))
-    failure_html, failure_md = failures.write_section(records, a.out, a.baseline, colours, table) or ("", [])
-    device_html, device_md = device.write(a.result_dir, records)
+    failure_html, failure_md = failures.write_section(records, into, baseline, colours, table) or ("", [])
+    device_html, device_md = device.write(result_dir, records)
     verdict_html, verdict_md = verdict.write(list(verdicts.values()), viewer.link)
 
-    title = "hybridlab report: %s" % os.path.basename(os.path.abspath(a.result_dir))
+    title = "hybridlab report: %s" % os.path.basename(os.path.abspath(result_dir))
     chart_sections = [("charts-%s-%s" % (rs.anchor(scene), res), "%s at %s" % (scene, res), figs) for scene, res, figs in sections]
     contents = ([("verdict", "Verdict")] + [("verdict-%s-%s" % (rs.anchor(v.scene), v.size), "%s at %s" % (v.scene, v.size), 1)
                                             for v in verdicts.values()]
@@ -398,28 +408,55 @@ def main():
     figure_html = []
     for section_id, heading, figs in chart_sections:
         figure_html.append('<h2 id="%s">%s</h2>' % (section_id, html.escape(heading)))
-        figure_html += [figure_files.embed_html(f, a.out) for f in figs]
+        figure_html += [figure_files.embed_html(f, into) for f in figs]
     page = PAGE % dict(
-        title=html.escape(title), contents=contents_html(contents), warning=device.warning_html(a.result_dir, records),
+        title=html.escape(title), contents=contents_html(contents), warning=device.warning_html(result_dir, records),
         verdict=verdict_html, device=device_html, runs=len(records),
-        csv=html.escape(rs.result_link(a.out, a.result_dir, "results.csv")), json=html.escape(rs.result_link(a.out, a.result_dir, "results.json")),
-        viewer=html.escape(viewer.serve_command(a.result_dir, a.out)), clock=html.escape(timing.clock_note(records)),
-        figures="\n".join(figure_html), failures=failure_html, table=runs_table(records, a.out, a.result_dir, table), script=TABLE_SCRIPT)
-    with open(os.path.join(a.out, "index.html"), "w") as f:
+        csv=html.escape(rs.result_link(out, result_dir, "results.csv")), json=html.escape(rs.result_link(out, result_dir, "results.json")),
+        viewer=html.escape(viewer.serve_command(result_dir, out)), clock=html.escape(timing.clock_note(records)),
+        figures="\n".join(figure_html), failures=failure_html, table=runs_table(records, out, result_dir, table), script=TABLE_SCRIPT)
+    with open(os.path.join(into, "index.html"), "w") as f:
         f.write(page)
-    viewer.write_viewer(records, a.out, a.result_dir, title,
+    viewer.write_viewer(records, out, result_dir, title,
                         {(v.scene, v.size, s.name): s.not_applicable for v in verdicts.values() for s in v.excluded()},
-                        palette.hex_colours(colours), table)
+                        palette.hex_colours(colours), table, inputs.reference, into)
     md = ["# " + title] + verdict_md + ["", "## Measured on"] + device_md + ["", "## Every setting", "",
                                                     "%d runs; figures in figures/ (SVG and PDF); every run in index.html. %s" % (
                                                         len(records), timing.clock_note(records)),
                                                     markdown_summary(records, table)]
     for scene, res, figs in sections:
-        md += ["", "## %s at %s" % (scene, res)] + ["![](%s) ([PDF](%s))" % (os.path.relpath(f, a.out), os.path.relpath(f, a.out)[:-4] + ".pdf")
+        md += ["", "## %s at %s" % (scene, res)] + ["![](%s) ([PDF](%s))" % (os.path.relpath(f, into), os.path.relpath(f, into)[:-4] + ".pdf")
                                                     for f in figs]
     md += failure_md
-    with open(os.path.join(a.out, "report.md"), "w") as f:
+    with open(os.path.join(into, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("result_dir")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--baseline", default=failures.BASELINE_SCENE,
+                    help="the scene whose path is the \"where methods fail\" section's baseline (default: %(default)s)")
+    ap.add_argument("--check-only", action="store_true", help="check the result set's files and write nothing")
+    a = ap.parse_args()
+    if viewer.missing():
+        fail(viewer.missing(), 1)
+    # Every file the report reads is checked before anything is written: bad input leaves nothing.
+    try:
+        inputs = read_inputs(a.result_dir)
+    except (rs.ResultSetError, images.ImageError) as e:
+        fail(e, 2)
+    except OSError as e:
+        fail("%s: cannot be read (%s)" % (e.filename or a.result_dir, e.strerror), 3)
+    if a.check_only:
+        return
+    # Drawn beside --out and moved into it whole: a failure leaves it as it was.
+    try:
+        with staged_folder.staged(a.out) as into:
+            write_report(inputs, a.result_dir, a.out, into, a.baseline)
+    except OSError as e:
+        fail("%s: cannot be written (%s)" % (a.out, e.strerror or e), 3)
     print("report: %s" % os.path.join(a.out, "index.html"))
     print("viewer: %s (%s)" % (os.path.join(a.out, "viewer.html"), viewer.serve_command(a.result_dir, a.out)))
 

@@ -1,12 +1,15 @@
 """Reading a hybridlab result set (results.json, else runs/) for the figure and report scripts, and
 checking its records against their JSON Schema (experiments/results.schema.json) with Debian's
-python3-jsonschema.
+python3-jsonschema, and against what the report relies on beyond it; experiment.json's parts that
+the report reads are checked alike. A file that is not as its writer writes it raises
+ResultSetError, naming the file and the place in it.
 
 Every script of the report and of paper_figures/ reads only the records, never the renderer.
 
     results.py RESULT_DIR      validates the set's records; exit status 1 with the problems"""
 import argparse
 import json
+import math
 import os
 import re
 import sys
@@ -25,6 +28,51 @@ def migrations():
 
 MIGRATIONS = migrations()
 SCHEMA_VERSION = MIGRATIONS[-1]["to"]
+
+
+class ResultSetError(Exception):
+    """A result set's file that is not as its writer writes it: the message names the file, the
+    place in it (record, key, line) and what was expected. `hybridlab report` says it on one line,
+    exit status 2."""
+
+
+def _cut(text, limit=40):
+    """`text` cut to `limit` characters: a message quotes what it found, never all of it."""
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
+def _shown(value, limit=40):
+    """`value` as JSON, _cut."""
+    return _cut(json.dumps(value), limit)
+
+
+def _finite(text):
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError("number %s is beyond a double's range" % text)
+    return value
+
+
+def _no_constant(name):
+    raise ValueError("%s is not a JSON number" % name)
+
+
+def read_json(path):
+    """The JSON value in `path`. ResultSetError where it is not JSON, with the line and column (NaN,
+    Infinity and numbers beyond a double's range included: no writer of a result set writes them);
+    OSError where it cannot be read."""
+    with open(path, "rb") as f:
+        data = f.read()
+    try:
+        return json.loads(data.decode("utf-8"), parse_float=_finite, parse_constant=_no_constant)
+    except json.JSONDecodeError as e:
+        raise ResultSetError("%s: not valid JSON (%s at line %d, column %d)" % (path, e.msg, e.lineno, e.colno)) from None
+    except UnicodeDecodeError as e:
+        raise ResultSetError("%s: not valid JSON (not UTF-8 text at byte %d)" % (path, e.start)) from None
+    except ValueError as e:
+        raise ResultSetError("%s: not valid JSON (%s)" % (path, e)) from None
+    except RecursionError:
+        raise ResultSetError("%s: not valid JSON (nested too deeply)" % path) from None
 
 
 def _renamed(values, rename, prefixes):
@@ -49,11 +97,13 @@ def migrate(record):
     """The record as the current schema_version has it: the one place old result sets' names are
     read (each step of results.migrations.json in turn, from the record's version; none is version 1)."""
     version = record.get("schema_version", 1)
+    if type(version) is not int:
+        return record  # not a version: record_problems says so
     for step in MIGRATIONS:
         if step["from"] < version:
             continue
         for field in set(step.get("rename", {})) | set(step.get("rename_prefixes", {})):
-            if field in record:
+            if isinstance(record.get(field), dict):
                 record[field] = _renamed(record[field], step.get("rename", {}).get(field, {}), step.get("rename_prefixes", {}).get(field, {}))
         version = step["to"]
     record["schema_version"] = version
@@ -66,25 +116,54 @@ def is_result_set(result_dir):
     return os.path.isfile(os.path.join(result_dir, "results.json")) or os.path.isdir(os.path.join(result_dir, "runs"))
 
 
-def load(result_dir):
-    """The records of a result set (migrated to the current schema_version), ordered by run index:
-    results.json, or where the runner has not
-    written it (still running, or killed), the records in runs/ themselves, which lack only what
-    needs the whole set (temporal errors); `hybridlab report` or `hybridlab run --resume` writes
-    results.json."""
+def sourced_records(result_dir):
+    """(where, record) for each record of a result set, migrated to the current schema_version,
+    ordered by run index, `where` naming its file (and its place in results.json): results.json,
+    or where the runner has not written it (still running, or killed), the records in runs/
+    themselves, which lack only what needs the whole set (temporal errors); `hybridlab report` or
+    `hybridlab run --resume` writes results.json. ResultSetError for a file that is not JSON, a
+    results.json that is not an array of records, a folder that is no result set."""
     path = os.path.join(result_dir, "results.json")
     if os.path.isfile(path):
-        with open(path) as f:
-            return [migrate(r) for r in json.load(f)]
-    runs = os.path.join(result_dir, "runs")
-    records = []
-    # Temporary files of an interrupted write start with a dot: not records.
-    for name in os.listdir(runs):
-        if name.endswith(".json") and not name.startswith("."):
-            with open(os.path.join(runs, name)) as f:
-                records.append(migrate(json.load(f)))
-    sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (result_dir, len(records), runs))
-    return sorted(records, key=lambda r: r["index"])
+        records = read_json(path)
+        if not isinstance(records, list):
+            raise ResultSetError("%s: expected an array of records, got %s" % (path, _shown(records)))
+        found = [("%s: record %d" % (path, i), r) for i, r in enumerate(records)]
+    elif os.path.isdir(os.path.join(result_dir, "runs")):
+        runs = os.path.join(result_dir, "runs")
+        # Temporary files of an interrupted write start with a dot: not records.
+        found = [(os.path.join(runs, name), read_json(os.path.join(runs, name))) for name in sorted(os.listdir(runs))
+                 if name.endswith(".json") and not name.startswith(".")]
+    else:
+        raise ResultSetError("%s: not a result set (no results.json, no runs/)" % result_dir)
+    for where, r in found:
+        if not isinstance(r, dict):
+            raise ResultSetError("%s: expected a run's record (an object), got %s" % (where, _shown(r)))
+        migrate(r)
+    if not os.path.isfile(path):
+        found.sort(key=lambda wr: wr[1]["index"] if type(wr[1].get("index")) is int else -1)
+    return found
+
+
+def load(result_dir):
+    """The records of a result set (sourced_records' without their places)."""
+    return [r for _, r in sourced_records(result_dir)]
+
+
+def checked_records(result_dir, table):
+    """The records of a result set, each checked by record_problems against `table` (the set's
+    metric table): ResultSetError naming the first problem's file and place, and the set's that
+    holds none."""
+    found = sourced_records(result_dir)
+    if not found:
+        raise ResultSetError("%s: holds no records (expected at least one run)" % (
+            os.path.join(result_dir, "results.json" if os.path.isfile(os.path.join(result_dir, "results.json")) else "runs")))
+    for where, r in found:
+        problems = record_problems(r, table)
+        if problems:
+            more = " (and %d more)" % (len(problems) - 1) if len(problems) > 1 else ""
+            raise ResultSetError("%s: %s%s" % (where, problems[0], more))
+    return [r for _, r in found]
 
 
 def variant(r):
@@ -149,18 +228,53 @@ BUILT_IN_METRICS = _built_in_metric_table()
 _FIELDS = {m["key"]: m["field"] for m in BUILT_IN_METRICS}
 
 
+# experiment.json's parts that the report reads (the runner writes more): its metric table, the
+# device the times were measured on, the fraction of the configured size rendered.
+EXPERIMENT_SCHEMA = {
+    "type": "object",
+    "properties": {
+        "metric_table": {"type": "array", "items": {
+            "type": "object",
+            "required": ["key", "label", "better", "range", "field", "colormap", "scored", "summarised", "digits"],
+            "properties": {
+                "key": {"type": "string", "minLength": 1},
+                "label": {"type": "string", "minLength": 1},
+                "better": {"enum": ["higher", "lower"]},
+                "range": {"type": "array", "minItems": 2, "maxItems": 2, "items": {"type": ["number", "null"]}},
+                "field": {"type": "string", "minLength": 1},
+                "colormap": {"type": ["string", "null"]},
+                "scored": {"type": "boolean"},
+                "summarised": {"type": "boolean"},
+                "digits": {"type": "integer", "minimum": 0, "maximum": 15},
+            }}},
+        "device": {"type": ["object", "null"], "additionalProperties": {"type": ["string", "number", "boolean", "null"]}},
+        "resolution_scale": {"type": "number", "exclusiveMinimum": 0, "maximum": 1},
+    },
+}
+
+
+def experiment(result_dir):
+    """A result set's experiment.json, checked where the report reads it (EXPERIMENT_SCHEMA); {}
+    for a set without one. ResultSetError naming the file and the first problem."""
+    path = os.path.join(result_dir, "experiment.json")
+    if not os.path.exists(path):
+        return {}
+    e = read_json(path)
+    problems = _problems(e, EXPERIMENT_SCHEMA)
+    if not problems and e.get("metric_table") and not any(m["scored"] for m in e["metric_table"]):
+        problems = ["$.metric_table: expected a scored metric (the verdict and the charts rank by them), got none"]
+    if problems:
+        raise ResultSetError("%s: %s" % (path, problems[0]))
+    return e
+
+
 def metric_table(result_dir):
     """The metrics a result set was scored with, in the order tables list them: experiment.json's
     "metric_table" (the runner writes it), else the built-in table. Each is a dict with "key",
     "label", "better" ("higher" or "lower"), "range" ([low, high], None where unbounded), "field",
     "colormap" (None without an error map), "scored" (the verdict ranks by it) and "summarised"
     (summary tables show it) and "digits" (the decimals tables show)."""
-    try:
-        with open(os.path.join(result_dir, "experiment.json")) as f:
-            table = json.load(f).get("metric_table")
-    except (OSError, ValueError, AttributeError):
-        table = None
-    return table or BUILT_IN_METRICS
+    return experiment(result_dir).get("metric_table") or BUILT_IN_METRICS
 
 
 def summarised(table):
@@ -282,18 +396,23 @@ def mean_known(values):
 def table_script(doc, name, extra_arguments=()):
     """The command line every table script shares: RESULT_DIR [--out FILE.md] plus `extra_arguments`
     (argparse add_argument argument tuples, keyword dicts). Returns the parsed arguments and the
-    result set's rows; exits with a message naming the folder when it holds no runs."""
+    result set's rows; exits with a message naming the folder when it holds no runs, or the file
+    that is not a result set's (ResultSetError)."""
     ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("result_dir")
     ap.add_argument("--out", help="write the table(s) (Markdown) here as well as to standard output")
     for args, kwargs in extra_arguments:
         ap.add_argument(*args, **kwargs)
     a = ap.parse_args()
-    if not is_result_set(a.result_dir):
-        sys.exit("%s: %s is not a result set (no results.json, no runs/)" % (name, a.result_dir))
-    rows = load(a.result_dir)
+    try:
+        rows = load(a.result_dir)
+    except ResultSetError as e:
+        sys.exit("%s: %s" % (name, e))
     if not rows:
         sys.exit("%s: %s has no runs" % (name, a.result_dir))
+    if not os.path.isfile(os.path.join(a.result_dir, "results.json")):
+        sys.stderr.write("%s: no results.json (its runner has not finished): reading the %d records in %s\n" % (
+            a.result_dir, len(rows), os.path.join(a.result_dir, "runs")))
     return a, rows
 
 
@@ -324,23 +443,13 @@ def devices(result_dir, rows=()):
     for r in rows:
         if "device" in r and r["device"] not in own:
             own.append(r["device"])
-    if own:
-        return own
-    try:
-        with open(os.path.join(result_dir, "experiment.json")) as f:
-            return [json.load(f).get("device")]
-    except (OSError, ValueError):
-        return [None]
+    return own or [experiment(result_dir).get("device")]
 
 
 def resolution_scale(result_dir):
     """experiment.json's "resolution_scale" (`hybridlab run --scale`): the fraction of the configured
     sizes the set was rendered at; 1 where it does not say."""
-    try:
-        with open(os.path.join(result_dir, "experiment.json")) as f:
-            return float(json.load(f).get("resolution_scale", 1.0))
-    except (OSError, ValueError, TypeError, AttributeError):
-        return 1.0
+    return float(experiment(result_dir).get("resolution_scale", 1.0))
 
 
 def device_line(result_dir, rows=()):
@@ -384,33 +493,93 @@ def _where(path):
 
 
 def _describe(error):
-    """One problem, "place: what", in words that name the key a missing or unexpected one is."""
+    """One problem, "place: what", in words that name the key a missing or unexpected one is; what
+    was found is quoted in part (_shown)."""
     where, value, instance = _where(error.absolute_path), error.validator_value, error.instance
     if error.validator == "required":
         missing = [k for k in value if isinstance(instance, dict) and k not in instance]
         return "%s: missing required '%s'" % (where, missing[0] if missing else value)
     if error.validator == "additionalProperties" and isinstance(instance, dict):
         known = error.schema.get("properties", {})
-        return "%s: unexpected '%s'" % (where, ", ".join(sorted(k for k in instance if k not in known)))
+        return "%s: unexpected '%s'" % (where, _cut(", ".join(sorted(k for k in instance if k not in known)), 80))
     if error.validator == "type":
-        return "%s: expected %s, got %s" % (where, " or ".join(value if isinstance(value, list) else [value]), json.dumps(instance)[:40])
+        return "%s: expected %s, got %s" % (where, " or ".join(value if isinstance(value, list) else [value]), _shown(instance))
     if error.validator == "minimum":
         return "%s: %s is below the minimum %s" % (where, instance, value)
-    return "%s: %s" % (where, error.message)
+    if error.validator == "exclusiveMinimum":
+        return "%s: expected a number above %s, got %s" % (where, value, instance)
+    if error.validator == "maximum":
+        return "%s: %s is above the maximum %s" % (where, instance, value)
+    if error.validator == "maxLength":
+        return "%s: expected at most %d characters, got %d (%s)" % (where, value, len(instance), _shown(instance))
+    if error.validator in ("oneOf", "anyOf") and error.context:
+        # The alternative that came nearest, in its own words.
+        return _describe(jsonschema.exceptions.best_match(error.context))
+    if error.validator in ("enum", "const"):
+        return "%s: expected one of %s, got %s" % (where, _shown(value, 80), _shown(instance))
+    return "%s: %s" % (where, error.message[:200])
 
 
-_validator = None
+def _problems(instance, schema):
+    """Every way `instance` breaks `schema` ("place: what"), in the order of their places."""
+    errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(instance), key=lambda e: [str(p) for p in e.absolute_path])
+    return [_describe(e) for e in errors]
+
+
+_schema = None
 
 
 def schema_problems(record):
     """Every way a record breaks the schema ("place: what"), in the order of their places; [] when valid."""
-    global _validator
-    if _validator is None:
+    global _schema
+    if _schema is None:
         with open(SCHEMA_PATH) as f:
-            schema = json.load(f)
-        _validator = jsonschema.Draft202012Validator(schema, format_checker=None)
-    errors = sorted(_validator.iter_errors(record), key=lambda e: [str(p) for p in e.absolute_path])
-    return [_describe(e) for e in errors]
+            _schema = json.load(f)
+    return _problems(record, _schema)
+
+
+# The times a record holds as a median with its spread: the report draws each median with a bar
+# over its interval (or its runs' range) on a log axis.
+TIME_SPREADS = (("frame_ms",), ("timing", "cpu_ms"), ("timing", "device_ms"))
+
+
+def _spread_problems(r):
+    problems = []
+    for path in TIME_SPREADS:
+        s = r
+        for key in path:
+            s = s.get(key) if isinstance(s, dict) else None
+        if not isinstance(s, dict):
+            continue
+        order = [k for k in ("min", "ci_low", "median", "ci_high", "max") if k in s]
+        if any(s[a] > s[b] for a, b in zip(order, order[1:])):
+            problems.append("%s: expected %s in that order, got %s" % (_where(path), " <= ".join(order), ", ".join("%s %g" % (k, s[k]) for k in order)))
+    return problems
+
+
+def _metric_problems(r, table):
+    """Where a metric of `table` lies in a region's scores and holds something other than a number."""
+    problems = []
+    for region in ("whole", "masked"):
+        for m in table:
+            value = metric(r, region, m["key"])
+            if value is not None and (type(value) not in (int, float)):
+                problems.append("%s: expected a number (metric '%s' of the metric table), got %s" % (
+                    _where(["metrics", region] + _FIELDS.get(m["key"], m["key"]).split(".")), m["key"], _shown(value)))
+    return problems
+
+
+def record_problems(r, table=None):
+    """Every way a record breaks the schema or what the report relies on beyond it: a version this
+    program reads, each time's median inside its interval and its runs' range, each metric of
+    `table` (the set's metric table; by default the built-in one) a number where present."""
+    problems = schema_problems(r)
+    if problems:
+        return problems
+    if r["schema_version"] > SCHEMA_VERSION:
+        return ["$.schema_version: %d is newer than this program reads (up to %d): report it with a newer hybridlab" % (
+            r["schema_version"], SCHEMA_VERSION)]
+    return _spread_problems(r) + _metric_problems(r, table or BUILT_IN_METRICS)
 
 
 def results_problems(records):
@@ -424,7 +593,10 @@ def main(argv):
     if len(argv) != 2:
         print("usage: results.py RESULT_DIR", file=sys.stderr)
         return 2
-    found = results_problems(load(argv[1]))
+    try:
+        found = results_problems(load(argv[1]))
+    except ResultSetError as e:
+        found = [str(e)]
     for p in found:
         print(p)
     return 1 if found else 0

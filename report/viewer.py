@@ -44,13 +44,22 @@ def colour_table(name):
 
 
 def reference_parameters(result_dir):
-    """The reference's parameters from the config the result set was run with, as `k=v k=v`."""
+    """The reference's parameters from the config the result set was run with, as `k=v k=v`; ""
+    for a set without one. rs.ResultSetError where config.toml is not TOML or its reference's
+    parameters are not a table."""
     path = os.path.join(result_dir, "config.toml")
     if not os.path.exists(path):
         return ""
     with open(path, "rb") as f:
-        params = tomllib.load(f).get("reference", {}).get("params", {})
-    return " ".join("%s=%s" % (k, json.dumps(v) if not isinstance(v, str) else v) for k, v in sorted(params.items()))
+        try:
+            config = tomllib.load(f)
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
+            raise rs.ResultSetError("%s: not valid TOML (%s)" % (path, e)) from None
+    reference = config.get("reference", {})
+    params = reference.get("params", {}) if isinstance(reference, dict) else None
+    if not isinstance(params, dict):
+        raise rs.ResultSetError("%s: reference.params: expected a table of the reference's parameters" % path)
+    return " ".join("%s=%s" % (k, v if isinstance(v, str) else json.dumps(v, default=str)) for k, v in sorted(params.items()))
 
 
 def serve_command(result_dir, out_dir):
@@ -62,18 +71,19 @@ def serve_command(result_dir, out_dir):
     return command
 
 
-def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, metric_table):
-    """viewer.html and viewer/ in `out_dir` for the result set in `result_dir`; `not_applicable`:
-    {(scene, size, setting name): why} for the settings the verdict left out; `colours`: {setting
-    name: "#rrggbb"}, the report's; `metric_table`: results.metric_table's."""
-    viewer_dir = os.path.join(out_dir, "viewer")
-    shutil.rmtree(viewer_dir, ignore_errors=True)  # whatever an earlier report left there
+def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, metric_table, reference, into):
+    """viewer.html and viewer/ for the report in `out_dir` on the result set in `result_dir`,
+    written into the folder `into` (the report's, before it is moved to `out_dir`);
+    `not_applicable`: {(scene, size, setting name): why} for the settings the verdict left out;
+    `colours`: {setting name: "#rrggbb"}, the report's; `metric_table`: results.metric_table's;
+    `reference`: reference_parameters'."""
+    viewer_dir = os.path.join(into, "viewer")
     os.makedirs(viewer_dir)
     settings = {
         "title": title,
         "result_set": os.path.relpath(result_dir, out_dir).replace(os.sep, "/"),
         "serve_command": serve_command(result_dir, out_dir),
-        "reference_parameters": reference_parameters(result_dir),
+        "reference_parameters": reference,
         "not_applicable": [[scene, size, name, why] for (scene, size, name), why in sorted(not_applicable.items())],
         "colours": colours,
         "metrics": metric_table,
@@ -90,9 +100,8 @@ def write_viewer(records, out_dir, result_dir, title, not_applicable, colours, m
             shutil.copyfile(os.path.join(VIEWER_SOURCE, name), os.path.join(viewer_dir, name))
     with open(os.path.join(VIEWER_SOURCE, PAGE)) as f:
         page = f.read().replace("@SERVE_COMMAND@", settings["serve_command"].replace("\\", "\\\\").replace("'", "\\'"))
-    with open(os.path.join(out_dir, PAGE), "w") as f:
+    with open(os.path.join(into, PAGE), "w") as f:
         f.write(page)
-    return os.path.join(out_dir, PAGE)
 
 
 def link(run_id, from_dir=""):

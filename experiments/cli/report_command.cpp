@@ -1,6 +1,6 @@
 // `hybridlab report DIR [--out DIR]`: the report of a result set, drawn by report/report.py
-// (matplotlib), which reads only results.json; written here first for a set whose runner was
-// killed before it wrote it.
+// (matplotlib), which checks every file of the set it reads before it writes anything; results.json
+// is written here first for a set whose runner was killed before it wrote it.
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -23,17 +23,27 @@ void addReportCommand(CLI::App& app) {
     cmd->add_option("--out", *out, "Report folder (default: RESULTS/report)");
     cmd->add_option("--baseline", *baseline, "Scene whose camera path is the baseline of \"where methods fail\" (default: sponza-spheres)");
     cmd->callback([dir, out, baseline] {
+        const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
+        std::vector<std::string> args = {*dir, "--out", target};
+        if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
+        // report.py says what is wrong on one line itself: a malformed file of the set (exit status
+        // 2, nothing written) or a report folder that cannot be written (3).
+        const auto report = [&](std::vector<std::string> a) {
+            const int status = runReportScript("report.py", a);
+            if (status == 2 || status == 3) throw CommandExit{status};
+            if (status != 0) throw std::runtime_error("report/report.py failed (exit status " + std::to_string(status) + ")");
+        };
+        // A killed runner's records are checked before results.json is written from them.
+        if (!fs::exists(fs::path(*dir) / "results.json") && fs::exists(fs::path(*dir) / "experiment.json")) {
+            std::vector<std::string> check = args;
+            check.push_back("--check-only");
+            report(check);
+        }
         if (const auto written = writeMissingResults(*dir))
             std::printf("%s: its runner stopped before writing results.json and results.csv; wrote them from its %zu records\n",
                         dir->c_str(), *written);
         if (!fs::exists(fs::path(*dir) / "results.json")) throw InputError(*dir + ": no results.json (not a result folder of `hybridlab run`)");
-        const std::string target = out->empty() ? (fs::path(*dir) / "report").string() : *out;
-        std::vector<std::string> args = {*dir, "--out", target};
-        if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
-        const int status = runReportScript("report.py", args);
-        // report.py exits with 2 on a bad result set (an unreadable image), having said which.
-        if (status == 2) throw InputError(*dir + ": not a complete result set (report/report.py's message above)");
-        if (status != 0) throw std::runtime_error("report/report.py failed (exit status " + std::to_string(status) + ")");
+        report(args);
     });
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "common/image/image_io.h"
 #include "tests/support/cli_runner.h"
@@ -156,6 +158,48 @@ void writeThirdRoundInputs(const fs::path& d) {
     writeTextFile(d / "name-up.toml", "[experiment]\nname = \"../../up\"\n\n" + scene + "\n[[techniques]]\nname = \"whitted\"\n");
 }
 
+// Result sets made malformed, each a copy of fixtures/result_sets/verdict (records, images; no
+// config.toml) with one file changed, and one copy whole: a results.json that is empty, holds no records, or a record
+// of width 0, without a label, with a negative frame time or a label longer than any file name; an
+// experiment.json that is not JSON or whose metric table shows -5 decimals; a config.toml that is
+// not TOML; a record that names a missing image; a killed runner's record whose SSIM is a string.
+void writeReportInputs(const fs::path& d) {
+    using test::writeTextFile;
+    const fs::path fixture = test::sourceDir() / "tests" / "fixtures" / "result_sets" / "verdict";
+    const auto set = [&](const std::string& name) {
+        fs::copy(fixture, d / name, fs::copy_options::recursive);
+        return d / name;
+    };
+    const auto changeRecord = [&](const std::string& name, const std::function<void(nlohmann::json&)>& change) {
+        const fs::path results = set(name) / "results.json";
+        nlohmann::json records = nlohmann::json::parse(test::readTextFile(results));
+        change(records[0]);
+        writeTextFile(results, records.dump(1));
+    };
+    writeTextFile(set("results-empty") / "results.json", "");
+    writeTextFile(set("results-none") / "results.json", "[]\n");
+    changeRecord("width-zero", [](nlohmann::json& r) { r["width"] = 0; });
+    changeRecord("no-label", [](nlohmann::json& r) { r.erase("label"); });
+    changeRecord("negative-time", [](nlohmann::json& r) { r["frame_ms"]["median"] = -5.0; });
+    changeRecord("long-label", [](nlohmann::json& r) { r["label"] = std::string(100000, 'L'); });
+    changeRecord("missing-image", [](nlohmann::json& r) { r["images"]["exr"] = "images/nope.exr"; });
+    writeTextFile(set("experiment-invalid") / "experiment.json", "{\n");
+    const fs::path digits = set("metric-digits") / "experiment.json";
+    nlohmann::json experiment = nlohmann::json::parse(test::readTextFile(digits));
+    experiment["metric_table"] = nlohmann::json::parse(R"([{"key": "ssim", "label": "SSIM", "better": "higher", "range": [0.0, 1.0],
+        "field": "ssim", "colormap": "viridis", "scored": true, "summarised": true, "digits": -5}])");
+    writeTextFile(digits, experiment.dump(1));
+    writeTextFile(set("config-invalid") / "config.toml", "[[[\n");
+    const fs::path killed = set("killed-ssim-string");
+    fs::remove(killed / "results.json");
+    const fs::path run = killed / "runs" / "0002-raster.json";
+    nlohmann::json record = nlohmann::json::parse(test::readTextFile(run));
+    record["metrics"]["whole"]["ssim"] = "x";
+    writeTextFile(run, record.dump(1));
+    set("whole");
+    writeTextFile(d / "a-file", "");
+}
+
 // Writes every input the cases name into `d`.
 void writeInputs(const fs::path& d) {
     using test::writeTextFile;
@@ -211,6 +255,7 @@ void writeInputs(const fs::path& d) {
     shard("shard-b1", "b", 'b', 1);
     writeHardeningInputs(d);
     writeThirdRoundInputs(d);
+    writeReportInputs(d);
 }
 
 struct BadInputCase {
@@ -358,6 +403,22 @@ const std::vector<BadInputCase> kCases = {
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "nan", "--out", "%o"}, 2, "--ppd: expected a finite number in [0.001, 1000], got nan"},
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "1e10", "--out", "%o"}, 2, "--ppd: expected a number in [0.001, 1000], got 1e10"},
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--range", "nan", "--out", "%o"}, 2, "--range: expected a finite number in [1e-12, 1e+12], got nan"},
+    // A result set's malformed file, named with the place in it; a report folder that cannot be written.
+    {{"report", "%d/results-empty", "--out", "%o"}, 2, "%d/results-empty/results.json: not valid JSON (Expecting value at line 1, column 1)"},
+    {{"report", "%d/results-none", "--out", "%o"}, 2, "%d/results-none/results.json: holds no records (expected at least one run)"},
+    {{"report", "%d/width-zero", "--out", "%o"}, 2, "%d/width-zero/results.json: record 0: $.width: 0 is below the minimum 1"},
+    {{"report", "%d/no-label", "--out", "%o"}, 2, "%d/no-label/results.json: record 0: $: missing required 'label'"},
+    {{"report", "%d/negative-time", "--out", "%o"}, 2, "%d/negative-time/results.json: record 0: $.frame_ms.median: -5.0 is below the minimum 0"},
+    {{"report", "%d/long-label", "--out", "%o"}, 2, "%d/long-label/results.json: record 0: $.label: expected at most 255 characters, got 100000"},
+    {{"report", "%d/missing-image", "--out", "%o"}, 2, "%d/missing-image/images/nope.exr: "},
+    {{"report", "%d/experiment-invalid", "--out", "%o"}, 2,
+     "%d/experiment-invalid/experiment.json: not valid JSON (Expecting property name enclosed in double quotes at line 2, column 1)"},
+    {{"report", "%d/metric-digits", "--out", "%o"}, 2, "%d/metric-digits/experiment.json: $.metric_table[0].digits: -5 is below the minimum 0"},
+    {{"report", "%d/config-invalid", "--out", "%o"}, 2, "%d/config-invalid/config.toml: not valid TOML (Invalid initial character for a key part (at line 1, column 3))"},
+    {{"report", "%d/killed-ssim-string", "--out", "%o"}, 2,
+     "%d/killed-ssim-string/runs/0002-raster.json: $.metrics.whole.ssim: expected number or null, got \"x\""},
+    {{"report", "%d/whole", "--out", "%d/a-file"}, 3, "%d/a-file: cannot be written (a file, not a folder)"},
+    {{"report", "%d/whole", "--out", "/proc/hybridlab-no-such-folder/report"}, 3, "/proc/hybridlab-no-such-folder/report: cannot be written ("},
     // Arguments: one line, with the pointer to --help on it.
     {{"scene-info", "whitted-classic", "--frobnicate"}, 2, "The following argument was not expected: --frobnicate (hybridlab --help for usage)"},
     {{"frobnicate"}, 2, "unknown command 'frobnicate' (commands: "},

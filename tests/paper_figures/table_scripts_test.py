@@ -126,7 +126,7 @@ class TableScripts(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             out = subprocess.run(["/usr/bin/python3", os.path.join(SCRIPTS, "gbuffer_rays_table.py"), d], capture_output=True, text=True)
         self.assertEqual(out.returncode, 1)
-        self.assertIn("gbuffer_rays_table: %s is not a result set" % d, out.stderr)
+        self.assertEqual(out.stderr, "gbuffer_rays_table: %s: not a result set (no results.json, no runs/)\n" % d)
 
 
 if __name__ == "__main__":

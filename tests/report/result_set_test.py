@@ -3,7 +3,8 @@
 tests/fixtures/result_sets (made by its make_result_sets.py): results.py (records from results.json
 or runs/, their accessors, the schema check on python3-jsonschema, the table lines and the device
 line), images.py (the images through OpenImageIO), verdict.py (digests that find identical images,
-the sentence, its command line), device.py, palette.py and figure_files.py.
+the sentence, its command line), device.py, palette.py and figure_files.py; the checks that refuse
+a malformed result set, and staged_folder.py.
 
     result_set_test.py        (standard library unittest; no hybridlab program needed)"""
 import contextlib
@@ -27,6 +28,7 @@ import images  # noqa: E402
 import numpy as np  # noqa: E402
 import palette  # noqa: E402
 import results  # noqa: E402
+import staged_folder  # noqa: E402
 import verdict  # noqa: E402
 
 VERDICT_SET = os.path.join(SETS, "verdict")
@@ -49,12 +51,11 @@ class Results(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             shutil.copytree(os.path.join(VERDICT_SET, "runs"), os.path.join(d, "runs"))
             write_text(os.path.join(d, "runs", ".tmp-1-0000.json"), "{")  # an interrupted write: not a record
-            err = io.StringIO()
-            with contextlib.redirect_stderr(err):
-                from_runs = results.load(d)
+            from_runs = results.sourced_records(d)
             self.assertTrue(results.is_result_set(d))
-        self.assertEqual(from_runs, records)
-        self.assertIn("no results.json", err.getvalue())
+        self.assertEqual([r for _, r in from_runs], records)
+        self.assertEqual(from_runs[2][0], os.path.join(d, "runs", "0002-raster.json"))
+        self.assertEqual(results.sourced_records(VERDICT_SET)[1][0], os.path.join(VERDICT_SET, "results.json") + ": record 1")
         self.assertFalse(results.is_result_set(HERE))
 
     def test_accessors(self):
@@ -159,6 +160,135 @@ class Results(unittest.TestCase):
             write_text(os.path.join(d, "results.json"), json.dumps(records))
             bad = subprocess.run(["/usr/bin/python3", os.path.join(REPORT, "results.py"), d], capture_output=True, text=True)
         self.assertEqual((bad.returncode, bad.stdout), (1, "record 1: $: missing required 'scene'\n"))
+
+
+class BadInput(unittest.TestCase):
+    """A result set's file that is not as its writer writes it: ResultSetError, one line naming the
+    file and the place in it (`hybridlab report`'s exit status 2; tests/cli/test_bad_input_table.cpp
+    runs the program on such sets)."""
+
+    def error(self, call, *args):
+        with self.assertRaises(results.ResultSetError) as caught:
+            call(*args)
+        self.assertNotIn("\n", str(caught.exception))
+        return str(caught.exception)
+
+    def test_json_a_writer_never_writes(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "x.json")
+            for text, problem in (("", "not valid JSON (Expecting value at line 1, column 1)"),
+                                  ('{"a": 1,\n}', "at line 2, column 1"),
+                                  ('{"a": NaN}', "NaN is not a JSON number"),
+                                  ('{"a": 1e400}', "number 1e400 is beyond a double's range"),
+                                  ("[" * 100000, "nested too deeply"),
+                                  (b"\xff", "not UTF-8 text at byte 0")):
+                with open(path, "wb") as f:
+                    f.write(text if isinstance(text, bytes) else text.encode())
+                message = self.error(results.read_json, path)
+                self.assertTrue(message.startswith(path + ": not valid JSON ("), message)
+                self.assertIn(problem, message)
+
+    def test_records_checked_where_the_report_relies_on_them(self):
+        table = results.BUILT_IN_METRICS
+        good = results.load(VERDICT_SET)[1]
+        self.assertEqual(results.record_problems(good, table), [])
+        for breaks, problem in [(lambda r: r.update(label="L" * 256), "$.label: expected at most 255 characters, got 256"),
+                                (lambda r: r["frame_ms"].update(median=0.0, min=0.0), "$.frame_ms.median: expected a number above 0, got 0.0"),
+                                (lambda r: r["frame_ms"].update(median=2 * r["frame_ms"]["max"]), "$.frame_ms: expected min <= ci_low <= median <= ci_high <= max in that order, got min 20, ci_low 20, median 40"),
+                                (lambda r: r["stages"].update(trace={"median": 1.0, "min": -1.0, "max": 2.0}), "$.stages.trace.min: -1.0 is below the minimum 0"),
+                                (lambda r: r["metrics"]["whole"].update(ssim="x"), '$.metrics.whole.ssim: expected number or null, got "x"'),
+                                (lambda r: r["metrics"]["whole"].update(ssim={"mean": 0.5}),
+                                 "$.metrics.whole.ssim: expected a number (metric 'ssim' of the metric table)"),
+                                (lambda r: r.update(schema_version=results.SCHEMA_VERSION + 1), "$.schema_version: %d is newer than this program reads" % (results.SCHEMA_VERSION + 1))]:
+            broken = copy.deepcopy(good)
+            breaks(broken)
+            found = results.record_problems(broken, table)
+            self.assertTrue(found and found[0].startswith(problem), (problem, found))
+
+    def test_a_set_names_its_bad_file_and_record(self):
+        with tempfile.TemporaryDirectory() as d:
+            shutil.copytree(VERDICT_SET, os.path.join(d, "set"))
+            d = os.path.join(d, "set")
+            table = results.metric_table(d)
+            self.assertEqual(len(results.checked_records(d, table)), 4)
+            records = json.loads(read_text(os.path.join(d, "results.json")))
+            write_text(os.path.join(d, "results.json"), json.dumps({"runs": records}))
+            self.assertEqual(self.error(results.checked_records, d, table),
+                             os.path.join(d, "results.json") + ': expected an array of records, got {"runs": [{"index": 0, "id": "0000-rt_on...')
+            write_text(os.path.join(d, "results.json"), json.dumps(records[:2] + [7]))
+            self.assertEqual(self.error(results.checked_records, d, table),
+                             os.path.join(d, "results.json") + ": record 2: expected a run's record (an object), got 7")
+            del records[3]["images"]
+            write_text(os.path.join(d, "results.json"), json.dumps(records))
+            self.assertEqual(self.error(results.checked_records, d, table),
+                             os.path.join(d, "results.json") + ": record 3: $: missing required 'images'")
+            os.remove(os.path.join(d, "results.json"))
+            record = json.loads(read_text(os.path.join(d, "runs", "0001-heuristic_rt.json")))
+            record["width"] = 0
+            write_text(os.path.join(d, "runs", "0001-heuristic_rt.json"), json.dumps(record))
+            self.assertEqual(self.error(results.checked_records, d, table),
+                             os.path.join(d, "runs", "0001-heuristic_rt.json") + ": $.width: 0 is below the minimum 1")
+            shutil.rmtree(os.path.join(d, "runs"))
+            os.makedirs(os.path.join(d, "runs"))
+            self.assertEqual(self.error(results.checked_records, d, table),
+                             os.path.join(d, "runs") + ": holds no records (expected at least one run)")
+
+    def test_experiment_json_where_the_report_reads_it(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.assertEqual(results.metric_table(d), results.BUILT_IN_METRICS)  # a set older than experiment.json's table
+            path = os.path.join(d, "experiment.json")
+            table = copy.deepcopy(results.BUILT_IN_METRICS)
+            write_text(path, json.dumps({"metric_table": table, "resolution_scale": 0.5}))
+            self.assertEqual(results.metric_table(d), table)
+            self.assertEqual(results.resolution_scale(d), 0.5)
+            for experiment, problem in [({"metric_table": [dict(table[0], digits=-5)]}, "$.metric_table[0].digits: -5 is below the minimum 0"),
+                                        ({"metric_table": [dict(table[0], better="more")]}, "$.metric_table[0].better: expected one of"),
+                                        ({"metric_table": [dict(table[0], scored=False)]}, "$.metric_table: expected a scored metric"),
+                                        ({"resolution_scale": 0}, "$.resolution_scale: expected a number above 0, got 0"),
+                                        ({"device": "a GPU"}, '$.device: expected object or null, got "a GPU"'),
+                                        ([], "$: expected object, got []")]:
+                write_text(path, json.dumps(experiment))
+                message = self.error(results.metric_table, d)
+                self.assertTrue(message.startswith("%s: %s" % (path, problem)), (problem, message))
+
+
+class StagedFolder(unittest.TestCase):
+    """staged_folder.staged: a report folder written whole or not at all."""
+
+    def test_a_failure_leaves_the_folder_as_it_was(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "report")
+            with self.assertRaises(RuntimeError):
+                with staged_folder.staged(out) as into:
+                    write_text(os.path.join(into, "index.html"), "half")
+                    raise RuntimeError("drawing failed")
+            self.assertEqual(os.listdir(d), [])
+            os.makedirs(os.path.join(out, "figures"))
+            write_text(os.path.join(out, "index.html"), "earlier")
+            write_text(os.path.join(out, "figures", "old.svg"), "earlier")
+            write_text(os.path.join(out, "notes.txt"), "the user's")
+            with self.assertRaises(OSError):
+                with staged_folder.staged(out) as into:
+                    write_text(os.path.join(into, "index.html"), "half")
+                    raise OSError(28, "No space left on device")
+            self.assertEqual(read_text(os.path.join(out, "index.html")), "earlier")
+            # Whole: its entries replace those of their names, the others stay.
+            with staged_folder.staged(out) as into:
+                os.makedirs(os.path.join(into, "figures"))
+                write_text(os.path.join(into, "index.html"), "new")
+            self.assertEqual(sorted(os.listdir(d)), ["report"])
+            self.assertEqual(sorted(os.listdir(out)), ["figures", "index.html", "notes.txt"])
+            self.assertEqual((read_text(os.path.join(out, "index.html")), os.listdir(os.path.join(out, "figures"))), ("new", []))
+
+    def test_a_destination_that_cannot_be_written(self):
+        with tempfile.TemporaryDirectory() as d:
+            write_text(os.path.join(d, "a-file"), "")
+            for out in (os.path.join(d, "a-file"), os.path.join(d, "a-file", "report")):
+                with self.assertRaises(OSError) as caught:
+                    with staged_folder.staged(out):
+                        self.fail("staged into " + out)
+                self.assertEqual(caught.exception.filename, out)
+            self.assertEqual(os.listdir(d), ["a-file"])
 
 
 def device_record():

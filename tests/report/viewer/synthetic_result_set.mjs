@@ -200,7 +200,8 @@ export function writeSyntheticSet(folder, { width = 1280, height = 720, frames =
         stages: { trace: { median: s.ms * 0.8, min: s.ms * 0.8, max: s.ms * 0.8 } },
         counters: { rays_total: Math.round(width * height * s.ms / 10) },
         frame_ms: { median: s.ms * (1 + 0.01 * (f % 3)), min: s.ms, max: s.ms * 1.05 },
-        metrics: { whole: { pixels: width * height, ssim: s.ssim - 0.001 * (f % 2), flip: { mean: 1 - s.ssim } }, masked: null },
+        metrics: { whole: { pixels: width * height, ssim: s.ssim - 0.001 * (f % 2), flip: { mean: 1 - s.ssim } }, masked: null,
+                   reference: ref, test: exr, width, height },
         reference: { key: `orbit-${f}`, exr: ref, png: ref.replace('.exr', '.png'), frame_ms: 80.0, cache_hit: false },
         images: { exr, png: exr.replace('.exr', '.png'), maps: null },
       });
