@@ -42,7 +42,7 @@ class ResultSetHandler(http.server.SimpleHTTPRequestHandler):
 
 
 def fail(message, status):
-    print("hybridlab view: %s" % message, file=sys.stderr)
+    print("hybridlab: error: %s" % message, file=sys.stderr)
     sys.exit(status)
 
 

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "common/core/input_error.h"
-#include "common/core/io_error.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/python_script.h"
 
@@ -32,9 +31,10 @@ void addViewCommand(CLI::App& app) {
                              (report->empty() ? "" : " --out " + *report) + ")");
         std::vector<std::string> args = {*dir, "--port", std::to_string(*port)};
         if (!report->empty()) args.insert(args.end(), {"--report", *report});
+        // serve.py says what is wrong on one line itself: bad input (exit status 2) or a port it
+        // cannot listen on (3).
         const int status = runReportScript("serve.py", args, Interrupt::ScriptOnly);
-        if (status == 2) throw InputError(*dir + ": cannot be served (report/serve.py's message above)");
-        if (status == 3) throw IoError("cannot serve " + *dir + " (report/serve.py's message above)");
+        if (status == 2 || status == 3) throw CommandExit{status};
         if (status != 0) throw std::runtime_error("report/serve.py failed (exit status " + std::to_string(status) + ")");
     });
 }
