@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "common/core/cli_number_validators.h"
 #include "experiments/cli/commands.h"
 #include "experiments/runner/portable_bundle.h"
 
@@ -17,7 +18,7 @@ void addBundleCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("bundle",
                                    "Write a relocatable folder that runs this program where its packages are not installed: the "
                                    "program, the shared libraries it loads but the base system's, the scenes, a launcher");
-    cmd->add_option("--out", *out, "Bundle folder (new, or an empty folder)")->required();
+    cmd->add_option("--out", *out, "Bundle folder (new, or an empty folder)")->required()->check(nonEmpty("a folder"));
     cmd->add_option("--config", *configs,
                     "Experiment config whose scenes' models and textures the bundle carries, with the config (repeatable: several experiments)");
     cmd->callback([out, configs] {

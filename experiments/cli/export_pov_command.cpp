@@ -1,6 +1,7 @@
 // `hybridlab export-pov`: the scene of one frame as a POV-Ray 3.7 scene file, for the independent
 // check of the Whitted reference (common/raytrace/pov_export.h).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -8,6 +9,8 @@
 #include "common/raytrace/pov_export.h"
 #include "common/scene/scene_catalog.h"
 #include "common/scene/scene_file.h"
+#include "common/core/cli_number_validators.h"
+#include "common/core/input_error.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/view_options.h"
 
@@ -21,6 +24,8 @@ struct ExportPovOptions {
 };
 
 void run(const ExportPovOptions& o) {
+    std::error_code error;
+    if (std::filesystem::is_directory(o.out, error)) throw InputError("--out " + o.out + ": a folder, expected a .pov file name");
     Scene scene = loadSceneFile(findSceneFile(o.view.scene));
     View view = o.view.resolve(scene);
     PovExport result = writePovScene(scene, view.camera, view.time, o.view.width, o.view.height, o.out);
@@ -42,7 +47,7 @@ void addExportPovCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("export-pov", "Write one frame's scene as a POV-Ray 3.7 scene file (with its textures as "
                                                  "linear PNGs beside it), to check the Whitted reference against POV-Ray");
     o->view.addTo(cmd, " (sets the aspect ratio)");
-    cmd->add_option("--out", o->out, "Output POV-Ray scene file (.pov)")->required();
+    cmd->add_option("--out", o->out, "Output POV-Ray scene file (.pov)")->required()->check(nonEmpty("a .pov file name"));
     cmd->callback([o] { run(*o); });
 }
 

@@ -399,6 +399,9 @@ const std::vector<BadInputCase> kCases = {
      "--view-height: expected a finite number in [-1e+12, 1e+12], got nan"},
     {{"bench", "--scene", "whitted-classic", "--budget", "nan"}, 2, "--budget: expected a finite number in [1, 1e+18], got nan"},
     {{"merge", "--out", "", "%d/shard-a0", "%d/shard-a1"}, 2, "--out: expected a folder, got ''"},
+    {{"bundle", "--out", ""}, 2, "--out: expected a folder, got ''"},
+    {{"export-pov", "--scene", "whitted-classic", "--out", ""}, 2, "--out: expected a .pov file name, got ''"},
+    {{"export-pov", "--scene", "whitted-classic", "--out", "%d/a-folder"}, 2, "--out %d/a-folder: a folder, expected a .pov file name"},
     // FLIP's viewing condition: its filters grow with it (10^10 asked for more memory than exists).
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "nan", "--out", "%o"}, 2, "--ppd: expected a finite number in [0.001, 1000], got nan"},
     {{"compare", "%d/finite.exr", "%d/finite.exr", "--ppd", "1e10", "--out", "%o"}, 2, "--ppd: expected a number in [0.001, 1000], got 1e10"},
