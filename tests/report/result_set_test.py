@@ -143,6 +143,7 @@ class Results(unittest.TestCase):
                                 (lambda r: r.update(width="64"), "$.width: expected integer"),
                                 (lambda r: r.update(frame=-2), "$.frame: -2 is below the minimum -1"),
                                 (lambda r: r.update(colour=1), "$: unexpected 'colour'"),
+                                (lambda r: r["timing"].update(precision=1), "$.timing.precision: 1"),  # the tie band's end
                                 (lambda r: r["timing"]["frame_ms_rounds"].__setitem__(0, "x"), "$.timing.frame_ms_rounds[0]: expected number")]:
             broken = copy.deepcopy(r)
             breaks(broken)
