@@ -11,6 +11,7 @@
 #include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "metrics/temporal.h"
@@ -34,16 +35,43 @@ void ResultsStore::writeRecord(const RunRecord& record) const {
 void ResultsStore::recordRun(const RunRecord& record) const { writeRecord(record); }
 
 std::vector<RunRecord> ResultsStore::loadRecords() const {
-    std::vector<RunRecord> records;
-    if (!fs::exists(runsDir())) return records;
-    for (const auto& e : fs::directory_iterator(runsDir())) {
+    const fs::path runs = runsDir();
+    std::string reason;
+    switch (inputPathKind(runs, &reason)) {
+    case InputPathKind::Missing: return {};
+    case InputPathKind::Directory: break;
+    case InputPathKind::Unreadable: throw InputError(runs.string() + ": cannot be read (" + reason + ")");
+    default: throw InputError(runs.string() + ": is not a folder, expected the folder of the set's records (runs/<id>.json)");
+    }
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
         // Temporary files of an interrupted write start with a dot: not records.
-        if (e.path().extension() != ".json" || e.path().filename().string().front() == '.') continue;
-        std::ifstream in(e.path());
+        const fs::path& file = it->path();
+        if (file.extension() == ".json" && file.filename().string().front() != '.') files.push_back(file);
+    }
+    if (ec) throw IoError::fromErrno(runs, "list the folder", ec.value());
+    std::sort(files.begin(), files.end());  // so that a message names the same file every time
+    std::vector<RunRecord> records;
+    std::map<std::size_t, fs::path> fileOfIndex;
+    for (const fs::path& file : files) {
+        const std::string text = readInputFile(file, "a run's record");
         try {
-            records.push_back(fromJson(json::parse(in)));
+            records.push_back(fromJson(json::parse(text)));
         } catch (const std::exception& error) {  // not JSON, or not a record
-            throw InputError(e.path().string() + ": " + error.what());
+            throw InputError(file.string() + ": " + error.what());
+        }
+        // One file a run, named by its id: what --resume skips and merge joins by.
+        const RunRecord& r = records.back();
+        if (r.id != file.stem().string()) {
+            const fs::path own = runs / (r.id + ".json");
+            std::error_code unseen;
+            throw InputError(file.string() + ": holds the record of run '" + r.id + "', expected the run its name says, '" +
+                             file.stem().string() + "'" + (fs::exists(own, unseen) ? " (" + own.string() + " holds that run's record too)" : ""));
+        }
+        if (const auto [at, added] = fileOfIndex.emplace(r.index, file); !added) {
+            throw InputError(file.string() + ": records run " + std::to_string(r.index) + " of the plan, as " + at->second.string() +
+                             " does; expected one record a run");
         }
     }
     std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) { return a.index < b.index; });
@@ -150,9 +178,9 @@ InputError notExperimentJson(const fs::path& file, const json::exception& e) {
 }
 
 json readSetJson(const fs::path& file) {
-    std::ifstream in(file);
+    const std::string text = readInputFile(file, "a result set's JSON file");
     try {
-        return json::parse(in);
+        return json::parse(text);
     } catch (const json::exception& e) {
         throw InputError(file.string() + ": " + e.what());
     }

@@ -37,7 +37,9 @@ public:
     // What the runner does when a run finishes: its record written, nothing else (O(1) a run).
     void recordRun(const RunRecord& record) const;
     // Every record, ordered by run index. Throws InputError naming the file of one that is not a
-    // record (run_record.h).
+    // record (run_record.h), of one whose id is not its file's name, of a second record of a run
+    // (both files), and naming runs/ where it is not a folder; IoError where it cannot be listed.
+    // Every reader of a set's records (--resume, merge, report's rebuild) reads them here.
     std::vector<RunRecord> loadRecords() const;
 
     // Whether results.json exists (then results.csv does too, and both list every record).

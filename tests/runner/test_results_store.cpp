@@ -161,6 +161,29 @@ TEST(ResultsStore, RecordsRoundTripThroughTheirOneWriter) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("broken.json: results record $: missing 'id'"), std::string::npos) << e.what();
     }
+    fs::remove(store.runsDir() / "broken.json");
+    // One file a run, named by the run's id, in a folder runs/: a record copied under another name,
+    // or renamed with its id, is a second record of its run; both files are named.
+    const auto loadRefusal = [&] {
+        try {
+            store.loadRecords();
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const fs::path own = store.runsDir() / (real.id + ".json");
+    json copy = toJson(real);
+    test::writeTextFile(store.runsDir() / "copy.json", copy.dump());
+    EXPECT_EQ(loadRefusal(), (store.runsDir() / "copy.json").string() + ": holds the record of run '" + real.id +
+                                 "', expected the run its name says, 'copy' (" + own.string() + " holds that run's record too)");
+    copy["id"] = "copy";
+    test::writeTextFile(store.runsDir() / "copy.json", copy.dump());
+    EXPECT_EQ(loadRefusal(), (store.runsDir() / "copy.json").string() + ": records run 0 of the plan, as " + own.string() +
+                                 " does; expected one record a run");
+    fs::remove_all(store.runsDir());
+    test::writeTextFile(store.runsDir(), "not a folder");
+    EXPECT_EQ(loadRefusal(), store.runsDir().string() + ": is not a folder, expected the folder of the set's records (runs/<id>.json)");
 }
 
 TEST(ResultsStoreBenchmark, DISABLED_RecordingTheThousandthRunCostsAsMuchAsTheTenth) {
