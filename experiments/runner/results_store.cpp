@@ -173,6 +173,51 @@ std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
     return records.size();
 }
 
+void checkRecordFiles(const fs::path& dir, const RunRecord& record) {
+    const fs::path recordFile = ResultsStore(dir).runsDir() / (record.id + ".json");
+    const auto refuse = [&](const fs::path& file, const std::string& what) {
+        return InputError(file.string() + ": " + what + " (named by " + recordFile.string() + ")");
+    };
+    // A path the record names, relative to the set and inside it.
+    const auto inSet = [&](const std::string& field, const std::string& name) {
+        const fs::path relative(name);
+        if (relative.empty() || relative.is_absolute() ||
+            std::any_of(relative.begin(), relative.end(), [](const fs::path& part) { return part == ".."; }))
+            throw InputError(recordFile.string() + ": " + field + ": expected a path inside the result set, got '" + name + "'");
+        return dir / relative;
+    };
+    const auto image = [&](const std::string& field, const std::string& name, bool ofRecordSize) {
+        const fs::path file = inSet(field, name);
+        ImageSize size;
+        try {
+            size = checkImageFile(file);
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            // checkImageFile's message already starts with the file.
+            throw refuse(file, what.rfind(file.string() + ": ", 0) == 0 ? what.substr(file.string().size() + 2) : what);
+        }
+        if (ofRecordSize && (size.width != record.width || size.height != record.height))
+            throw refuse(file, "is " + std::to_string(size.width) + "x" + std::to_string(size.height) + ", expected the run's " +
+                                   std::to_string(record.width) + "x" + std::to_string(record.height));
+    };
+    image("images.exr", record.images.exr, true);
+    image("images.png", record.images.png, true);
+    for (const auto& [name, file] : record.images.debug) image("images.debug." + name, file, false);
+    image("reference.exr", record.reference.exr, true);
+    image("reference.png", record.reference.png, true);
+    if (record.reference.mask) image("reference.mask", *record.reference.mask, true);
+    if (record.images.maps) {
+        const fs::path maps = inSet("images.maps", *record.images.maps);
+        std::string reason;
+        switch (inputPathKind(maps, &reason)) {
+        case InputPathKind::Directory: break;
+        case InputPathKind::Missing: throw refuse(maps, "folder not found, expected the run's error maps");
+        case InputPathKind::Unreadable: throw refuse(maps, "cannot be read (" + reason + ")");
+        default: throw refuse(maps, "is not a folder, expected the run's error maps");
+        }
+    }
+}
+
 InputError notExperimentJson(const fs::path& file, const json::exception& e) {
     return InputError(file.string() + ": not an experiment.json of hybridlab run (" + e.what() + ")");
 }

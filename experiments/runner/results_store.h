@@ -59,6 +59,13 @@ private:
     std::filesystem::path dir_;
 };
 
+// Refuses (InputError naming the file and the record) a record of the set in `dir` whose files are
+// missing or are not images of the record's size, or lie outside the set: its images, debug
+// images, reference and mask (headers read, pixels not decoded: a set's images are read whole
+// once, not decoded), and its error maps' folder. For `merge`, which would otherwise join a set the
+// report cannot read.
+void checkRecordFiles(const std::filesystem::path& dir, const RunRecord& record);
+
 // For a reader of the set in `dir` (`report`): when its runner was killed before writing
 // results.json and results.csv, writes them from the records as the runner would have, holding
 // the folder's lock (InputError naming the runner while one writes the folder). Returns the number
