@@ -159,6 +159,30 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
     renameOver(tmp, path);
 }
 
+void writeFolderAtomically(const fs::path& dir, const std::function<void(const fs::path&)>& fill) {
+    const fs::path target = dir.has_filename() ? dir : dir.parent_path();  // "out/" is "out"
+    const fs::path staging = temporaryPathFor(target);
+    createDirectories(staging);
+    try {
+        fill(staging);
+        std::error_code ec;
+        fs::rename(staging, target, ec);
+        if (ec) throw IoError::fromErrno(target, "create", ec.value());
+    } catch (const IoError& e) {
+        std::error_code ignored;
+        fs::remove_all(staging, ignored);
+        // Named as the user will look for it: under `dir`, not the temporary.
+        std::string message = e.what();
+        for (std::size_t at = message.find(staging.string()); at != std::string::npos; at = message.find(staging.string(), at))
+            message.replace(at, staging.string().size(), target.string());
+        throw IoError(message);
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove_all(staging, ignored);
+        throw;
+    }
+}
+
 void createDirectories(const fs::path& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);

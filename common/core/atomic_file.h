@@ -42,6 +42,13 @@ private:
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // (temporary, file)
 };
 
+// A folder that appears complete or not at all (a merged result set, a bundle): `fill` fills the
+// temporary folder it is given beside `dir` (".tmp-PID-NAME"), which is then renamed to `dir`;
+// whatever `fill` throws, the temporary is removed and `dir` is not touched (an IoError's message
+// names the file under `dir`, not under the temporary). `dir` must not exist, or be an empty
+// folder (the rename replaces it).
+void writeFolderAtomically(const std::filesystem::path& dir, const std::function<void(const std::filesystem::path&)>& fill);
+
 // fs::create_directories, failing with IoError naming `dir` and the reason.
 void createDirectories(const std::filesystem::path& dir);
 

@@ -20,6 +20,8 @@
 #include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
+#include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "common/image/non_finite_pixels.h"
 #include "common/scene/scene_file.h"
@@ -677,17 +679,36 @@ ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOption
 
 namespace {
 
-// A shard folder's experiment.json, or InputError naming the folder.
+// A shard folder's experiment.json, or InputError naming it: every field merge reads is there
+// and of its type (older shards lack the optional ones).
 json readShardMeta(const fs::path& dir) {
     const fs::path file = dir / "experiment.json";
-    if (!fs::is_regular_file(file)) throw InputError(dir.string() + ": not an experiment folder (no experiment.json)");
-    std::ifstream in(file);
-    json m = json::parse(in, nullptr, false);
-    const auto has = [](const json& j, const char* key, bool (json::*is)() const noexcept) { return j.is_object() && j.contains(key) && (j.at(key).*is)(); };
-    if (m.is_discarded() || !has(m, "config_hash", &json::is_string) || !has(m, "runs_total", &json::is_number_unsigned) ||
-        !has(m, "shard", &json::is_object) || !has(m.at("shard"), "index", &json::is_number_integer) ||
-        !has(m.at("shard"), "count", &json::is_number_integer)) {
-        throw InputError(file.string() + ": not an experiment record (expected JSON with config_hash, runs_total and shard index and count)");
+    if (inputPathKind(file) == InputPathKind::Missing) throw InputError(dir.string() + ": not an experiment folder (no experiment.json)");
+    const json m = readSetJson(file);
+    struct Field {
+        const char* name;
+        bool (json::*is)() const noexcept;
+        const char* type;
+        bool required;
+    };
+    static const Field kFields[] = {
+        {"config_hash", &json::is_string, "a string", true},      {"runs_total", &json::is_number_unsigned, "an integer >= 0", true},
+        {"shard", &json::is_object, "an object", true},           {"shard.index", &json::is_number_integer, "an integer", true},
+        {"shard.count", &json::is_number_integer, "an integer", true}, {"shard.partition", &json::is_string, "a string", false},
+        {"shard.runs", &json::is_number_integer, "an integer", false}, {"shard.estimated_cost", &json::is_number, "a number", false},
+        {"name", &json::is_string, "a string", false},            {"resolution_scale", &json::is_number, "a number", false},
+        {"metrics", &json::is_array, "an array", false},
+    };
+    if (!m.is_object()) throw InputError(file.string() + ": not an experiment record (expected a JSON object, got " + m.dump() + ")");
+    for (const Field& f : kFields) {
+        std::string pointer = std::string("/") + f.name;
+        std::replace(pointer.begin(), pointer.end(), '.', '/');
+        const json::json_pointer at(pointer);
+        if (!m.contains(at)) {
+            if (f.required) throw InputError(file.string() + ": not an experiment record (no " + f.name + ")");
+        } else if (!(m.at(at).*f.is)()) {
+            throw InputError(file.string() + ": " + f.name + ": expected " + f.type + ", got " + m.at(at).dump());
+        }
     }
     return m;
 }
@@ -696,34 +717,44 @@ std::string shardName(const json& meta) {
     return std::to_string(meta.at("shard").at("index").get<long long>()) + "/" + std::to_string(meta.at("shard").at("count").get<long long>());
 }
 
-// The ids of the records in a folder's runs/ (without reading them).
-std::vector<std::string> recordedIds(const fs::path& dir) {
-    std::vector<std::string> ids;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(ResultsStore(dir).runsDir(), ec)) {
-        const std::string name = e.path().filename().string();
-        if (e.path().extension() == ".json" && name.front() != '.') ids.push_back(e.path().stem().string());
-    }
-    return ids;
-}
+// The folders of a shard that merge copies whole.
+constexpr const char* kCopiedFolders[] = {"images", "maps", "references"};
 
-// Writes the merged result set of shards mergeShards has checked: their records, images and
-// references, experiment.json as one unsharded run's, and each shard's time.
-void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<json>& metas, const fs::path& outDir,
-                    const std::map<std::string, std::size_t>& shardOfId, std::vector<MergedShard>& shards) {
-    const ResultsStore out(outDir);
-    out.createLayout();
-    for (const auto& d : shardDirs) {
-        for (const char* sub : {"runs", "images", "maps", "references"}) {
-            if (fs::exists(d / sub))
-                fs::copy(d / sub, outDir / sub, fs::copy_options::recursive | fs::copy_options::skip_existing);
+// A shard's files other than its records, checked before anything is written: its config, and
+// the folders merge copies, each absent or a folder.
+void checkShardFolder(const fs::path& dir) {
+    requireInputFile(dir / "config.toml", "the config the shard was run with");
+    for (const char* sub : kCopiedFolders) {
+        std::string reason;
+        switch (inputPathKind(dir / sub, &reason)) {
+        case InputPathKind::Missing:
+        case InputPathKind::Directory: break;
+        case InputPathKind::Unreadable: throw InputError((dir / sub).string() + ": cannot be read (" + reason + ")");
+        default: throw InputError((dir / sub).string() + ": is not a folder, expected the shard's " + sub);
         }
     }
-    fs::copy_file(shardDirs.front() / "config.toml", outDir / "config.toml", fs::copy_options::overwrite_existing);
+}
+
+// fs::copy of a folder's tree, skipping files already there; IoError naming both where it fails.
+void copyTree(const fs::path& from, const fs::path& to) {
+    std::error_code ec;
+    fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::skip_existing, ec);
+    if (ec) throw IoError(from.string() + ": cannot be copied into " + to.string() + " (" + ec.message() + ")");
+}
+
+// Writes into `outDir` the merged result set of shards mergeShards has checked: their records (each
+// with its shard's device where they were measured on several), images and references,
+// experiment.json as one unsharded run's, results.json and results.csv.
+void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<json>& metas, const std::vector<std::vector<RunRecord>>& records,
+                    const fs::path& outDir) {
+    const ResultsStore out(outDir);
+    out.createLayout();
+    for (const auto& d : shardDirs)
+        for (const char* sub : kCopiedFolders)
+            if (inputPathKind(d / sub) == InputPathKind::Directory) copyTree(d / sub, outDir / sub);
+    writeFileAtomically(outDir / "config.toml", readInputFile(shardDirs.front() / "config.toml", "the config the shard was run with"));
     json meta = metas.front();
     meta["shard"] = {{"index", 0}, {"count", 1}, {"partition", kPartition}};
-    std::vector<RunRecord> records = out.loadRecords();
-    for (const RunRecord& r : records) shards.at(shardOfId.at(r.id)).seconds += r.runSeconds.value_or(0.0);
     // Mixed devices: each run keeps its shard's device, and experiment.json lists them all.
     bool mixed = false;
     for (const json& m : metas) mixed |= !sameDevice(m.value("device", json()), metas.front().value("device", json()));
@@ -733,8 +764,10 @@ void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<js
             if (std::none_of(devices.begin(), devices.end(), [&](const json& k) { return sameDevice(k, m.value("device", json())); }))
                 devices.push_back(m.value("device", json()));
         meta["devices"] = devices;
-        for (RunRecord& r : records) {
-            r.device = metas.at(shardOfId.at(r.id)).value("device", json());
+    }
+    for (std::size_t k = 0; k < records.size(); ++k) {
+        for (RunRecord r : records[k]) {
+            if (mixed) r.device = metas[k].value("device", json());
             out.writeRecord(r);
         }
     }
@@ -747,7 +780,8 @@ void writeMergedSet(const std::vector<fs::path>& shardDirs, const std::vector<js
 std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, const fs::path& outDir, bool allowMixedDevices) {
     if (shardDirs.empty()) throw InputError("merge: no shard folders given");
     // Everything checked before anything is written: the same experiment, split the same way, every
-    // shard once, on one device (unless allowed), every run recorded.
+    // shard once, on one device (unless allowed), every run recorded once, every record and the
+    // files it names whole.
     std::vector<json> metas;
     for (const auto& d : shardDirs) metas.push_back(readShardMeta(d));
     const json& first = metas.front();
@@ -788,6 +822,7 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
         }
     }
     std::vector<MergedShard> shards(metas.size());
+    std::vector<std::vector<RunRecord>> records(metas.size());
     std::map<std::string, std::size_t> shardOfId;
     for (std::size_t k = 0; k < metas.size(); ++k) {
         MergedShard& s = shards[k];
@@ -795,13 +830,19 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
         s.index = metas[k].at("shard").at("index").get<int>();
         s.count = static_cast<int>(count);
         s.estimatedCost = metas[k].at("shard").value("estimated_cost", -1.0);
-        const std::vector<std::string> ids = recordedIds(s.dir);
-        s.runs = ids.size();
-        for (const auto& id : ids) shardOfId.emplace(id, k);
+        records[k] = ResultsStore(s.dir).loadRecords();
+        s.runs = records[k].size();
+        for (const RunRecord& r : records[k]) {
+            s.seconds += r.runSeconds.value_or(0.0);
+            if (const auto [at, added] = shardOfId.emplace(r.id, k); !added) {
+                throw InputError("merge: run '" + r.id + "' is recorded by two shards: " + (ResultsStore(shardDirs[at->second]).runsDir() / (r.id + ".json")).string() +
+                                 " and " + (ResultsStore(s.dir).runsDir() / (r.id + ".json")).string());
+            }
+        }
         // A shard that says how many runs it has names itself when it is unfinished.
         const long long planned = metas[k].at("shard").value("runs", -1LL);
-        if (planned >= 0 && static_cast<long long>(ids.size()) < planned) {
-            throw InputError("merge: " + s.dir.string() + " (shard " + shardName(metas[k]) + ") holds " + std::to_string(ids.size()) + " of its " +
+        if (planned >= 0 && static_cast<long long>(s.runs) < planned) {
+            throw InputError("merge: " + s.dir.string() + " (shard " + shardName(metas[k]) + ") holds " + std::to_string(s.runs) + " of its " +
                              std::to_string(planned) + " runs (finish it with `hybridlab run CONFIG --resume --shard " + shardName(metas[k]) +
                              " --out " + s.dir.string() + "` first)");
         }
@@ -811,11 +852,18 @@ std::vector<MergedShard> mergeShards(const std::vector<fs::path>& shardDirs, con
         throw InputError("merge: the shards hold " + std::to_string(shardOfId.size()) + " of " + std::to_string(runsTotal) +
                          " runs (finish them with `hybridlab run --resume --shard i/n` first)");
     }
-    if (fs::exists(outDir) && (!fs::is_directory(outDir) || !fs::is_empty(outDir))) {
-        throw InputError(outDir.string() + ": exists and is not empty; choose another --out");
+    if (const InputPathKind kind = inputPathKind(outDir); kind != InputPathKind::Missing) {
+        std::error_code ec;
+        if (kind != InputPathKind::Directory || !fs::is_empty(outDir, ec) || ec)
+            throw InputError(outDir.string() + ": exists and is not empty; choose another --out");
+    }
+    for (std::size_t k = 0; k < metas.size(); ++k) {
+        checkShardFolder(shardDirs[k]);
+        for (const RunRecord& r : records[k]) checkRecordFiles(shardDirs[k], r);
     }
 
-    writeMergedSet(shardDirs, metas, outDir, shardOfId, shards);
+    // Built beside outDir and renamed into place: a failure to write leaves no partial set.
+    writeFolderAtomically(outDir, [&](const fs::path& staging) { writeMergedSet(shardDirs, metas, records, staging); });
     std::sort(shards.begin(), shards.end(), [](const MergedShard& a, const MergedShard& b) { return a.index < b.index; });
     return shards;
 }

@@ -62,8 +62,10 @@ ExperimentPlan planExperiment(const ExperimentConfig& config, const RunnerOption
 // `hybridlab merge`: joins shard folders of one experiment into `outDir`, as one unsharded run
 // would have written it. Throws InputError, writing nothing, when they are not shards of the same
 // experiment (config, shard count, partition), a shard is missing or given twice, runs are
-// missing, or (unless `allowMixedDevices`) they were measured on different devices
-// (device_record.h); with it, each record keeps its shard's device as "device".
+// missing or recorded twice, a record or a file it names is not whole (results_store.h), or
+// (unless `allowMixedDevices`) they were measured on different devices (device_record.h); with
+// it, each record keeps its shard's device as "device". The set is built beside `outDir` and
+// renamed into place, so a failure to write (IoError) leaves nothing either.
 struct MergedShard {
     std::filesystem::path dir;
     int index = 0, count = 1;

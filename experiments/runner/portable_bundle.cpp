@@ -1,6 +1,5 @@
 #include "experiments/runner/portable_bundle.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -160,10 +159,7 @@ BundleContents writeBundle(const fs::path& binary, const fs::path& out, const st
     files[fs::path("bin") / "hybridlab"] = binary;
 
     // Built under a temporary name beside `out`, renamed when complete.
-    const fs::path target = out.has_filename() ? out : out.parent_path();
-    const fs::path staging = target.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
-    createDirectories(staging);
-    try {
+    writeFolderAtomically(out, [&](const fs::path& staging) {
         for (const auto& [to, from] : files) copyFile(from, staging / to);
         writeFileAtomically(staging / "hybridlab", kLauncher);
         writeFileAtomically(staging / "README.txt", readme(bundled, base, configs));
@@ -171,14 +167,8 @@ BundleContents writeBundle(const fs::path& binary, const fs::path& out, const st
         fs::permissions(staging / "hybridlab", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                                                     fs::perms::others_read | fs::perms::others_exec, ec);
         if (ec) throw IoError::fromErrno(staging / "hybridlab", "make executable", ec.value());
-        fs::rename(staging, target, ec);
-        if (ec) throw IoError::fromErrno(target, "create", ec.value());
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove_all(staging, ignored);
-        throw;
-    }
-    return {bundled.size(), folderBytes(target)};
+    });
+    return {bundled.size(), folderBytes(out.has_filename() ? out : out.parent_path())};
 }
 
 }  // namespace hybridlab

@@ -11,6 +11,7 @@
 #include "common/core/atomic_file.h"
 #include "common/core/directory_lock.h"
 #include "common/core/input_error.h"
+#include "common/core/input_file.h"
 #include "common/core/io_error.h"
 #include "common/image/image_io.h"
 #include "metrics/temporal.h"
@@ -34,16 +35,43 @@ void ResultsStore::writeRecord(const RunRecord& record) const {
 void ResultsStore::recordRun(const RunRecord& record) const { writeRecord(record); }
 
 std::vector<RunRecord> ResultsStore::loadRecords() const {
-    std::vector<RunRecord> records;
-    if (!fs::exists(runsDir())) return records;
-    for (const auto& e : fs::directory_iterator(runsDir())) {
+    const fs::path runs = runsDir();
+    std::string reason;
+    switch (inputPathKind(runs, &reason)) {
+    case InputPathKind::Missing: return {};
+    case InputPathKind::Directory: break;
+    case InputPathKind::Unreadable: throw InputError(runs.string() + ": cannot be read (" + reason + ")");
+    default: throw InputError(runs.string() + ": is not a folder, expected the folder of the set's records (runs/<id>.json)");
+    }
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
         // Temporary files of an interrupted write start with a dot: not records.
-        if (e.path().extension() != ".json" || e.path().filename().string().front() == '.') continue;
-        std::ifstream in(e.path());
+        const fs::path& file = it->path();
+        if (file.extension() == ".json" && file.filename().string().front() != '.') files.push_back(file);
+    }
+    if (ec) throw IoError::fromErrno(runs, "list the folder", ec.value());
+    std::sort(files.begin(), files.end());  // so that a message names the same file every time
+    std::vector<RunRecord> records;
+    std::map<std::size_t, fs::path> fileOfIndex;
+    for (const fs::path& file : files) {
+        const std::string text = readInputFile(file, "a run's record");
         try {
-            records.push_back(fromJson(json::parse(in)));
+            records.push_back(fromJson(json::parse(text)));
         } catch (const std::exception& error) {  // not JSON, or not a record
-            throw InputError(e.path().string() + ": " + error.what());
+            throw InputError(file.string() + ": " + error.what());
+        }
+        // One file a run, named by its id: what --resume skips and merge joins by.
+        const RunRecord& r = records.back();
+        if (r.id != file.stem().string()) {
+            const fs::path own = runs / (r.id + ".json");
+            std::error_code unseen;
+            throw InputError(file.string() + ": holds the record of run '" + r.id + "', expected the run its name says, '" +
+                             file.stem().string() + "'" + (fs::exists(own, unseen) ? " (" + own.string() + " holds that run's record too)" : ""));
+        }
+        if (const auto [at, added] = fileOfIndex.emplace(r.index, file); !added) {
+            throw InputError(file.string() + ": records run " + std::to_string(r.index) + " of the plan, as " + at->second.string() +
+                             " does; expected one record a run");
         }
     }
     std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) { return a.index < b.index; });
@@ -145,14 +173,59 @@ std::optional<std::size_t> writeMissingResults(const fs::path& dir) {
     return records.size();
 }
 
+void checkRecordFiles(const fs::path& dir, const RunRecord& record) {
+    const fs::path recordFile = ResultsStore(dir).runsDir() / (record.id + ".json");
+    const auto refuse = [&](const fs::path& file, const std::string& what) {
+        return InputError(file.string() + ": " + what + " (named by " + recordFile.string() + ")");
+    };
+    // A path the record names, relative to the set and inside it.
+    const auto inSet = [&](const std::string& field, const std::string& name) {
+        const fs::path relative(name);
+        if (relative.empty() || relative.is_absolute() ||
+            std::any_of(relative.begin(), relative.end(), [](const fs::path& part) { return part == ".."; }))
+            throw InputError(recordFile.string() + ": " + field + ": expected a path inside the result set, got '" + name + "'");
+        return dir / relative;
+    };
+    const auto image = [&](const std::string& field, const std::string& name, bool ofRecordSize) {
+        const fs::path file = inSet(field, name);
+        ImageSize size;
+        try {
+            size = checkImageFile(file);
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            // checkImageFile's message already starts with the file.
+            throw refuse(file, what.rfind(file.string() + ": ", 0) == 0 ? what.substr(file.string().size() + 2) : what);
+        }
+        if (ofRecordSize && (size.width != record.width || size.height != record.height))
+            throw refuse(file, "is " + std::to_string(size.width) + "x" + std::to_string(size.height) + ", expected the run's " +
+                                   std::to_string(record.width) + "x" + std::to_string(record.height));
+    };
+    image("images.exr", record.images.exr, true);
+    image("images.png", record.images.png, true);
+    for (const auto& [name, file] : record.images.debug) image("images.debug." + name, file, false);
+    image("reference.exr", record.reference.exr, true);
+    image("reference.png", record.reference.png, true);
+    if (record.reference.mask) image("reference.mask", *record.reference.mask, true);
+    if (record.images.maps) {
+        const fs::path maps = inSet("images.maps", *record.images.maps);
+        std::string reason;
+        switch (inputPathKind(maps, &reason)) {
+        case InputPathKind::Directory: break;
+        case InputPathKind::Missing: throw refuse(maps, "folder not found, expected the run's error maps");
+        case InputPathKind::Unreadable: throw refuse(maps, "cannot be read (" + reason + ")");
+        default: throw refuse(maps, "is not a folder, expected the run's error maps");
+        }
+    }
+}
+
 InputError notExperimentJson(const fs::path& file, const json::exception& e) {
     return InputError(file.string() + ": not an experiment.json of hybridlab run (" + e.what() + ")");
 }
 
 json readSetJson(const fs::path& file) {
-    std::ifstream in(file);
+    const std::string text = readInputFile(file, "a result set's JSON file");
     try {
-        return json::parse(in);
+        return json::parse(text);
     } catch (const json::exception& e) {
         throw InputError(file.string() + ": " + e.what());
     }

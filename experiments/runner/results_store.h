@@ -37,7 +37,9 @@ public:
     // What the runner does when a run finishes: its record written, nothing else (O(1) a run).
     void recordRun(const RunRecord& record) const;
     // Every record, ordered by run index. Throws InputError naming the file of one that is not a
-    // record (run_record.h).
+    // record (run_record.h), of one whose id is not its file's name, of a second record of a run
+    // (both files), and naming runs/ where it is not a folder; IoError where it cannot be listed.
+    // Every reader of a set's records (--resume, merge, report's rebuild) reads them here.
     std::vector<RunRecord> loadRecords() const;
 
     // Whether results.json exists (then results.csv does too, and both list every record).
@@ -56,6 +58,13 @@ public:
 private:
     std::filesystem::path dir_;
 };
+
+// Refuses (InputError naming the file and the record) a record of the set in `dir` whose files are
+// missing or are not images of the record's size, or lie outside the set: its images, debug
+// images, reference and mask (headers read, pixels not decoded: a set's images are read whole
+// once, not decoded), and its error maps' folder. For `merge`, which would otherwise join a set the
+// report cannot read.
+void checkRecordFiles(const std::filesystem::path& dir, const RunRecord& record);
 
 // For a reader of the set in `dir` (`report`): when its runner was killed before writing
 // results.json and results.csv, writes them from the records as the runner would have, holding

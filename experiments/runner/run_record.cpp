@@ -1,9 +1,12 @@
 #include "experiments/runner/run_record.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
+#include "common/core/number_check.h"
 #include "experiments/runner/parameter_json.h"
 #include "experiments/runner/timing_statistics.h"
 
@@ -133,12 +136,13 @@ public:
     }
     std::string path(const std::string& key) const { return where_ + "." + key; }
 
+    // A field of type T; a number also within `range`.
     template <typename T>
-    T get(const std::string& key) { return as<T>(required(key), path(key)); }
+    T get(const std::string& key, NumberRange range = {}) { return as<T>(required(key), path(key), range); }
     template <typename T>
-    std::optional<T> getOptional(const std::string& key) {
+    std::optional<T> getOptional(const std::string& key, NumberRange range = {}) {
         const json* v = optional(key);
-        return v ? std::optional<T>(as<T>(*v, path(key))) : std::nullopt;
+        return v ? std::optional<T>(as<T>(*v, path(key), range)) : std::nullopt;
     }
 
     void finish() const {
@@ -150,39 +154,57 @@ public:
         throw std::runtime_error("results record " + where + ": " + what);
     }
 
+    // `v` as a T; a number also finite and within `range` (number_check.h's words).
     template <typename T>
-    static T as(const json& v, const std::string& where) {
+    static T as(const json& v, const std::string& where, NumberRange range = {}) {
         if constexpr (std::is_same_v<T, bool>) {
             if (!v.is_boolean()) fail(where, "expected a boolean");
         } else if constexpr (std::is_same_v<T, std::string>) {
             if (!v.is_string()) fail(where, "expected a string");
-        } else if constexpr (std::is_unsigned_v<T>) {
-            if (!v.is_number_unsigned()) fail(where, "expected an integer >= 0");
         } else if constexpr (std::is_integral_v<T>) {
-            if (!v.is_number_integer()) fail(where, "expected an integer");
+            if (std::is_unsigned_v<T> ? !v.is_number_unsigned() : !v.is_number_integer())
+                fail(where, std::is_unsigned_v<T> ? "expected an integer >= 0" : "expected an integer");
+            // Within T, and within the integers the report and the viewer read exactly (2^53): a
+            // 2^63 in an int field is out of range, not the 0 it would wrap to.
+            const double min = std::max({range.min, static_cast<double>(std::numeric_limits<T>::min()), -kExactInteger});
+            const double max = std::min({range.max, static_cast<double>(std::numeric_limits<T>::max()), kExactInteger});
+            const long long n = v.is_number_unsigned() ? static_cast<long long>(std::min(v.get<unsigned long long>(), kPastExact))
+                                                       : v.get<long long>();
+            if (const std::string problem = integerProblem(n, static_cast<long long>(min), static_cast<long long>(max), v.dump()); !problem.empty())
+                fail(where, problem);
         } else {
             if (!v.is_number()) fail(where, "expected a number");
+            // As written, where JSON can write it (it writes infinities as null).
+            const double d = v.get<double>();
+            if (const std::string problem = numberProblem(d, range.min, range.max, std::isfinite(d) ? v.dump() : ""); !problem.empty())
+                fail(where, problem);
         }
         return v.get<T>();
     }
 
 private:
+    static constexpr double kExactInteger = 9007199254740992.0;  // 2^53
+    static constexpr unsigned long long kPastExact = (1ULL << 53) + 1;
     const json& object_;
     std::string where_;
     std::set<std::string> read_;
 };
 
+// Times, their ratios, errors and counts: finite and not negative.
+constexpr NumberRange kNotNegative{0.0, std::numeric_limits<double>::infinity()};
+
 Spread spreadFrom(const json& j, const std::string& where) {
     FieldReader f(j, where);
-    Spread s{f.get<double>("median"), f.get<double>("min"), f.get<double>("max"), f.getOptional<double>("ci_low"), f.getOptional<double>("ci_high")};
+    Spread s{f.get<double>("median", kNotNegative), f.get<double>("min", kNotNegative), f.get<double>("max", kNotNegative),
+             f.getOptional<double>("ci_low", kNotNegative), f.getOptional<double>("ci_high", kNotNegative)};
     f.finish();
     return s;
 }
 
-std::vector<double> numbersFrom(const json& j, const std::string& where) {
+std::vector<double> timesFrom(const json& j, const std::string& where) {
     if (!j.is_array()) FieldReader::fail(where, "expected an array of numbers");
     std::vector<double> v;
-    for (std::size_t k = 0; k < j.size(); ++k) v.push_back(FieldReader::as<double>(j[k], where + "[" + std::to_string(k) + "]"));
+    for (std::size_t k = 0; k < j.size(); ++k) v.push_back(FieldReader::as<double>(j[k], where + "[" + std::to_string(k) + "]", kNotNegative));
     return v;
 }
 
@@ -191,21 +213,21 @@ RunTiming timingFrom(const json& j, const std::string& where) {
     RunTiming t;
     t.group = f.get<std::string>("group");
     t.timingId = f.getOptional<std::string>("timing_id");
-    t.rounds = f.get<int>("rounds");
-    t.frameRounds = numbersFrom(f.required("frame_ms_rounds"), f.path("frame_ms_rounds"));
-    t.referenceRounds = numbersFrom(f.required("reference_ms_rounds"), f.path("reference_ms_rounds"));
+    t.rounds = f.get<int>("rounds", kNotNegative);
+    t.frameRounds = timesFrom(f.required("frame_ms_rounds"), f.path("frame_ms_rounds"));
+    t.referenceRounds = timesFrom(f.required("reference_ms_rounds"), f.path("reference_ms_rounds"));
     t.cpu = spreadFrom(f.required("cpu_ms"), f.path("cpu_ms"));
-    t.cpuRounds = numbersFrom(f.required("cpu_ms_rounds"), f.path("cpu_ms_rounds"));
+    t.cpuRounds = timesFrom(f.required("cpu_ms_rounds"), f.path("cpu_ms_rounds"));
     if (const json* d = f.optional("device_ms")) {
         t.device = spreadFrom(*d, f.path("device_ms"));
-        t.deviceRounds = numbersFrom(f.required("device_ms_rounds"), f.path("device_ms_rounds"));
+        t.deviceRounds = timesFrom(f.required("device_ms_rounds"), f.path("device_ms_rounds"));
     }
     t.precision = f.get<double>("precision");
     t.precisionReached = f.get<bool>("precision_reached");
     t.budgetClock = f.getOptional<std::string>("budget_clock");
     t.otherLoad = f.getOptional<double>("other_load");
     t.priority = f.getOptional<std::string>("priority");
-    t.warmupMs = f.get<double>("warmup_ms");
+    t.warmupMs = f.get<double>("warmup_ms", kNotNegative);
     t.steady = f.get<bool>("steady");
     if (const json* g = f.optional("gpu_clocks")) t.gpuClocks = *g;
     f.finish();
@@ -217,7 +239,8 @@ std::map<std::string, RatioInterval> speedupFrom(const json& j, const std::strin
     std::map<std::string, RatioInterval> out;
     for (const auto& [over, value] : j.items()) {
         FieldReader r(f.required(over), f.path(over));
-        out[over] = {r.get<double>("ratio"), r.getOptional<double>("low"), r.getOptional<double>("high")};
+        out[over] = {r.get<double>("ratio", kNotNegative), r.getOptional<double>("low", kNotNegative),
+                     r.getOptional<double>("high", kNotNegative)};
         r.finish();
     }
     f.finish();
@@ -257,7 +280,7 @@ ReferenceEntry referenceFrom(const json& j, const std::string& where) {
     r.exr = f.get<std::string>("exr");
     r.png = f.get<std::string>("png");
     r.mask = f.getOptional<std::string>("mask");
-    r.frameMilliseconds = f.get<double>("frame_ms");
+    r.frameMilliseconds = f.get<double>("frame_ms", kNotNegative);
     r.cacheHit = f.get<bool>("cache_hit");
     f.finish();
     return r;
@@ -289,10 +312,12 @@ RunRecord fromJson(const json& j) {
     r.scene = f.get<std::string>("scene");
     r.sceneStats = sceneStatsFrom(f.required("scene_stats"), f.path("scene_stats"));
     r.view = f.get<std::string>("view");
-    r.frame = f.get<int>("frame");
-    r.time = f.get<double>("time");
-    r.width = f.get<int>("width");
-    r.height = f.get<int>("height");
+    // Within what the runner renders and writes: a path's frames or -1 (the scene camera), the
+    // scene time and image sides `run` accepts (number_check.h).
+    r.frame = f.get<int>("frame", {-1.0, limits::kFrame});
+    r.time = f.get<double>("time", {-limits::kSceneTime, limits::kSceneTime});
+    r.width = f.get<int>("width", {1.0, limits::kImageSide});
+    r.height = f.get<int>("height", {1.0, limits::kImageSide});
     r.technique = f.get<std::string>("technique");
     r.label = f.get<std::string>("label");
     r.parameters = parametersFrom(f.required("parameters"), f.path("parameters"));
@@ -309,14 +334,14 @@ RunRecord fromJson(const json& j) {
     if (!r.metrics.is_object()) FieldReader::fail(f.path("metrics"), "expected an object");
     r.reference = referenceFrom(f.required("reference"), f.path("reference"));
     r.images = imagesFrom(f.required("images"), f.path("images"));
-    r.runSeconds = f.getOptional<double>("run_seconds");
-    r.warmupFrames = f.getOptional<int>("warmup_frames");
+    r.runSeconds = f.getOptional<double>("run_seconds", kNotNegative);
+    r.warmupFrames = f.getOptional<int>("warmup_frames", kNotNegative);
     if (const json* t = f.optional("timing")) r.timing = timingFrom(*t, f.path("timing"));
     if (const json* s = f.optional("speedup")) r.speedup = speedupFrom(*s, f.path("speedup"));
     if (const json* device = f.optional("device")) r.device = *device;
-    r.temporalError = f.getOptional<double>("temporal_error");
-    r.temporalErrorMasked = f.getOptional<double>("temporal_error_masked");
-    r.temporalPreviousFrame = f.getOptional<int>("temporal_previous_frame");
+    r.temporalError = f.getOptional<double>("temporal_error", kNotNegative);
+    r.temporalErrorMasked = f.getOptional<double>("temporal_error_masked", kNotNegative);
+    r.temporalPreviousFrame = f.getOptional<int>("temporal_previous_frame", {0.0, limits::kFrame});
     f.finish();
     return r;
 }

@@ -116,7 +116,9 @@ struct RunRecord {
 nlohmann::json toJson(const RunRecord& record);
 
 // The record toJson wrote. Throws std::runtime_error naming the field for anything else (a missing
-// or mistyped field, or one the record does not have), so that no field is dropped by a round trip.
+// or mistyped field, or one the record does not have), so that no field is dropped by a round trip,
+// and for a number the runner cannot have written: not finite, a size outside 1..16384, a frame
+// outside -1..10,000,000 or past its int, a negative time (number_check.h's limits).
 RunRecord fromJson(const nlohmann::json& record);
 
 }  // namespace hybridlab

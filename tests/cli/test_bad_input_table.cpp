@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -18,8 +19,10 @@
 #include <nlohmann/json.hpp>
 
 #include "common/image/image_io.h"
+#include "experiments/runner/run_record.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/gltf_builder.h"
+#include "tests/support/runner_checks.h"
 #include "tests/support/test_support.h"
 
 namespace hybridlab {
@@ -200,6 +203,72 @@ void writeReportInputs(const fs::path& d) {
     writeTextFile(d / "a-file", "");
 }
 
+// Finished shards of a two-run experiment, rec-0 and rec-1, whose records and images `merge` joins
+// (4 x 2 pixels, no error maps), and copies of them with one thing wrong, each named by what: a
+// record that is not JSON, one whose id is not its file's name, one of a negative width, one whose
+// frame (2^63) would wrap to 0 in an int, a run recorded by both shards, an image missing and one
+// that is text, the first shard without its config, a partition that is a number, an images folder
+// that is a loop of symbolic links. And a killed runner's set whose runs/ is a file, for `report`.
+void writeRecordInputs(const fs::path& d) {
+    using test::writeTextFile;
+    const Image pixels(4, 2, glm::vec4(0.5f));
+    const auto recordOf = [](int index) {
+        RunRecord r;
+        r.index = static_cast<std::size_t>(index);
+        r.id = "run-" + std::to_string(index);
+        r.scene = "whitted-classic";
+        r.view = "camera";
+        r.width = 4;
+        r.height = 2;
+        r.technique = r.label = "whitted";
+        r.metrics = nlohmann::json::object();
+        r.reference = {"ref", "references/ref.exr", "references/ref.png", std::nullopt, 1.0, false};
+        r.images = {"images/" + r.id + ".exr", "images/" + r.id + ".png", std::nullopt, {}};
+        return toJson(r);
+    };
+    const auto shard = [&](const fs::path& folder, int index) {
+        fs::create_directories(folder / "runs");
+        writeTextFile(folder / "experiment.json", "{\"name\": \"r\", \"config_hash\": \"" + std::string(64, 'c') +
+                                                      "\", \"runs_total\": 2, \"shard\": {\"index\": " + std::to_string(index) +
+                                                      ", \"count\": 2, \"partition\": \"estimated-cost\", \"runs\": 1}}\n");
+        writeTextFile(folder / "config.toml", "[[scenes]]\nscene = \"whitted-classic\"\n");
+        writeTextFile(folder / "runs" / ("run-" + std::to_string(index) + ".json"), recordOf(index).dump(1));
+        for (const std::string& image : {"images/run-" + std::to_string(index), std::string("references/ref")}) {
+            fs::create_directories((folder / image).parent_path());
+            writeExr(folder / (image + ".exr"), pixels);
+            writePng(folder / (image + ".png"), pixels);
+        }
+    };
+    shard(d / "rec-0", 0);
+    shard(d / "rec-1", 1);
+    const auto variant = [&](const std::string& name, const std::string& of) {
+        fs::copy(d / of, d / name, fs::copy_options::recursive);
+        return d / name;
+    };
+    writeTextFile(variant("rec-broken", "rec-1") / "runs/run-1.json", "{");
+    const auto changed = [&](const std::string& name, const std::function<void(nlohmann::json&)>& change) {
+        nlohmann::json record = recordOf(1);
+        change(record);
+        writeTextFile(variant(name, "rec-1") / "runs/run-1.json", record.dump(1));
+    };
+    changed("rec-other-id", [](nlohmann::json& r) { r["id"] = "run-9"; });
+    changed("rec-negative-width", [](nlohmann::json& r) { r["width"] = -4; });
+    changed("rec-frame-wrap", [](nlohmann::json& r) { r["frame"] = 1ULL << 63; });
+    writeTextFile(variant("rec-twice", "rec-1") / "runs/run-0.json", recordOf(0).dump(1));
+    fs::remove(variant("rec-no-image", "rec-1") / "images/run-1.exr");
+    writeTextFile(variant("rec-text-image", "rec-1") / "images/run-1.png", "not a PNG\n");
+    fs::remove(variant("rec-no-config", "rec-0") / "config.toml");
+    const fs::path partition = variant("rec-partition", "rec-1") / "experiment.json";
+    std::string meta = test::readTextFile(partition);
+    meta.replace(meta.find("\"estimated-cost\""), 16, "7");
+    writeTextFile(partition, meta);
+    fs::remove_all(variant("rec-images-loop", "rec-1") / "images");
+    fs::create_symlink("images", d / "rec-images-loop" / "images");
+    const fs::path killed = variant("runs-file", "rec-0");
+    fs::remove_all(killed / "runs");
+    writeTextFile(killed / "runs", "not a folder\n");
+}
+
 // Writes every input the cases name into `d`.
 void writeInputs(const fs::path& d) {
     using test::writeTextFile;
@@ -256,6 +325,7 @@ void writeInputs(const fs::path& d) {
     writeHardeningInputs(d);
     writeThirdRoundInputs(d);
     writeReportInputs(d);
+    writeRecordInputs(d);
 }
 
 struct BadInputCase {
@@ -422,6 +492,24 @@ const std::vector<BadInputCase> kCases = {
      "%d/killed-ssim-string/runs/0002-raster.json: $.metrics.whole.ssim: expected number or null, got \"x\""},
     {{"report", "%d/whole", "--out", "%d/a-file"}, 3, "%d/a-file: cannot be written (a file, not a folder)"},
     {{"report", "%d/whole", "--out", "/proc/hybridlab-no-such-folder/report"}, 3, "/proc/hybridlab-no-such-folder/report: cannot be written ("},
+    // A result set's records and the files they name, as `merge`, `run --resume` and `report` read
+    // them (results_store.h): refused naming the shard's own file, before anything is written.
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-broken"}, 2, "%d/rec-broken/runs/run-1.json: [json.exception.parse_error.101] parse error"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-other-id"}, 2,
+     "%d/rec-other-id/runs/run-1.json: holds the record of run 'run-9', expected the run its name says, 'run-1'"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-negative-width"}, 2,
+     "%d/rec-negative-width/runs/run-1.json: results record $.width: expected an integer in [1, 16384], got -4"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-frame-wrap"}, 2,
+     "%d/rec-frame-wrap/runs/run-1.json: results record $.frame: expected an integer in [-1, 10000000], got 9223372036854775808"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-twice"}, 2,
+     "merge: run 'run-0' is recorded by two shards: %d/rec-0/runs/run-0.json and %d/rec-twice/runs/run-0.json"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-no-image"}, 2,
+     "%d/rec-no-image/images/run-1.exr: image file not found (named by %d/rec-no-image/runs/run-1.json)"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-text-image"}, 2, "%d/rec-text-image/images/run-1.png: cannot read image ("},
+    {{"merge", "--out", "%o", "%d/rec-no-config", "%d/rec-1"}, 2, "%d/rec-no-config/config.toml: file not found"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-partition"}, 2, "%d/rec-partition/experiment.json: shard.partition: expected a string, got 7"},
+    {{"merge", "--out", "%o", "%d/rec-0", "%d/rec-images-loop"}, 2, "%d/rec-images-loop/images: cannot be read (Too many levels of symbolic links)"},
+    {{"report", "%d/runs-file", "--out", "%o"}, 2, "%d/runs-file/runs: is not a folder, expected the folder of the set's records (runs/<id>.json)"},
     // Arguments: one line, with the pointer to --help on it.
     {{"scene-info", "whitted-classic", "--frobnicate"}, 2, "The following argument was not expected: --frobnicate (hybridlab --help for usage)"},
     {{"frobnicate"}, 2, "unknown command 'frobnicate' (commands: "},
@@ -446,7 +534,21 @@ TEST(BadInputTable, OneMessageExitStatusAndNothingWritten) {
         for (const auto& a : kCases[i].args) args.push_back(expand(a, inputs, outs.back()));
         runs.push_back({args, {{"HYBRIDLAB_ASSETS", std::nullopt}}});
     }
+    // And the shards the record cases break, whole: they merge; on a full disk, with exit status 3,
+    // naming the file under --out (not the temporary folder the set is built in), leaving nothing.
+    const fs::path merged = dir / "merged", full = dir / "full";
+    for (const auto& [out, limit] : {std::pair{merged, std::optional<std::string>()}, std::pair{full, std::optional<std::string>("0")}})
+        runs.push_back({{"merge", "--out", out.string(), (inputs / "rec-0").string(), (inputs / "rec-1").string()}, {{"HYBRIDLAB_TEST_WRITE_LIMIT", limit}}});
     const std::vector<CliResult> results = test::runHybridlabAll(runs);
+    const CliResult& whole = results[kCases.size()];
+    EXPECT_EQ(whole.exitStatus, 0) << whole.err;
+    EXPECT_EQ(test::readResults(merged).size(), 2u);
+    const CliResult& diskFull = results[kCases.size() + 1];
+    EXPECT_EQ(diskFull.exitStatus, 3) << diskFull.err;
+    EXPECT_EQ(diskFull.err, "hybridlab: error: " + (full / "config.toml").string() + ": cannot write (No space left on device)\n");
+    for (const fs::directory_entry& e : fs::directory_iterator(dir.path()))
+        EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << e.path();
+    EXPECT_FALSE(fs::exists(full));
     for (std::size_t i = 0; i < kCases.size(); ++i) {
         const CliResult& r = results[i];
         SCOPED_TRACE("case " + std::to_string(i) + ": " + kCases[i].message);

@@ -117,8 +117,8 @@ TEST(CliHardening, RunnersStartedTogetherOnOneFolderTellTheLoserWhoHoldsIt) {
     std::printf("[ race ] %d pairs: %d losers refused, each naming the holder\n", kPairs, refused);
 }
 
-// A --resume that finds one of the set's records broken stops before it renders or removes
-// anything: the finished set's results.json is still there, byte for byte.
+// A --resume that finds one of the set's records broken, or a run recorded twice, stops before it
+// renders or removes anything: the finished set's results.json is still there, byte for byte.
 TEST(CliHardening, ResumeRefusesABrokenRecordBeforeTouchingTheSet) {
     TempDir dir;
     const fs::path config = dir / "small.toml", out = dir / "set", cache = dir / "cache";
@@ -141,6 +141,20 @@ TEST(CliHardening, ResumeRefusesABrokenRecordBeforeTouchingTheSet) {
     ASSERT_TRUE(fs::exists(out / "results.json"));
     EXPECT_EQ(test::readTextFile(out / "results.json"), results);
     EXPECT_TRUE(fs::exists(out / "results.csv"));
+    // A record copied under another name: a second record of its run, refused naming both files
+    // (resumed, it would be listed twice in results.json).
+    fs::path whole;
+    for (const auto& e : fs::directory_iterator(out / "runs"))
+        if (e.path() != broken) whole = e.path();
+    ASSERT_FALSE(whole.empty());
+    fs::remove(broken);
+    fs::copy_file(whole, out / "runs" / "copy.json");
+    const CliResult copied = runHybridlab(resume);
+    EXPECT_EQ(copied.exitStatus, 2) << copied.err;
+    EXPECT_CONTAINS(copied.err, (out / "runs" / "copy.json").string() + ": holds the record of run '" + whole.stem().string() +
+                                    "', expected the run its name says, 'copy' (" + whole.string() + " holds that run's record too)");
+    EXPECT_EQ(test::readTextFile(out / "results.json"), results);
+    fs::remove(out / "runs" / "copy.json");
     // A broken experiment.json: not JSON, or JSON that is no experiment record.
     for (const char* meta : {"{", "[]"}) {
         SCOPED_TRACE(meta);

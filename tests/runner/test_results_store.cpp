@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,23 @@ TEST(ResultsStore, RecordsRoundTripThroughTheirOneWriter) {
     EXPECT_EQ(refusal([](json& j) { j["reference"]["extra"] = 0; }), "results record $.reference: unexpected 'extra'");
     EXPECT_EQ(refusal([](json& j) { j["stages"]["trace"].erase("median"); }), "results record $.stages.trace: missing 'median'");
     EXPECT_EQ(refusal([](json& j) { j["counters"]["rays_total"] = "many"; }), "results record $.counters.rays_total: expected a number");
+    // Numbers the runner cannot have written: sizes and frames outside what it renders (a 2^63 is
+    // not the 0 an int would wrap it to), indices past what the report reads exactly, negative or
+    // infinite times, a scene time outside --time's range.
+    EXPECT_EQ(refusal([](json& j) { j["width"] = -5; }), "results record $.width: expected an integer in [1, 16384], got -5");
+    EXPECT_EQ(refusal([](json& j) { j["height"] = 0; }), "results record $.height: expected an integer in [1, 16384], got 0");
+    EXPECT_EQ(refusal([](json& j) { j["width"] = 16385; }), "results record $.width: expected an integer in [1, 16384], got 16385");
+    EXPECT_EQ(refusal([](json& j) { j["frame"] = 1ULL << 63; }),
+              "results record $.frame: expected an integer in [-1, 10000000], got 9223372036854775808");
+    EXPECT_EQ(refusal([](json& j) { j["frame"] = -2; }), "results record $.frame: expected an integer in [-1, 10000000], got -2");
+    EXPECT_EQ(refusal([](json& j) { j["index"] = 1ULL << 60; }),
+              "results record $.index: expected an integer in [0, 9007199254740992], got 1152921504606846976");
+    EXPECT_EQ(refusal([](json& j) { j["frame_ms"]["median"] = -5.0; }), "results record $.frame_ms.median: expected a number in [0, inf], got -5.0");
+    EXPECT_EQ(refusal([](json& j) { j["stages"]["trace"]["max"] = std::numeric_limits<double>::infinity(); }),
+              "results record $.stages.trace.max: expected a finite number in [0, inf], got inf");
+    EXPECT_EQ(refusal([](json& j) { j["timing"]["frame_ms_rounds"][0] = -1.0; }),
+              "results record $.timing.frame_ms_rounds[0]: expected a number in [0, inf], got -1.0");
+    EXPECT_EQ(refusal([](json& j) { j["time"] = 1e300; }), "results record $.time: expected a number in [-1e+06, 1e+06], got 1e+300");
 
     // A record file the store cannot read names itself.
     test::writeTextFile(store.runsDir() / "broken.json", R"({"index": 1})");
@@ -143,6 +161,29 @@ TEST(ResultsStore, RecordsRoundTripThroughTheirOneWriter) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("broken.json: results record $: missing 'id'"), std::string::npos) << e.what();
     }
+    fs::remove(store.runsDir() / "broken.json");
+    // One file a run, named by the run's id, in a folder runs/: a record copied under another name,
+    // or renamed with its id, is a second record of its run; both files are named.
+    const auto loadRefusal = [&] {
+        try {
+            store.loadRecords();
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const fs::path own = store.runsDir() / (real.id + ".json");
+    json copy = toJson(real);
+    test::writeTextFile(store.runsDir() / "copy.json", copy.dump());
+    EXPECT_EQ(loadRefusal(), (store.runsDir() / "copy.json").string() + ": holds the record of run '" + real.id +
+                                 "', expected the run its name says, 'copy' (" + own.string() + " holds that run's record too)");
+    copy["id"] = "copy";
+    test::writeTextFile(store.runsDir() / "copy.json", copy.dump());
+    EXPECT_EQ(loadRefusal(), (store.runsDir() / "copy.json").string() + ": records run 0 of the plan, as " + own.string() +
+                                 " does; expected one record a run");
+    fs::remove_all(store.runsDir());
+    test::writeTextFile(store.runsDir(), "not a folder");
+    EXPECT_EQ(loadRefusal(), store.runsDir().string() + ": is not a folder, expected the folder of the set's records (runs/<id>.json)");
 }
 
 TEST(ResultsStoreBenchmark, DISABLED_RecordingTheThousandthRunCostsAsMuchAsTheTenth) {
