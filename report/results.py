@@ -134,6 +134,8 @@ def sourced_records(result_dir):
         # Temporary files of an interrupted write start with a dot: not records.
         found = [(os.path.join(runs, name), read_json(os.path.join(runs, name))) for name in sorted(os.listdir(runs))
                  if name.endswith(".json") and not name.startswith(".")]
+    elif os.path.exists(os.path.join(result_dir, "runs")):
+        raise ResultSetError("%s: is not a folder, expected the folder of the set's records (runs/<id>.json)" % os.path.join(result_dir, "runs"))
     else:
         raise ResultSetError("%s: not a result set (no results.json, no runs/)" % result_dir)
     for where, r in found:
