@@ -146,6 +146,16 @@ TEST(PortableBundle, CarriesEveryConfigAndItsModels) {
     EXPECT_EQ(refused.exitStatus, 2) << refused.err;
     EXPECT_CONTAINS(refused.err, "is already bundled (both would be configs/lens.toml); rename one");
     EXPECT_FALSE(fs::exists(clash));
+
+    // The README's own example, its scene beside it and its model the program's: the bundle runs it.
+    const fs::path example = dir / "example";
+    const test::CliResult bundled =
+        test::runHybridlab({"bundle", "--out", example.string(), "--config", (test::sourceDir() / "examples" / "mirror-bunny" / "experiment.toml").string()});
+    ASSERT_EQ(bundled.exitStatus, 0) << bundled.err;
+    const test::CommandOutput planned =
+        test::commandOutput(inFolder(example, example / "lib", "./hybridlab run configs/experiment.toml --out " + quoted(dir / "out") + " --dry-run"));
+    EXPECT_EQ(planned.exitStatus, 0) << planned.out;
+    EXPECT_CONTAINS(planned.out, "mirror-bunny  camera");
 }
 
 TEST(PortableBundle, BadInputIsRefusedAndLeavesNothing) {
