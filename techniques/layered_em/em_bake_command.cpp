@@ -105,7 +105,7 @@ void run(BakeEmOptions& o) {
                         directImageSourceFor(scene, info, o.settings.directImageSource) == DirectImageSource::Origin ? "EM origin (a reflective system)"
                                                                                                                 : "viewpoint samples");
         if (!o.force) {
-            if (auto cached = readLayeredEm(file)) {
+            if (auto cached = findLayeredEm(file, scene, info, o.settings)) {
                 std::printf("  in the cache: %zu layers, %zu viewpoints\n", cached->layers.size(), cached->viewpoints.size());
                 printSummary(scene, *cached);
                 requireViewpoint(o, info.name, cached->viewpoints.size());

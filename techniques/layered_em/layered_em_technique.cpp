@@ -117,7 +117,7 @@ void LayeredEmTechnique::prepare(SceneContext& context) {
         systems_.push_back(std::make_unique<System>(scene, info));
         const std::filesystem::path file = dir / (layeredEmCacheKey(scene, info, bake_) + ".hlem");
         std::optional<LayeredEm> em;
-        if (useCache_) em = readLayeredEm(file);
+        if (useCache_) em = findLayeredEm(file, scene, info, bake_);
         if (!em) {
             EmBakeStats stats;
             em = bakeLayeredEm(scene, info, bake_, stats);
