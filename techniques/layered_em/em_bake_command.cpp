@@ -113,6 +113,7 @@ void run(BakeEmOptions& o) {
                 continue;
             }
         }
+        requireWritableLayeredEmCache(dir);  // the entry is what this command makes: fail before the bake
         EmBakeStats stats;
         const LensSystem lens(scene, info);
         const std::size_t views = viewpointSamples(scene, lens.center(), o.settings.viewpoints).size();

@@ -5,9 +5,12 @@
 #include <sstream>
 #include <type_traits>
 
+#include <unistd.h>
+
 #include "common/core/atomic_file.h"
 #include "common/core/cache_dir.h"
 #include "common/core/content_hash.h"
+#include "common/core/io_error.h"
 #include "common/core/log.h"
 #include "techniques/layered_em/em_cache_entry_check.h"
 
@@ -194,6 +197,11 @@ std::optional<LayeredEm> findLayeredEm(const std::filesystem::path& file, const 
     CachedLayeredEm cached = readLayeredEm(file, scene, system, settings);
     if (!cached.problem.empty()) warn(file.string() + ": not a usable layered-EM cache entry (" + cached.problem + "); baking it again");
     return std::move(cached.em);
+}
+
+void requireWritableLayeredEmCache(const std::filesystem::path& dir) {
+    createDirectories(dir);
+    if (::access(dir.c_str(), W_OK) != 0) throw IoError::fromErrno(dir, "write entries into the layered-EM cache folder", errno);
 }
 
 }  // namespace hybridlab

@@ -33,4 +33,8 @@ CachedLayeredEm readLayeredEm(const std::filesystem::path& file, const Scene& sc
 std::optional<LayeredEm> findLayeredEm(const std::filesystem::path& file, const Scene& scene, const LensSystemInfo& system,
                                        const EmBakeSettings& settings);
 
+// Throws IoError naming `dir` when entries cannot be written into it (made when missing): so that
+// `bake-em`, whose product is the entry, fails before its bake rather than after.
+void requireWritableLayeredEmCache(const std::filesystem::path& dir);
+
 }  // namespace hybridlab

@@ -1,5 +1,6 @@
 // The layered-EM cache reads a damaged or foreign entry as a miss, saying why, and never draws,
-// prints or crashes on it; the render bakes such an entry again and draws what a clean cache gives.
+// prints or crashes on it; the render bakes such an entry again and draws what a clean cache gives,
+// and draws it too where the cache cannot be written.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -182,8 +183,19 @@ TEST(EmCache, RenderBakesADamagedEntryAgainAndDrawsWhatACleanCacheGives) {
     test::TempDir dir;
     const std::filesystem::path cache = dir / "cache";
     const test::EnvChanges inCache = {{"HYBRIDLAB_CACHE", cache.string()}};
-    const test::CliResult first = test::runHybridlab(tinyRender(dir / "clean.exr"), inCache);
-    ASSERT_EQ(first.exitStatus, 0) << first.err;
+    test::writeTextFile(dir / "a-file", "");
+    // An unwritable cache (a file where its folder would be) costs the render the cache, not the
+    // frame; bake-em, whose product is the entry, stops before its bake.
+    const std::string unwritable = (dir / "a-file" / "cache").string();
+    const auto first = test::runHybridlabAll({{tinyRender(dir / "clean.exr"), inCache},
+                                              {tinyRender(dir / "uncached.exr"), {{"HYBRIDLAB_CACHE", unwritable}}},
+                                              {{"bake-em", "--scene", "em-disocclusion", "--cache", unwritable}, {}}});
+    ASSERT_EQ(first[0].exitStatus, 0) << first[0].err;
+    EXPECT_EQ(first[1].exitStatus, 0) << first[1].err;
+    EXPECT_CONTAINS(first[1].err, "a-file/cache/layered-em: cannot create folder (Not a directory)); rendering without storing the baked EMs");
+    EXPECT_TRUE(samePixels(readImage(dir / "uncached.exr"), readImage(dir / "clean.exr")));
+    EXPECT_EQ(first[2].exitStatus, 3);
+    EXPECT_EQ(first[2].err, "hybridlab: error: " + unwritable + ": cannot create folder (Not a directory)\n");
 
     std::vector<std::filesystem::path> entries;
     for (const auto& e : std::filesystem::directory_iterator(cache / "layered-em")) entries.push_back(e.path());
