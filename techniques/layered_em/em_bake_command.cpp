@@ -105,7 +105,7 @@ void run(BakeEmOptions& o) {
                         directImageSourceFor(scene, info, o.settings.directImageSource) == DirectImageSource::Origin ? "EM origin (a reflective system)"
                                                                                                                 : "viewpoint samples");
         if (!o.force) {
-            if (auto cached = readLayeredEm(file)) {
+            if (auto cached = findLayeredEm(file, scene, info, o.settings)) {
                 std::printf("  in the cache: %zu layers, %zu viewpoints\n", cached->layers.size(), cached->viewpoints.size());
                 printSummary(scene, *cached);
                 requireViewpoint(o, info.name, cached->viewpoints.size());
@@ -113,6 +113,7 @@ void run(BakeEmOptions& o) {
                 continue;
             }
         }
+        requireWritableLayeredEmCache(dir);  // the entry is what this command makes: fail before the bake
         EmBakeStats stats;
         const LensSystem lens(scene, info);
         const std::size_t views = viewpointSamples(scene, lens.center(), o.settings.viewpoints).size();

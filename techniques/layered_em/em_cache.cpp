@@ -5,9 +5,14 @@
 #include <sstream>
 #include <type_traits>
 
+#include <unistd.h>
+
 #include "common/core/atomic_file.h"
 #include "common/core/cache_dir.h"
 #include "common/core/content_hash.h"
+#include "common/core/io_error.h"
+#include "common/core/log.h"
+#include "techniques/layered_em/em_cache_entry_check.h"
 
 namespace hybridlab {
 namespace {
@@ -36,30 +41,85 @@ private:
     std::ostream& out_;
 };
 
+// Why a file is not an entry of this format.
+struct Unreadable {
+    std::string why;
+};
+
+// Reads an entry of `bytes` bytes; every read fails with Unreadable past them.
 class Reader {
 public:
-    explicit Reader(std::ifstream& in) : in_(in) {}
+    Reader(std::istream& in, std::uint64_t bytes) : in_(in), left_(bytes) {}
     template <typename T>
-    bool pod(T& v) {
-        return static_cast<bool>(in_.read(reinterpret_cast<char*>(&v), sizeof v));
+    void pod(T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        read(&v, sizeof v);
+    }
+    // A count of items of `itemBytes` or more each, bounded by the bytes left: a damaged count fails
+    // here rather than asking for memory the file cannot fill.
+    std::size_t count(std::size_t itemBytes) {
+        std::uint64_t n = 0;
+        pod(n);
+        if (n > left_ / itemBytes)
+            throw Unreadable{"a count of " + std::to_string(n) + " items does not fit in the " + std::to_string(left_) + " bytes left"};
+        return static_cast<std::size_t>(n);
     }
     template <typename T>
-    bool vec(std::vector<T>& v) {
-        std::uint64_t n = 0;
-        if (!pod(n) || n > (1ull << 32)) return false;
-        v.resize(n);
-        return static_cast<bool>(in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T))));
+    void vec(std::vector<T>& v) {
+        v.resize(count(sizeof(T)));
+        read(v.data(), v.size() * sizeof(T));
     }
-    bool str(std::string& s) {
-        std::uint64_t n = 0;
-        if (!pod(n) || n > (1u << 20)) return false;
-        s.resize(n);
-        return static_cast<bool>(in_.read(s.data(), static_cast<std::streamsize>(n)));
+    void str(std::string& s) {
+        s.resize(count(1));
+        read(s.data(), s.size());
     }
+    std::uint64_t left() const { return left_; }
 
 private:
-    std::ifstream& in_;
+    void read(void* to, std::size_t bytes) {
+        if (bytes > left_ || !in_.read(static_cast<char*>(to), static_cast<std::streamsize>(bytes))) throw Unreadable{"it ends early"};
+        left_ -= bytes;
+    }
+
+    std::istream& in_;
+    std::uint64_t left_;
 };
+
+// The entry in `file`, read as written, checked only for its format.
+LayeredEm parseLayeredEm(const std::filesystem::path& file) {
+    std::error_code error;
+    const std::uint64_t bytes = std::filesystem::file_size(file, error);
+    std::ifstream in(file, std::ios::binary);
+    if (error || !in) throw Unreadable{"it cannot be read"};
+    Reader r(in, bytes);
+    char magic[sizeof kMagic];
+    r.pod(magic);
+    if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw Unreadable{"it is not an entry of this version"};
+    LayeredEm em;
+    r.str(em.system);
+    r.pod(em.center);
+    constexpr std::size_t kLeastLayerBytes = sizeof(Shell) + 2 * sizeof(std::uint64_t);
+    em.layers.resize(r.count(kLeastLayerBytes));
+    for (EmLayer& l : em.layers) {
+        r.pod(l.shell);
+        r.vec(l.objects);
+        r.pod(l.meanDistance);
+    }
+    constexpr std::size_t kLeastViewpointBytes = sizeof(Camera) + 2 * sizeof(std::uint64_t);
+    em.viewpoints.resize(r.count(kLeastViewpointBytes));
+    for (EmViewpoint& v : em.viewpoints) {
+        r.pod(v.camera);
+        r.vec(v.unobservedTexels);
+        constexpr std::size_t kLeastMapBytes = sizeof(int) + sizeof(std::uint64_t);
+        v.maps.resize(r.count(kLeastMapBytes));
+        for (LayerCubeMap& m : v.maps) {
+            r.pod(m.size);
+            r.vec(m.texels);
+        }
+    }
+    if (r.left() != 0) throw Unreadable{"it has " + std::to_string(r.left()) + " bytes past the entry's end"};
+    return em;
+}
 
 }  // namespace
 
@@ -119,32 +179,29 @@ void writeLayeredEm(const std::filesystem::path& file, const LayeredEm& em) {
     }
 }
 
-std::optional<LayeredEm> readLayeredEm(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;
-    char magic[sizeof kMagic];
-    if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0) return std::nullopt;
-    Reader r(in);
-    LayeredEm em;
-    std::uint64_t layers = 0, views = 0;
-    if (!r.str(em.system) || !r.pod(em.center) || !r.pod(layers) || layers > 64) return std::nullopt;
-    em.layers.resize(layers);
-    for (EmLayer& l : em.layers) {
-        if (!r.pod(l.shell) || !r.vec(l.objects) || !r.pod(l.meanDistance)) return std::nullopt;
+CachedLayeredEm readLayeredEm(const std::filesystem::path& file, const Scene& scene, const LensSystemInfo& system,
+                              const EmBakeSettings& settings) {
+    std::error_code error;
+    if (!std::filesystem::exists(file, error)) return {};
+    try {
+        LayeredEm em = parseLayeredEm(file);
+        if (std::optional<std::string> mismatch = layeredEmEntryMismatch(em, scene, system, settings)) return {std::nullopt, *mismatch};
+        return {std::move(em), {}};
+    } catch (const Unreadable& u) {
+        return {std::nullopt, u.why};
     }
-    if (!r.pod(views) || views > 100000) return std::nullopt;
-    em.viewpoints.resize(views);
-    for (EmViewpoint& v : em.viewpoints) {
-        std::uint64_t maps = 0;
-        if (!r.pod(v.camera) || !r.vec(v.unobservedTexels) || !r.pod(maps) || maps != layers) return std::nullopt;
-        v.maps.resize(maps);
-        for (LayerCubeMap& m : v.maps) {
-            if (!r.pod(m.size) || !r.vec(m.texels) || m.texels.size() != cubeMapTexelCount(m.size)) return std::nullopt;
-        }
-    }
-    char extra;
-    if (in.read(&extra, 1)) return std::nullopt;  // trailing bytes: not an entry of this format
-    return em;
+}
+
+std::optional<LayeredEm> findLayeredEm(const std::filesystem::path& file, const Scene& scene, const LensSystemInfo& system,
+                                       const EmBakeSettings& settings) {
+    CachedLayeredEm cached = readLayeredEm(file, scene, system, settings);
+    if (!cached.problem.empty()) warn(file.string() + ": not a usable layered-EM cache entry (" + cached.problem + "); baking it again");
+    return std::move(cached.em);
+}
+
+void requireWritableLayeredEmCache(const std::filesystem::path& dir) {
+    createDirectories(dir);
+    if (::access(dir.c_str(), W_OK) != 0) throw IoError::fromErrno(dir, "write entries into the layered-EM cache folder", errno);
 }
 
 }  // namespace hybridlab

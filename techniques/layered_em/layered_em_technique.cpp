@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "common/core/atomic_file.h"
+#include "common/core/io_error.h"
 #include "common/core/log.h"
 #include "techniques/layered_em/em_bake_command.h"
 #include "techniques/layered_em/em_cache.h"
@@ -108,23 +108,37 @@ RasterRequest LayeredEmTechnique::rasterRequest(const FrameRequest& frame) {
     return r;
 }
 
+namespace {
+
+// The cache only saves a later bake, so a cache that cannot be written costs that and not the
+// frame: one warning, and the caller renders without storing. False when `em` was not stored.
+bool storeInCache(const std::filesystem::path& file, const LayeredEm& em) {
+    try {
+        writeLayeredEm(file, em);
+        return true;
+    } catch (const IoError& e) {
+        warn(std::string("the layered-EM cache cannot be written (") + e.what() + "); rendering without storing the baked EMs");
+        return false;
+    }
+}
+
+}  // namespace
+
 void LayeredEmTechnique::prepare(SceneContext& context) {
     const Scene& scene = context.scene();
     systems_.clear();
     ems_.clear();
     const std::filesystem::path dir = defaultLayeredEmCacheDir();
+    bool storing = useCache_;
     for (const LensSystemInfo& info : findLensSystems(scene)) {
         systems_.push_back(std::make_unique<System>(scene, info));
         const std::filesystem::path file = dir / (layeredEmCacheKey(scene, info, bake_) + ".hlem");
         std::optional<LayeredEm> em;
-        if (useCache_) em = readLayeredEm(file);
+        if (useCache_) em = findLayeredEm(file, scene, info, bake_);
         if (!em) {
             EmBakeStats stats;
             em = bakeLayeredEm(scene, info, bake_, stats);
-            if (useCache_) {
-                createDirectories(dir);
-                writeLayeredEm(file, *em);
-            }
+            if (storing) storing = storeInCache(file, *em);
         }
         ems_.push_back(std::move(*em));
     }

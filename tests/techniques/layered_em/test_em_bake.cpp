@@ -298,20 +298,23 @@ TEST(EmBake, CacheRoundTripsAndKeysFollowSettings) {
     EXPECT_NE(key, layeredEmCacheKey(scene, systems[0], settings));
     EXPECT_EQ(key, layeredEmCacheKey(scene, systems[1], settings));
     const auto file = dir / (key + ".hlem");
-    EXPECT_FALSE(readLayeredEm(file).has_value());
+    const CachedLayeredEm absent = readLayeredEm(file, scene, systems[1], settings);
+    EXPECT_FALSE(absent.em.has_value());
+    EXPECT_EQ(absent.problem, "") << "no file is a plain miss";
     writeLayeredEm(file, em);
-    auto back = readLayeredEm(file);
-    ASSERT_TRUE(back.has_value());
-    EXPECT_EQ(back->system, "cup");
-    ASSERT_EQ(back->layers.size(), em.layers.size());
-    EXPECT_EQ(back->layers[1].objects, em.layers[1].objects);
-    EXPECT_EQ(back->layers[0].shell.radius, em.layers[0].shell.radius);
-    ASSERT_EQ(back->viewpoints.size(), 2u);
-    EXPECT_EQ(back->viewpoints[1].maps[1].texels, em.viewpoints[1].maps[1].texels);
-    EXPECT_EQ(back->viewpoints[1].camera.position, em.viewpoints[1].camera.position);
-    // A truncated file is not an entry.
-    std::filesystem::resize_file(file, std::filesystem::file_size(file) - 3);
-    EXPECT_FALSE(readLayeredEm(file).has_value());
+    const CachedLayeredEm cached = readLayeredEm(file, scene, systems[1], settings);
+    ASSERT_TRUE(cached.em.has_value()) << "a bake passes the cache's check of its entry: " << cached.problem;
+    const LayeredEm& back = *cached.em;
+    EXPECT_EQ(back.system, "cup");
+    ASSERT_EQ(back.layers.size(), em.layers.size());
+    EXPECT_EQ(back.layers[1].objects, em.layers[1].objects);
+    EXPECT_EQ(back.layers[0].shell.radius, em.layers[0].shell.radius);
+    ASSERT_EQ(back.viewpoints.size(), 2u);
+    EXPECT_EQ(back.viewpoints[1].maps[1].texels, em.viewpoints[1].maps[1].texels);
+    EXPECT_EQ(back.viewpoints[1].camera.position, em.viewpoints[1].camera.position);
+    EmBakeSettings larger = settings;
+    larger.inference.size = 16;
+    EXPECT_FALSE(readLayeredEm(file, scene, systems[1], larger).em.has_value()) << "an entry of 8-texel maps is no 16-texel bake";
 }
 
 }  // namespace
