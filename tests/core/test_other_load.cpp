@@ -48,7 +48,9 @@ TEST(OtherLoad, CountsOtherProcessesAndNotThisOne) {
         const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart).count();
         const double ownShare = (processCpuMilliseconds() - cpuStart) / (wallMs * static_cast<double>(cores));
         ASSERT_TRUE(f);
-        EXPECT_GT(ownShare, 0.2);
+        // That it ran at all (its clock is read): its share of a machine loaded 10 deep on 2 cores
+        // was 0.17, so more than that would be a bound on the load, not on the meter.
+        EXPECT_GT(ownShare, 0.05);
         EXPECT_LE(*f + ownShare, 1.1) << "others " << *f << ", this process " << ownShare;
     }
     // A busy process on every core: nearly all of the machine is others'.
