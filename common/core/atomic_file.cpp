@@ -159,8 +159,31 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
     renameOver(tmp, path);
 }
 
+namespace {
+
+// Whether the process that named a temporary `pid` has gone: not this one, and kill(pid, 0) fails
+// with ESRCH (no such process; EPERM means one runs under another user).
+bool ownerIsGone(pid_t pid) { return pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH; }
+
+// The staging folders of `target` that a killed process left beside it.
+void removeStaleStagingOf(const fs::path& target) {
+    const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    const std::string suffix = "-" + target.filename().string();
+    std::error_code ec;
+    for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const pid_t pid = temporaryOwner(name);
+        if (pid == 0 || name != std::string(kTemporaryPrefix) + std::to_string(pid) + suffix) continue;
+        std::error_code removeError;
+        if (it->is_directory(removeError) && ownerIsGone(pid)) fs::remove_all(it->path(), removeError);
+    }
+}
+
+}  // namespace
+
 void writeFolderAtomically(const fs::path& dir, const std::function<void(const fs::path&)>& fill) {
     const fs::path target = dir.has_filename() ? dir : dir.parent_path();  // "out/" is "out"
+    removeStaleStagingOf(target);
     const fs::path staging = temporaryPathFor(target);
     createDirectories(staging);
     try {
@@ -194,9 +217,7 @@ std::size_t removeStaleTemporaries(const fs::path& dir) {
     std::error_code ec;
     for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
         const pid_t pid = temporaryOwner(it->path().filename().string());
-        if (pid == 0 || !it->is_regular_file()) continue;
-        // Our own, or a live process's: not stale. kill(pid, 0) fails with ESRCH when none runs.
-        if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+        if (pid == 0 || !it->is_regular_file() || !ownerIsGone(pid)) continue;  // ours or a live process's: not stale
         std::error_code removeError;
         if (fs::remove(it->path(), removeError)) ++removed;
     }

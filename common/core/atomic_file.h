@@ -46,7 +46,7 @@ private:
 // temporary folder it is given beside `dir` (".tmp-PID-NAME"), which is then renamed to `dir`;
 // whatever `fill` throws, the temporary is removed and `dir` is not touched (an IoError's message
 // names the file under `dir`, not under the temporary). `dir` must not exist, or be an empty
-// folder (the rename replaces it).
+// folder (the rename replaces it). A temporary of `dir` that a killed process left is removed first.
 void writeFolderAtomically(const std::filesystem::path& dir, const std::function<void(const std::filesystem::path&)>& fill);
 
 // fs::create_directories, failing with IoError naming `dir` and the reason.

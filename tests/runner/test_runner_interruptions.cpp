@@ -232,5 +232,24 @@ TEST(RunnerInterruptions, TemporaryNameHeldByAnotherMachinesProcessIsLeftAlone) 
     EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 4);
 }
 
+// A merge or bundle killed while filling its folder leaves the folder's temporary beside it: the
+// next write of that folder removes it, and leaves other folders' temporaries alone.
+TEST(RunnerInterruptions, AStagingFolderAKilledProcessLeftIsRemovedByTheNextWrite) {
+    test::TempDir dir;
+    const pid_t dead = fork();
+    if (dead == 0) _exit(0);
+    waitpid(dead, nullptr, 0);
+    const fs::path stale = dir / (".tmp-" + std::to_string(dead) + "-merged");
+    const fs::path otherTarget = dir / (".tmp-" + std::to_string(dead) + "-other");
+    fs::create_directories(stale / "runs");
+    fs::create_directories(otherTarget);
+    test::writeTextFile(stale / "runs" / "half.json", "{\"half");
+    test::writeTextFile(otherTarget / "x", "1");
+    writeFolderAtomically(dir / "merged", [](const fs::path& staging) { test::writeTextFile(staging / "results.json", "[]\n"); });
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(dir / "merged" / "results.json"));
+    EXPECT_TRUE(fs::exists(otherTarget)) << "another folder's temporary is its own write's to collect";
+}
+
 }  // namespace
 }  // namespace hybridlab
