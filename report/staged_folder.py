@@ -4,6 +4,7 @@ full disk, an error while drawing) leaves it as it was: absent, or holding the e
 import contextlib
 import errno
 import os
+import re
 import shutil
 import tempfile
 
@@ -27,18 +28,47 @@ def _move_in(staging, destination):
         os.rename(os.path.join(staging, name), target)
 
 
+def _staging_prefix(name, pid):
+    """The staging folder's name before mkdtemp's random tail: the program's temporaries' form
+    (.tmp-PID-NAME, common/core/atomic_file.h), so that the owner of one left behind is known."""
+    return ".tmp-%d-%s." % (pid, name)
+
+
+def _owner_is_gone(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    except OSError:
+        return False  # another user's process
+    return False
+
+
+def _remove_stale_staging(parent, name):
+    """The staging folders of `name` that a killed report left in `parent`."""
+    pattern = re.compile(r"\.tmp-(\d+)-" + re.escape(name) + r"\.[^/]*$")
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(parent):
+            m = pattern.match(entry.name)
+            if m and int(m.group(1)) != os.getpid() and entry.is_dir(follow_symlinks=False) and _owner_is_gone(int(m.group(1))):
+                shutil.rmtree(entry.path, ignore_errors=True)
+
+
 @contextlib.contextmanager
 def staged(destination):
     """Yields a new empty folder beside `destination`; when the block ends without an exception,
     its entries replace those of the same names in `destination` (made when absent, with the
-    permissions a new folder gets; other entries stay). The staging folder is removed either way.
+    permissions a new folder gets; other entries stay). The staging folder is removed either way, and
+    one that a killed report left beside `destination` before this one is made.
     OSError (its filename the destination) where `destination` is a file or cannot be written."""
     if os.path.lexists(destination) and not os.path.isdir(destination):
         raise NotADirectoryError(errno.ENOTDIR, "a file, not a folder", destination)
     parent = os.path.dirname(os.path.abspath(destination))
     try:
         os.makedirs(parent, exist_ok=True)
-        staging = tempfile.mkdtemp(prefix="." + os.path.basename(os.path.abspath(destination)) + ".", dir=parent)
+        name = os.path.basename(os.path.abspath(destination))
+        _remove_stale_staging(parent, name)
+        staging = tempfile.mkdtemp(prefix=_staging_prefix(name, os.getpid()), dir=parent)
     except OSError as e:
         raise OSError(e.errno, e.strerror, destination) from None
     try:

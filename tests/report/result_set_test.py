@@ -291,6 +291,20 @@ class StagedFolder(unittest.TestCase):
                 self.assertEqual(caught.exception.filename, out)
             self.assertEqual(os.listdir(d), ["a-file"])
 
+    def test_a_killed_reports_staging_folder_is_removed_by_the_next(self):
+        with tempfile.TemporaryDirectory() as d:
+            gone = subprocess.Popen(["true"])
+            gone.wait()  # its process id is no process's now
+            stale = os.path.join(d, ".tmp-%d-report.x1y2" % gone.pid)
+            other = os.path.join(d, ".tmp-%d-figures.x1y2" % gone.pid)
+            for folder in (stale, other):
+                os.makedirs(folder)
+                write_text(os.path.join(folder, "index.html"), "half")
+            with staged_folder.staged(os.path.join(d, "report")) as staging:
+                self.assertTrue(os.path.basename(staging).startswith(".tmp-%d-report." % os.getpid()))
+                write_text(os.path.join(staging, "index.html"), "whole")
+            self.assertEqual(sorted(os.listdir(d)), [os.path.basename(other), "report"])  # another folder's is its own
+
 
 def device_record():
     return json.loads(read_text(os.path.join(VERDICT_SET, "experiment.json")))["device"]
