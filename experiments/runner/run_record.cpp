@@ -166,12 +166,8 @@ public:
                 fail(where, std::is_unsigned_v<T> ? "expected an integer >= 0" : "expected an integer");
             // Within T, and within the integers the report and the viewer read exactly (2^53): a
             // 2^63 in an int field is out of range, not the 0 it would wrap to.
-            const double min = std::max({range.min, static_cast<double>(std::numeric_limits<T>::min()), -kExactInteger});
-            const double max = std::min({range.max, static_cast<double>(std::numeric_limits<T>::max()), kExactInteger});
-            const long long n = v.is_number_unsigned() ? static_cast<long long>(std::min(v.get<unsigned long long>(), kPastExact))
-                                                       : v.get<long long>();
-            if (const std::string problem = integerProblem(n, static_cast<long long>(min), static_cast<long long>(max), v.dump()); !problem.empty())
-                fail(where, problem);
+            exactInteger(v, where, std::max({range.min, static_cast<double>(std::numeric_limits<T>::min()), -kExactInteger}),
+                         std::min({range.max, static_cast<double>(std::numeric_limits<T>::max()), kExactInteger}));
         } else {
             if (!v.is_number()) fail(where, "expected a number");
             // As written, where JSON can write it (it writes infinities as null).
@@ -180,6 +176,15 @@ public:
                 fail(where, problem);
         }
         return v.get<T>();
+    }
+
+    // JSON integer `v` within [min, max] (and the integers read exactly, 2^53): never wrapped.
+    static long long exactInteger(const json& v, const std::string& where, double min = -kExactInteger, double max = kExactInteger) {
+        const long long n = v.is_number_unsigned() ? static_cast<long long>(std::min(v.get<unsigned long long>(), kPastExact))
+                                                   : v.get<long long>();
+        if (const std::string problem = integerProblem(n, static_cast<long long>(min), static_cast<long long>(max), v.dump()); !problem.empty())
+            fail(where, problem);
+        return n;
     }
 
 private:
@@ -265,7 +270,7 @@ ParameterList parametersFrom(const json& j, const std::string& where) {
     ParameterList list;
     for (const auto& [k, v] : j.items()) {
         if (v.is_boolean()) list.emplace_back(k, v.get<bool>());
-        else if (v.is_number_integer()) list.emplace_back(k, v.get<long long>());
+        else if (v.is_number_integer()) list.emplace_back(k, FieldReader::exactInteger(v, where + "." + k));
         else if (v.is_number_float()) list.emplace_back(k, v.get<double>());
         else if (v.is_string()) list.emplace_back(k, v.get<std::string>());
         else FieldReader::fail(where + "." + k, "expected a boolean, number or string");

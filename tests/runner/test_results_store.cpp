@@ -152,6 +152,8 @@ TEST(ResultsStore, RecordsRoundTripThroughTheirOneWriter) {
     EXPECT_EQ(refusal([](json& j) { j["timing"]["frame_ms_rounds"][0] = -1.0; }),
               "results record $.timing.frame_ms_rounds[0]: expected a number in [0, inf], got -1.0");
     EXPECT_EQ(refusal([](json& j) { j["time"] = 1e300; }), "results record $.time: expected a number in [-1e+06, 1e+06], got 1e+300");
+    EXPECT_EQ(refusal([](json& j) { j["parameters"]["max_depth"] = 1ULL << 63; }),  // not the negative a long long would wrap it to
+              "results record $.parameters.max_depth: expected an integer in [-9007199254740992, 9007199254740992], got 9223372036854775808");
 
     // A record file the store cannot read names itself.
     test::writeTextFile(store.runsDir() / "broken.json", R"({"index": 1})");
