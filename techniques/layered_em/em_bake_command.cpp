@@ -192,7 +192,13 @@ void defineCommand(CLI::App& command) {
         ->check(CLI::IsMember({"auto", "viewpoint", "origin"}));
     cmd->add_flag("--no-origin-images", o->noOriginImages, "No fill from the EM origin's images where no lens image reads");
     cmd->add_flag("--no-prevention", o->noPrevention, "No EM disocclusion prevention: first hits only, one viewpoint, no direct images");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, cmd] {
+        // --max-layers bounds the automatic choice only: beside a count it would be ignored.
+        if (cmd->count("--max-layers") > 0 && o->settings.layers > 0)
+            throw InputError("--max-layers " + std::to_string(o->settings.maxLayers) + " bounds the automatic choice (--layers 0); with --layers " +
+                             std::to_string(o->settings.layers) + " it would be ignored");
+        run(*o);
+    });
 }
 
 }  // namespace

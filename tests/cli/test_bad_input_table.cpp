@@ -470,6 +470,8 @@ const std::vector<BadInputCase> kCases = {
     {{"bench", "--scene", "whitted-classic", "--budget", "nan"}, 2, "--budget: expected a finite number in [1, 1e+18], got nan"},
     {{"merge", "--out", "", "%d/shard-a0", "%d/shard-a1"}, 2, "--out: expected a folder, got ''"},
     {{"bundle", "--out", ""}, 2, "--out: expected a folder, got ''"},
+    {{"bake-em", "--scene", "em-disocclusion", "--layers", "5", "--max-layers", "1", "--cache", "%o"}, 2,
+     "--max-layers 1 bounds the automatic choice (--layers 0); with --layers 5 it would be ignored"},
     {{"export-pov", "--scene", "whitted-classic", "--out", ""}, 2, "--out: expected a .pov file name, got ''"},
     {{"export-pov", "--scene", "whitted-classic", "--out", "%d/a-folder"}, 2, "--out %d/a-folder: a folder, expected a .pov file name"},
     // FLIP's viewing condition: its filters grow with it (10^10 asked for more memory than exists).
