@@ -83,6 +83,29 @@ TEST(ResultsStore, RecordingARunWritesItsRecordAloneAndAReaderWritesTheResultsOf
     EXPECT_EQ(writeMissingResults(dir / "nothing-here"), std::nullopt);
 }
 
+// Numbers the runner cannot have written, each refused as `refusal` says (the message of reading
+// the record with one change): sizes and frames outside what it renders (a 2^63 is not the 0 an
+// int would wrap it to), indices past what the report reads exactly, negative or infinite times, a
+// scene time outside --time's range, a parameter past 2^53.
+void expectNumbersTheRunnerCannotHaveWrittenRefused(const std::function<std::string(const std::function<void(json&)>&)>& refusal) {
+    EXPECT_EQ(refusal([](json& j) { j["width"] = -5; }), "results record $.width: expected an integer in [1, 16384], got -5");
+    EXPECT_EQ(refusal([](json& j) { j["height"] = 0; }), "results record $.height: expected an integer in [1, 16384], got 0");
+    EXPECT_EQ(refusal([](json& j) { j["width"] = 16385; }), "results record $.width: expected an integer in [1, 16384], got 16385");
+    EXPECT_EQ(refusal([](json& j) { j["frame"] = 1ULL << 63; }),
+              "results record $.frame: expected an integer in [-1, 10000000], got 9223372036854775808");
+    EXPECT_EQ(refusal([](json& j) { j["frame"] = -2; }), "results record $.frame: expected an integer in [-1, 10000000], got -2");
+    EXPECT_EQ(refusal([](json& j) { j["index"] = 1ULL << 60; }),
+              "results record $.index: expected an integer in [0, 9007199254740992], got 1152921504606846976");
+    EXPECT_EQ(refusal([](json& j) { j["frame_ms"]["median"] = -5.0; }), "results record $.frame_ms.median: expected a number in [0, inf], got -5.0");
+    EXPECT_EQ(refusal([](json& j) { j["stages"]["trace"]["max"] = std::numeric_limits<double>::infinity(); }),
+              "results record $.stages.trace.max: expected a finite number in [0, inf], got inf");
+    EXPECT_EQ(refusal([](json& j) { j["timing"]["frame_ms_rounds"][0] = -1.0; }),
+              "results record $.timing.frame_ms_rounds[0]: expected a number in [0, inf], got -1.0");
+    EXPECT_EQ(refusal([](json& j) { j["time"] = 1e300; }), "results record $.time: expected a number in [-1e+06, 1e+06], got 1e+300");
+    EXPECT_EQ(refusal([](json& j) { j["parameters"]["max_depth"] = 1ULL << 63; }),  // not the negative a long long would wrap it to
+              "results record $.parameters.max_depth: expected an integer in [-9007199254740992, 9007199254740992], got 9223372036854775808");
+}
+
 // The record's one writer and its reader (run_record.h): a real run's file is toJson of the record
 // read back, byte for byte; every optional part (error maps' absence, debug images, device,
 // temporal errors) survives the round trip; anything else in a record is refused by name.
@@ -135,25 +158,7 @@ TEST(ResultsStore, RecordsRoundTripThroughTheirOneWriter) {
     EXPECT_EQ(refusal([](json& j) { j["reference"]["extra"] = 0; }), "results record $.reference: unexpected 'extra'");
     EXPECT_EQ(refusal([](json& j) { j["stages"]["trace"].erase("median"); }), "results record $.stages.trace: missing 'median'");
     EXPECT_EQ(refusal([](json& j) { j["counters"]["rays_total"] = "many"; }), "results record $.counters.rays_total: expected a number");
-    // Numbers the runner cannot have written: sizes and frames outside what it renders (a 2^63 is
-    // not the 0 an int would wrap it to), indices past what the report reads exactly, negative or
-    // infinite times, a scene time outside --time's range.
-    EXPECT_EQ(refusal([](json& j) { j["width"] = -5; }), "results record $.width: expected an integer in [1, 16384], got -5");
-    EXPECT_EQ(refusal([](json& j) { j["height"] = 0; }), "results record $.height: expected an integer in [1, 16384], got 0");
-    EXPECT_EQ(refusal([](json& j) { j["width"] = 16385; }), "results record $.width: expected an integer in [1, 16384], got 16385");
-    EXPECT_EQ(refusal([](json& j) { j["frame"] = 1ULL << 63; }),
-              "results record $.frame: expected an integer in [-1, 10000000], got 9223372036854775808");
-    EXPECT_EQ(refusal([](json& j) { j["frame"] = -2; }), "results record $.frame: expected an integer in [-1, 10000000], got -2");
-    EXPECT_EQ(refusal([](json& j) { j["index"] = 1ULL << 60; }),
-              "results record $.index: expected an integer in [0, 9007199254740992], got 1152921504606846976");
-    EXPECT_EQ(refusal([](json& j) { j["frame_ms"]["median"] = -5.0; }), "results record $.frame_ms.median: expected a number in [0, inf], got -5.0");
-    EXPECT_EQ(refusal([](json& j) { j["stages"]["trace"]["max"] = std::numeric_limits<double>::infinity(); }),
-              "results record $.stages.trace.max: expected a finite number in [0, inf], got inf");
-    EXPECT_EQ(refusal([](json& j) { j["timing"]["frame_ms_rounds"][0] = -1.0; }),
-              "results record $.timing.frame_ms_rounds[0]: expected a number in [0, inf], got -1.0");
-    EXPECT_EQ(refusal([](json& j) { j["time"] = 1e300; }), "results record $.time: expected a number in [-1e+06, 1e+06], got 1e+300");
-    EXPECT_EQ(refusal([](json& j) { j["parameters"]["max_depth"] = 1ULL << 63; }),  // not the negative a long long would wrap it to
-              "results record $.parameters.max_depth: expected an integer in [-9007199254740992, 9007199254740992], got 9223372036854775808");
+    expectNumbersTheRunnerCannotHaveWrittenRefused(refusal);
 
     // A record file the store cannot read names itself.
     test::writeTextFile(store.runsDir() / "broken.json", R"({"index": 1})");
