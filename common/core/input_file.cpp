@@ -37,6 +37,16 @@ void requireInputFile(const fs::path& path, const std::string& what) {
     }
 }
 
+bool inputFolderPresent(const fs::path& path, const std::string& what) {
+    std::string reason;
+    switch (inputPathKind(path, &reason)) {
+    case InputPathKind::Missing: return false;
+    case InputPathKind::Directory: return true;
+    case InputPathKind::Unreadable: throw InputError(path.string() + ": cannot be read (" + reason + ")");
+    default: throw InputError(path.string() + ": is not a folder, expected " + what);
+    }
+}
+
 std::string readInputFile(const fs::path& path, const std::string& what) {
     requireInputFile(path, what);
     const auto unreadable = [&](int error) { return InputError(path.string() + ": cannot be read (" + std::strerror(error) + ")"); };

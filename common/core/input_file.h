@@ -18,6 +18,10 @@ InputPathKind inputPathKind(const std::filesystem::path& path, std::string* reas
 // (REASON)". `what` names what was expected ("a TOML file", "an image file").
 void requireInputFile(const std::filesystem::path& path, const std::string& what);
 
+// Whether `path` is a folder (false where nothing is there); throws InputError "PATH: is not a
+// folder, expected WHAT" or "PATH: cannot be read (REASON)" otherwise.
+bool inputFolderPresent(const std::filesystem::path& path, const std::string& what);
+
 // The whole file, after requireInputFile's checks; a file that cannot be opened or read throws
 // InputError "PATH: cannot be read (REASON)".
 std::string readInputFile(const std::filesystem::path& path, const std::string& what);

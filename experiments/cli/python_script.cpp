@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "experiments/cli/commands.h"
+
 namespace hybridlab::cli {
 
 namespace fs = std::filesystem;
@@ -61,6 +63,12 @@ int runSourceScript(const std::string& path, const std::vector<std::string>& arg
     }
     if (interrupt == Interrupt::ScriptOnly) std::signal(SIGINT, previous);
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+void runReportScriptSayingItsErrors(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt) {
+    const int status = runReportScript(script, args, interrupt);
+    if (status == 2 || status == 3) throw CommandExit{status};
+    if (status != 0) throw std::runtime_error("report/" + script + " failed (exit status " + std::to_string(status) + ")");
 }
 
 }  // namespace hybridlab::cli

@@ -16,6 +16,12 @@ enum class Interrupt { StopsBoth, ScriptOnly };
 int runReportScript(const std::string& script, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
                     std::string* output = nullptr);
 
+// runReportScript for a script that says its own refusals on one line (report.py, serve.py): its
+// exit status 2 (bad input) or 3 (I/O) ends the program with that status and no line of its own
+// (CommandExit); any other failure is the program's (std::runtime_error).
+void runReportScriptSayingItsErrors(const std::string& script, const std::vector<std::string>& args,
+                                    Interrupt interrupt = Interrupt::StopsBoth);
+
 // The same for a script elsewhere in the source folder (`path` relative to it: experiments/tune/tune.py).
 int runSourceScript(const std::string& path, const std::vector<std::string>& args, Interrupt interrupt = Interrupt::StopsBoth,
                     std::string* output = nullptr);

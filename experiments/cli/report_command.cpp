@@ -28,11 +28,7 @@ void addReportCommand(CLI::App& app) {
         if (!baseline->empty()) args.insert(args.end(), {"--baseline", *baseline});
         // report.py says what is wrong on one line itself: a malformed file of the set (exit status
         // 2, nothing written) or a report folder that cannot be written (3).
-        const auto report = [&](std::vector<std::string> a) {
-            const int status = runReportScript("report.py", a);
-            if (status == 2 || status == 3) throw CommandExit{status};
-            if (status != 0) throw std::runtime_error("report/report.py failed (exit status " + std::to_string(status) + ")");
-        };
+        const auto report = [](const std::vector<std::string>& a) { runReportScriptSayingItsErrors("report.py", a); };
         // A killed runner's records are checked before results.json is written from them.
         if (!fs::exists(fs::path(*dir) / "results.json") && fs::exists(fs::path(*dir) / "experiment.json")) {
             std::vector<std::string> check = args;

@@ -33,9 +33,7 @@ void addViewCommand(CLI::App& app) {
         if (!report->empty()) args.insert(args.end(), {"--report", *report});
         // serve.py says what is wrong on one line itself: bad input (exit status 2) or a port it
         // cannot listen on (3).
-        const int status = runReportScript("serve.py", args, Interrupt::ScriptOnly);
-        if (status == 2 || status == 3) throw CommandExit{status};
-        if (status != 0) throw std::runtime_error("report/serve.py failed (exit status " + std::to_string(status) + ")");
+        runReportScriptSayingItsErrors("serve.py", args, Interrupt::ScriptOnly);
     });
 }
 

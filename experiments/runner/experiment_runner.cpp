@@ -37,6 +37,7 @@
 #include "experiments/runner/interleaved_timing.h"
 #include "experiments/runner/timing_statistics.h"
 #include "experiments/runner/reference_cache.h"
+#include "experiments/runner/resolution_scale.h"
 #include "experiments/runner/results_store.h"
 #include "experiments/runner/run_record.h"
 #include "experiments/runner/shard_partition.h"
@@ -88,14 +89,6 @@ json experimentJson(const ExperimentConfig& config, std::size_t runsTotal, const
             {"program", programVersionHash()},
             {"resolution_scale", config.resolutionScale},
             {"device", deviceRecord()}};
-}
-
-// 0.25, 1: as few digits as give the value back, so that the message's --scale resumes the set.
-std::string formatScale(double scale) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", scale);
-    if (std::strtod(text, nullptr) != scale) std::snprintf(text, sizeof text, "%.17g", scale);
-    return text;
 }
 
 // "a, b, c and 4 more" of at most three names.
@@ -724,15 +717,7 @@ constexpr const char* kCopiedFolders[] = {"images", "maps", "references"};
 // the folders merge copies, each absent or a folder.
 void checkShardFolder(const fs::path& dir) {
     requireInputFile(dir / "config.toml", "the config the shard was run with");
-    for (const char* sub : kCopiedFolders) {
-        std::string reason;
-        switch (inputPathKind(dir / sub, &reason)) {
-        case InputPathKind::Missing:
-        case InputPathKind::Directory: break;
-        case InputPathKind::Unreadable: throw InputError((dir / sub).string() + ": cannot be read (" + reason + ")");
-        default: throw InputError((dir / sub).string() + ": is not a folder, expected the shard's " + sub);
-        }
-    }
+    for (const char* sub : kCopiedFolders) (void)inputFolderPresent(dir / sub, std::string("the shard's ") + sub);
 }
 
 // fs::copy of a folder's tree, skipping files already there; IoError naming both where it fails.

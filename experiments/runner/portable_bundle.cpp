@@ -1,6 +1,5 @@
 #include "experiments/runner/portable_bundle.h"
 
-
 #include <algorithm>
 #include <array>
 #include <cstdio>

@@ -31,13 +31,15 @@ int scaledSide(int side, double scale) {
     return std::min(side, std::max(even, kMinimumSide));
 }
 
-namespace {
-std::string sizeText(std::pair<int, int> size) { return std::to_string(size.first) + "x" + std::to_string(size.second); }
-std::string scaleText(double scale) {
+std::string formatScale(double scale) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", scale);
+    if (std::strtod(text, nullptr) != scale) std::snprintf(text, sizeof text, "%.17g", scale);
     return text;
 }
+
+namespace {
+std::string sizeText(std::pair<int, int> size) { return std::to_string(size.first) + "x" + std::to_string(size.second); }
 }  // namespace
 
 void scaleResolutions(ExperimentConfig& config, double scale) {
@@ -48,7 +50,7 @@ void scaleResolutions(ExperimentConfig& config, double scale) {
         for (auto& [w, h] : scene.resolutions) {
             const std::pair<int, int> size{scaledSide(w, scale), scaledSide(h, scale)};
             if (const auto [first, added] = configured.emplace(size, std::make_pair(w, h)); !added)
-                throw InputError(config.file.string() + ": --scale " + scaleText(scale) + " makes " + sizeText(first->second) + " and " +
+                throw InputError(config.file.string() + ": --scale " + formatScale(scale) + " makes " + sizeText(first->second) + " and " +
                                  sizeText({w, h}) + " of scene '" + scene.name + "' both " + sizeText(size) +
                                  ": every run of them would be rendered twice (list one of them)");
             std::tie(w, h) = size;

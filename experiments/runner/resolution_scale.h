@@ -14,6 +14,9 @@ namespace hybridlab {
 // "--scale TEXT" as a number in (0, 1]; InputError naming the text otherwise.
 double parseResolutionScale(const std::string& text);
 
+// 0.25, 1: as few digits as give the value back, so that a message's --scale resumes the set.
+std::string formatScale(double scale);
+
 // One configured side at `scale`: rounded to an even count, at least 16 (or the side itself when
 // it is smaller), never more than the side.
 int scaledSide(int side, double scale);

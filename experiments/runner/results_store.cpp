@@ -36,13 +36,7 @@ void ResultsStore::recordRun(const RunRecord& record) const { writeRecord(record
 
 std::vector<RunRecord> ResultsStore::loadRecords() const {
     const fs::path runs = runsDir();
-    std::string reason;
-    switch (inputPathKind(runs, &reason)) {
-    case InputPathKind::Missing: return {};
-    case InputPathKind::Directory: break;
-    case InputPathKind::Unreadable: throw InputError(runs.string() + ": cannot be read (" + reason + ")");
-    default: throw InputError(runs.string() + ": is not a folder, expected the folder of the set's records (runs/<id>.json)");
-    }
+    if (!inputFolderPresent(runs, "the folder of the set's records (runs/<id>.json)")) return {};
     std::vector<fs::path> files;
     std::error_code ec;
     for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
@@ -178,6 +172,11 @@ void checkRecordFiles(const fs::path& dir, const RunRecord& record) {
     const auto refuse = [&](const fs::path& file, const std::string& what) {
         return InputError(file.string() + ": " + what + " (named by " + recordFile.string() + ")");
     };
+    // A reader's refusal of `file`, which starts with the file, with the record that names it.
+    const auto named = [&](const fs::path& file, const InputError& e) {
+        const std::string what = e.what();
+        return refuse(file, what.rfind(file.string() + ": ", 0) == 0 ? what.substr(file.string().size() + 2) : what);
+    };
     // A path the record names, relative to the set and inside it.
     const auto inSet = [&](const std::string& field, const std::string& name) {
         const fs::path relative(name);
@@ -192,9 +191,7 @@ void checkRecordFiles(const fs::path& dir, const RunRecord& record) {
         try {
             size = checkImageFile(file);
         } catch (const InputError& e) {
-            const std::string what = e.what();
-            // checkImageFile's message already starts with the file.
-            throw refuse(file, what.rfind(file.string() + ": ", 0) == 0 ? what.substr(file.string().size() + 2) : what);
+            throw named(file, e);
         }
         if (ofRecordSize && (size.width != record.width || size.height != record.height))
             throw refuse(file, "is " + std::to_string(size.width) + "x" + std::to_string(size.height) + ", expected the run's " +
@@ -208,13 +205,13 @@ void checkRecordFiles(const fs::path& dir, const RunRecord& record) {
     if (record.reference.mask) image("reference.mask", *record.reference.mask, true);
     if (record.images.maps) {
         const fs::path maps = inSet("images.maps", *record.images.maps);
-        std::string reason;
-        switch (inputPathKind(maps, &reason)) {
-        case InputPathKind::Directory: break;
-        case InputPathKind::Missing: throw refuse(maps, "folder not found, expected the run's error maps");
-        case InputPathKind::Unreadable: throw refuse(maps, "cannot be read (" + reason + ")");
-        default: throw refuse(maps, "is not a folder, expected the run's error maps");
+        bool present = false;
+        try {
+            present = inputFolderPresent(maps, "the run's error maps");
+        } catch (const InputError& e) {
+            throw named(maps, e);
         }
+        if (!present) throw refuse(maps, "folder not found, expected the run's error maps");
     }
 }
 
